@@ -1,0 +1,142 @@
+# Copyright 2026 The amr_description Authors
+# Licensed under the Apache License, Version 2.0
+
+"""Shared pytest fixtures: an isolated ROS environment per test and a process runner.
+
+Every test that starts ROS processes takes ``ros_env`` (a fresh ``ROS_DOMAIN_ID``, discovery
+limited to localhost) and ``procs`` (starts processes in their own process group, reads their
+output, and kills the whole group when the test ends, so no test leaves a ROS process behind).
+"""
+
+import itertools
+import os
+import signal
+import subprocess
+import tempfile
+import time
+
+import pytest
+
+_DOMAIN_IDS = itertools.count((os.getpid() * 7) % 200 + 1)
+
+
+def next_domain_id():
+    """Return a ROS domain ID not yet used by this test process (1..230).
+
+    :returns: the domain ID, an int.
+    """
+    return (next(_DOMAIN_IDS) - 1) % 230 + 1
+
+
+def package_exe(name):
+    """Return the absolute path of an installed ``amr_description`` executable.
+
+    :param name: executable name, as in ``ros2 run amr_description NAME``.
+    :returns: ``<prefix>/lib/amr_description/NAME`` found through the ament index.
+    :raises FileNotFoundError: when the package is not installed (source ``scripts/env.sh``).
+    """
+    from ament_index_python.packages import get_package_prefix
+    path = os.path.join(get_package_prefix('amr_description'), 'lib', 'amr_description', name)
+    if not os.path.isfile(path):
+        raise FileNotFoundError(f'no executable {path}: run scripts/setup first')
+    return path
+
+
+@pytest.fixture
+def ros_env():
+    """Environment for child processes: a fresh ``ROS_DOMAIN_ID`` and localhost-only DDS.
+
+    :returns: a dict to pass as ``env=`` to subprocesses; the test process itself is not changed.
+    """
+    env = dict(os.environ)
+    env['ROS_DOMAIN_ID'] = str(next_domain_id())
+    env['ROS_AUTOMATIC_DISCOVERY_RANGE'] = 'LOCALHOST'
+    env['PYTHONUNBUFFERED'] = '1'
+    env.pop('ROS_LOCALHOST_ONLY', None)
+    return env
+
+
+class Proc:
+    """A started child process whose combined stdout/stderr goes to a temporary file."""
+
+    def __init__(self, argv, env, cwd=None, stdin=subprocess.DEVNULL):
+        """Start ``argv`` in a new session (its own process group).
+
+        :param argv: command line, a list of str.
+        :param env: environment dict.
+        :param cwd: working directory or None.
+        :param stdin: stdin for the child (default: /dev/null).
+        """
+        self.argv = list(argv)
+        self._log = tempfile.NamedTemporaryFile(prefix='amr_test_', suffix='.log', delete=False)
+        self.popen = subprocess.Popen(
+            self.argv, env=env, cwd=cwd, stdin=stdin, stdout=self._log,
+            stderr=subprocess.STDOUT, start_new_session=True)
+
+    @property
+    def output(self):
+        """Return everything the process printed so far, as str."""
+        with open(self._log.name, 'r', errors='replace') as f:
+            return f.read()
+
+    def wait_for_output(self, text, timeout=20.0):
+        """Wait until ``text`` appears in the output.
+
+        :param text: substring to wait for.
+        :param timeout: seconds to wait.
+        :returns: True when seen, False on timeout or when the process exited without it.
+        """
+        deadline = time.monotonic() + timeout
+        while time.monotonic() < deadline:
+            if text in self.output:
+                return True
+            if self.popen.poll() is not None:
+                return text in self.output
+            time.sleep(0.05)
+        return False
+
+    def wait(self, timeout=30.0):
+        """Wait for exit and return the exit code (None if still running after ``timeout``)."""
+        try:
+            return self.popen.wait(timeout)
+        except subprocess.TimeoutExpired:
+            return None
+
+    def interrupt(self, timeout=10.0):
+        """Send SIGINT (Ctrl-C) to the process group and return the exit code (None on timeout)."""
+        if self.popen.poll() is None:
+            os.killpg(self.popen.pid, signal.SIGINT)
+        return self.wait(timeout)
+
+    def kill(self):
+        """SIGKILL the whole process group (no-op when already gone) and remove the log."""
+        try:
+            os.killpg(self.popen.pid, signal.SIGKILL)
+        except ProcessLookupError:
+            pass
+        self.popen.wait()
+        try:
+            os.unlink(self._log.name)
+        except OSError:
+            pass
+
+
+@pytest.fixture
+def procs():
+    """Start processes with ``procs.start(argv, env)``; all are killed when the test ends.
+
+    :returns: an object with ``start(argv, env, **kwargs) -> Proc``.
+    """
+    started = []
+
+    class _Runner:
+        def start(self, argv, env, **kwargs):
+            proc = Proc(argv, env, **kwargs)
+            started.append(proc)
+            return proc
+
+    yield _Runner()
+    for proc in started:
+        if proc.popen.poll() is None:
+            proc.interrupt(timeout=5.0)
+        proc.kill()
