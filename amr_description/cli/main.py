@@ -1,0 +1,62 @@
+# Copyright 2026 The amr_description Authors
+# Licensed under the Apache License, Version 2.0
+
+"""Entry point of the ``ros2`` command subset: ``ros2 <command> <verb> [options]``.
+
+Each command lives in ``amr_description.cli.<command>`` and exposes
+``add_command(subparsers)``, which adds its parser and verbs; every verb parser sets
+``main=callable(args) -> int`` with ``set_defaults``. The structure mirrors ros2cli
+(command -> verb) so later commands plug in by adding a module name to ``COMMANDS``.
+"""
+
+import argparse
+import importlib
+import sys
+
+COMMANDS = ('control', 'interface', 'launch', 'node', 'pkg', 'run', 'service', 'topic')
+
+
+def build_parser():
+    """Build the top-level ``ros2`` argument parser with every available command.
+
+    :returns: the :class:`argparse.ArgumentParser`.
+    """
+    parser = argparse.ArgumentParser(
+        prog='ros2', description='ros2 is an extensible command-line tool for ROS 2.',
+        formatter_class=argparse.RawDescriptionHelpFormatter)
+    subparsers = parser.add_subparsers(
+        title='Commands', dest='command',
+        metavar='Call `ros2 <command> -h` for more detailed usage.')
+    for name in COMMANDS:
+        try:
+            module = importlib.import_module(f'amr_description.cli.{name}')
+        except ModuleNotFoundError as exc:
+            if exc.name != f'amr_description.cli.{name}':
+                raise
+            continue
+        module.add_command(subparsers)
+    return parser
+
+
+def main(argv=None):
+    """Run ``ros2`` with ``argv`` (default ``sys.argv[1:]``).
+
+    :param argv: command-line arguments without the program name.
+    :returns: the process exit code (0 on success, 1 on a reported error).
+    """
+    parser = build_parser()
+    args = parser.parse_args(argv)
+    func = getattr(args, 'main', None)
+    if func is None:
+        # a command without a verb prints its own help, as ros2cli does
+        sub = getattr(args, '_command_parser', parser)
+        sub.print_help()
+        return 0 if args.command is None else 1
+    try:
+        return int(func(args) or 0)
+    except KeyboardInterrupt:
+        return 0
+
+
+if __name__ == '__main__':
+    sys.exit(main())
