@@ -43,6 +43,12 @@ def package_exe(name):
 
 
 @pytest.fixture
+def exe():
+    """Return :func:`package_exe`, resolving installed executables by name."""
+    return package_exe
+
+
+@pytest.fixture
 def ros_env():
     """Environment for child processes: a fresh ``ROS_DOMAIN_ID`` and localhost-only DDS.
 
