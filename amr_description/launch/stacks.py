@@ -1,0 +1,195 @@
+# Copyright 2026 The amr_description Authors
+# Licensed under the Apache License, Version 2.0
+
+"""The stacks that replace the tutorial's launch files: ``display`` and ``sim``.
+
+Each stack is a function ``stack(arguments) -> list of actions`` plus its declared launch
+arguments (``STACKS[name] = (function, declared_arguments, description)``). Arguments are the
+str values of ``name:=value`` pairs (see
+:func:`amr_description.launch.actions.parse_launch_arguments`). Run a stack with
+:class:`amr_description.launch.orchestrator.Orchestrator`::
+
+    args = resolve('sim', ['rtf:=0', 'headless:=true'])
+    with Orchestrator(sim(args)) as stack:
+        ...
+"""
+
+import os
+
+from amr_description.launch.actions import DeclareLaunchArgument
+from amr_description.launch.actions import LaunchError
+from amr_description.launch.actions import Node
+from amr_description.launch.actions import OnProcessExit
+from amr_description.launch.actions import parse_bool
+from amr_description.launch.actions import parse_float
+from amr_description.launch.actions import parse_launch_arguments
+
+PACKAGE = 'amr_description'
+
+
+def urdf_path():
+    """Return the installed URDF, ``<share>/amr_description/urdf/amr.urdf``.
+
+    :returns: the path (str).
+    :raises LaunchError: when the package is not installed.
+    """
+    from ament_index_python.packages import get_package_share_directory
+    from ament_index_python.packages import PackageNotFoundError
+    try:
+        share = get_package_share_directory(PACKAGE)
+    except (PackageNotFoundError, ValueError, LookupError):
+        raise LaunchError(f"package '{PACKAGE}' not found") from None
+    return os.path.join(share, 'urdf', 'amr.urdf')
+
+
+def read_urdf(path=None):
+    """Return the URDF text given to robot_state_publisher as ``robot_description``.
+
+    :param path: URDF file (default: :func:`urdf_path`).
+    :returns: the file contents, str.
+    :raises LaunchError: when the file cannot be read or is empty.
+    """
+    path = path or urdf_path()
+    try:
+        with open(path, 'r') as f:
+            text = f.read()
+    except OSError as exc:
+        raise LaunchError(f"cannot read URDF '{path}': {exc.strerror}") from None
+    if not text.strip():
+        raise LaunchError(f"URDF '{path}' is empty")
+    return text
+
+
+DISPLAY_ARGUMENTS = [
+    DeclareLaunchArgument('use_sim_time', 'false', 'Use simulation (/clock) time if true'),
+]
+
+SIM_ARGUMENTS = [
+    DeclareLaunchArgument('use_sim_time', 'true', 'Use simulation (/clock) time if true'),
+    DeclareLaunchArgument('rtf', '1.0',
+                          'Real-time factor of the simulation (0 = as fast as possible)'),
+    DeclareLaunchArgument('headless', 'true', 'Run the simulator without a viewer window'),
+    DeclareLaunchArgument('robot', 'amr', 'Name of the spawned robot'),
+    DeclareLaunchArgument('x', '0.0', 'Spawn position x in the world frame (m)'),
+    DeclareLaunchArgument('y', '0.0', 'Spawn position y in the world frame (m)'),
+    DeclareLaunchArgument('z', '0.2', 'Spawn position z in the world frame (m)'),
+    DeclareLaunchArgument('yaw', '0.0', 'Spawn heading about z (rad)'),
+]
+
+
+def display(args):
+    """Describe the ``display`` stack (the tutorial's display.launch.py without RViz).
+
+    robot_state_publisher with ``robot_description`` = the installed URDF, and
+    joint_state_publisher.
+
+    :param args: dict of launch-argument values (see ``DISPLAY_ARGUMENTS``).
+    :returns: list of actions.
+    :raises LaunchError: on a bad argument value or an unreadable URDF.
+    """
+    use_sim_time = parse_bool(args.get('use_sim_time', 'false'), 'use_sim_time')
+    description = read_urdf()
+    return [
+        Node(PACKAGE, 'robot_state_publisher', output='screen',
+             parameters=[{'robot_description': description, 'use_sim_time': use_sim_time}]),
+        Node(PACKAGE, 'joint_state_publisher', output='screen',
+             parameters=[{'use_sim_time': use_sim_time}]),
+    ]
+
+
+def sim(args):
+    """Describe the ``sim`` stack (the tutorial's Gazebo + ros2_control launch file).
+
+    mujoco_sim (``real_time_factor``, ``headless``, ``/diff_drive_controller/odom`` remapped
+    to ``/odom``); robot_state_publisher with ``use_sim_time``; ``create -topic
+    robot_description -name ROBOT -x X -y Y -z Z -Y YAW``; when ``create`` exits successfully
+    ``spawner joint_state_broadcaster``, and when that exits ``spawner diff_drive_controller``
+    (the tutorial's ``OnProcessExit`` chain).
+
+    :param args: dict of launch-argument values (see ``SIM_ARGUMENTS``).
+    :returns: list of actions.
+    :raises LaunchError: on a bad argument value or an unreadable URDF.
+    """
+    use_sim_time = parse_bool(args.get('use_sim_time', 'true'), 'use_sim_time')
+    rtf = parse_float(args.get('rtf', '1.0'), 'rtf')
+    if rtf < 0:
+        raise LaunchError(f"launch argument 'rtf': expected a number >= 0, got '{args['rtf']}'")
+    headless = parse_bool(args.get('headless', 'true'), 'headless')
+    robot = args.get('robot', 'amr') or 'amr'
+    pose = {k: parse_float(args.get(k, d), k)
+            for k, d in (('x', '0.0'), ('y', '0.0'), ('z', '0.2'), ('yaw', '0.0'))}
+    description = read_urdf()
+
+    mujoco_sim = Node(
+        PACKAGE, 'mujoco_sim', output='screen',
+        parameters=[{'real_time_factor': rtf, 'headless': headless}],
+        remappings=[('/diff_drive_controller/odom', '/odom')])
+    robot_state_publisher = Node(
+        PACKAGE, 'robot_state_publisher', output='screen',
+        parameters=[{'robot_description': description, 'use_sim_time': use_sim_time}])
+    create = Node(
+        PACKAGE, 'create', output='screen',
+        arguments=['-topic', 'robot_description', '-name', robot,
+                   '-x', repr(pose['x']), '-y', repr(pose['y']), '-z', repr(pose['z']),
+                   '-Y', repr(pose['yaw'])])
+    joint_state_broadcaster = Node(
+        PACKAGE, 'spawner', output='screen', arguments=['joint_state_broadcaster'])
+    diff_drive_controller = Node(
+        PACKAGE, 'spawner', output='screen', arguments=['diff_drive_controller'])
+    return [
+        mujoco_sim,
+        robot_state_publisher,
+        create,
+        OnProcessExit(create, [joint_state_broadcaster], only_on_success=True),
+        OnProcessExit(joint_state_broadcaster, [diff_drive_controller]),
+    ]
+
+
+STACKS = {
+    'display': (display, DISPLAY_ARGUMENTS,
+                'robot_state_publisher + joint_state_publisher for the installed URDF'),
+    'sim': (sim, SIM_ARGUMENTS,
+            'MuJoCo simulation, robot_state_publisher, spawn and ros2_control controllers'),
+}
+
+
+def stack_name(name):
+    """Map ``sim``, ``sim.launch.py`` or ``sim_launch.py`` to a stack name.
+
+    :param name: what the user typed.
+    :returns: the key of :data:`STACKS`.
+    :raises LaunchError: when no such stack exists.
+    """
+    base = os.path.basename(name)
+    for suffix in ('.launch.py', '_launch.py', '.py'):
+        if base.endswith(suffix):
+            base = base[:-len(suffix)]
+            break
+    if base not in STACKS:
+        raise LaunchError(f"file '{name}' was not found in the share directory of package "
+                          f"'{PACKAGE}' (stacks: {', '.join(sorted(STACKS))})")
+    return base
+
+
+def resolve(name, argv=()):
+    """Parse ``name:=value`` arguments for a stack.
+
+    :param name: stack name (see :func:`stack_name`).
+    :param argv: list of ``'name:=value'``.
+    :returns: dict of argument values with defaults filled in.
+    :raises LaunchError: on an unknown stack or a bad argument.
+    """
+    _, declared, _ = STACKS[stack_name(name)]
+    return parse_launch_arguments(declared, list(argv))
+
+
+def describe(name, argv=()):
+    """Return the actions of stack ``name`` for ``name:=value`` arguments ``argv``.
+
+    :param name: stack name (see :func:`stack_name`).
+    :param argv: list of ``'name:=value'``.
+    :returns: list of actions for :class:`~amr_description.launch.orchestrator.Orchestrator`.
+    :raises LaunchError: on an unknown stack, a bad argument or an unreadable URDF.
+    """
+    function = STACKS[stack_name(name)][0]
+    return function(resolve(name, argv))
