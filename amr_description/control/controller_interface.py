@@ -1,0 +1,182 @@
+# Copyright 2026 The amr_description Authors
+# Licensed under the Apache License, Version 2.0
+"""Base class of the controllers run by :class:`ControllerManager`.
+
+As ros2_control's ``controller_interface::ControllerInterface`` (jazzy): a controller is a
+lifecycle node named after the controller, created by the controller manager with its
+parameters from the controllers YAML; it declares the command interfaces it claims and the
+state interfaces it reads (``'<joint>/<interface>'`` names), receives the handles before
+activation and is updated by the manager with ``update(time, period)`` (seconds) while active.
+
+Subclasses override :meth:`on_init` (declare parameters with :meth:`auto_declare`),
+the rclpy lifecycle callbacks ``on_configure(state)``/``on_activate``/``on_deactivate``/
+``on_cleanup`` (return :class:`TransitionCallbackReturn`), :meth:`command_interface_configuration`,
+:meth:`state_interface_configuration` and :meth:`update`.
+"""
+
+import math
+
+from builtin_interfaces.msg import Time as TimeMsg
+from rclpy.lifecycle import LifecycleNode
+from rclpy.lifecycle import TransitionCallbackReturn
+from rclpy.parameter import Parameter
+
+__all__ = ['ControllerInterface', 'TransitionCallbackReturn', 'time_to_msg', 'msg_to_time']
+
+
+def time_to_msg(time):
+    """Return ``builtin_interfaces/Time`` for ``time`` in seconds (float, >= 0)."""
+    sec = math.floor(time)
+    nanosec = int(round((time - sec) * 1e9))
+    if nanosec >= 1_000_000_000:
+        sec, nanosec = sec + 1, nanosec - 1_000_000_000
+    return TimeMsg(sec=int(sec), nanosec=nanosec)
+
+
+def msg_to_time(msg):
+    """Return seconds (float) of a ``builtin_interfaces/Time``."""
+    return msg.sec + msg.nanosec * 1e-9
+
+
+class ControllerInterface(LifecycleNode):
+    """A controller: lifecycle node + interface configuration + realtime ``update``.
+
+    :param name: controller (and node) name.
+    :param namespace: node namespace ('' = root).
+    :param parameter_overrides: list of :class:`rclpy.parameter.Parameter` from the YAML.
+    :param robot_description: URDF XML of the robot (str), available as
+        ``self.robot_description`` in :meth:`on_init` and later.
+    :param update_rate: controller-manager update rate (Hz), reported in list_controllers.
+    :param node_kwargs: further keyword arguments of :class:`rclpy.node.Node` (``context``).
+    :raises RuntimeError: when :meth:`on_init` returns False (message names the controller).
+    """
+
+    def __init__(self, name, namespace='', parameter_overrides=None, robot_description='',
+                 update_rate=100, **node_kwargs):
+        """Create the node and call :meth:`on_init` (see the class docstring)."""
+        super().__init__(
+            name, namespace=namespace, parameter_overrides=list(parameter_overrides or []),
+            allow_undeclared_parameters=True,
+            automatically_declare_parameters_from_overrides=True,
+            enable_communication_interface=False, **node_kwargs)
+        self.robot_description = robot_description or ''
+        self.update_rate = int(update_rate)
+        self.command_interfaces = {}
+        self.state_interfaces = {}
+        self.last_update_time = None
+        if not self.on_init():
+            raise RuntimeError(f"Could not initialize the controller named '{name}'")
+
+    # ----------------------------------------------------------------- parameters
+    def auto_declare(self, name, default):
+        """Declare parameter ``name`` with ``default`` unless given, and return its value.
+
+        Overrides from the YAML win; an override of another numeric type than the default is
+        converted (``1`` for a double parameter gives ``1.0``).
+
+        :param name: parameter name, e.g. ``'linear.x.max_velocity'``.
+        :param default: default value (its type decides the conversion).
+        :returns: the parameter value.
+        """
+        if not self.has_parameter(name):
+            self.declare_parameter(name, default)
+        return self.param(name, default)
+
+    def param(self, name, default=None):
+        """Return the current value of parameter ``name`` converted like ``default``.
+
+        :raises ValueError: when the value cannot be converted (message names the parameter).
+        """
+        value = self.get_parameter(name).value if self.has_parameter(name) else None
+        if value is None:
+            return default
+        try:
+            if isinstance(default, bool):
+                if isinstance(value, str):
+                    return value.strip().lower() in ('true', '1', 'yes', 'on')
+                return bool(value)
+            if isinstance(default, float):
+                return float(value)
+            if isinstance(default, int):
+                return int(value)
+            if isinstance(default, list):
+                if isinstance(value, str):
+                    return [value] if value else []
+                items = list(value)
+                if default and isinstance(default[0], float):
+                    return [float(v) for v in items]
+                return items
+            if isinstance(default, str):
+                return str(value)
+        except (TypeError, ValueError):
+            raise ValueError(
+                f'parameter {name!r}: expected {type(default).__name__}, got {value!r}'
+            ) from None
+        return value
+
+    # ----------------------------------------------------------------- interfaces
+    def on_init(self):
+        """Declare parameters; returns True on success (default: nothing to declare)."""
+        return True
+
+    def command_interface_configuration(self):
+        """Return the command interface names this controller claims (list of str)."""
+        return []
+
+    def state_interface_configuration(self):
+        """Return the state interface names it reads (list of str), or None for all."""
+        return []
+
+    def assign_interfaces(self, command_interfaces, state_interfaces):
+        """Receive handles before ``on_activate``.
+
+        :param command_interfaces: dict name -> Handle, the claimed command interfaces.
+        :param state_interfaces: dict name -> Handle, the available state interfaces.
+        """
+        self.command_interfaces = dict(command_interfaces)
+        self.state_interfaces = dict(state_interfaces)
+
+    def release_interfaces(self):
+        """Forget the handles (after ``on_deactivate``)."""
+        self.command_interfaces = {}
+        self.state_interfaces = {}
+
+    def update(self, time, period):
+        """Run one control step.
+
+        :param time: current time (s, sim time when simulated).
+        :param period: time since the previous update (s).
+        :returns: True when OK, False on error (the manager then deactivates the controller).
+        """
+        return True
+
+    def now_seconds(self):
+        """Return "now" in seconds: the last update time, else the node clock."""
+        if self.last_update_time is not None:
+            return self.last_update_time
+        return self.get_clock().now().nanoseconds * 1e-9
+
+    @property
+    def lifecycle_state(self):
+        """Return the lifecycle state label: unconfigured, inactive, active, finalized."""
+        return self._state_machine.current_state[1]
+
+
+def parameters_from_dict(values):
+    """Return a list of :class:`rclpy.parameter.Parameter` from a flat dict name -> value.
+
+    Values whose type rclpy cannot infer (mixed lists, nested) are skipped.
+
+    :param values: dict str -> YAML value.
+    :returns: (list of Parameter, list of skipped names).
+    """
+    params, skipped = [], []
+    for name, value in values.items():
+        if isinstance(value, list) and value and all(isinstance(v, (int, float)) for v in value) \
+                and any(isinstance(v, float) for v in value):
+            value = [float(v) for v in value]
+        try:
+            params.append(Parameter(name, value=value))
+        except Exception:  # noqa: B902 - rclpy raises several types for unsupported values
+            skipped.append(name)
+    return params, skipped
