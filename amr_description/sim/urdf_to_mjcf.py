@@ -1,0 +1,466 @@
+# Copyright 2026 The amr_description Authors
+# Licensed under the Apache License, Version 2.0
+
+"""Convert a URDF (with its ``<ros2_control>`` and ``<mujoco>`` blocks) into a ``mujoco.MjSpec``.
+
+Mapping (URDF -> MuJoCo, units SI, REP 103 axes):
+
+- every ``<link>`` becomes a body; the body frame is the URDF link frame. The root link gets a
+  free joint (a floating robot, as Gazebo spawns it), children hang off their parent body at
+  the joint ``<origin>``; ``fixed`` joints keep the child as a welded body (no joint).
+- ``<inertial>`` is copied exactly: ``mass``, the full inertia tensor including off-diagonal
+  terms (rotated by the inertial ``rpy`` into the link frame and given to MuJoCo as
+  ``fullinertia``) and the inertial origin (``ipos``). Links without ``<inertial>`` have zero
+  mass; inertia is never derived from geoms.
+- ``<collision>`` boxes, cylinders, spheres (and STL/OBJ meshes whose file resolves) become
+  colliding geoms in group 3; ``<visual>`` ones become non-colliding geoms
+  (``contype = conaffinity = 0``) in group 2 with the material colour.
+- ``continuous`` -> unlimited hinge, ``revolute`` -> limited hinge, ``prismatic`` -> slide,
+  ``floating`` -> free; ``<axis>``, ``<limit>`` and ``<dynamics damping friction>`` are kept.
+  ``planar`` joints are rejected.
+- each joint command interface listed in ``<ros2_control>`` gets one actuator named
+  ``<joint>/<interface>``: ``velocity`` -> velocity actuator (``kv``), ``effort`` -> motor,
+  ``position`` -> position actuator (``kp``, ``kv`` damping), force range from ``<mujoco>``.
+- contact ``friction`` (and optional ``solref``, ``solimp``, ``condim``) from ``<mujoco>``.
+
+The ``<mujoco>`` block (see docs/architecture.md)::
+
+    <mujoco>
+      <ros2_control parameters="package://amr_description/config/controllers.yaml"/>
+      <contact friction="1.0 0.005 0.0001" solref="0.02 1" solimp="0.9 0.95 0.001"/>
+      <link name="wheel_front_left" friction="1.0 0.005 0.0001"/>
+      <actuator kv="5.0" forcerange="-20 20"/>
+      <actuator joint="joint_wheel_front_left" kv="5.0" forcerange="-20 20"/>
+    </mujoco>
+"""
+
+from dataclasses import dataclass
+from dataclasses import field
+import io
+import logging
+import math
+import os
+import xml.etree.ElementTree as ET
+
+import mujoco
+import numpy as np
+
+from amr_description.core.ros2_control_info import parse_ros2_control
+
+_LOG = logging.getLogger(__name__)
+
+#: contact parameters used when the ``<mujoco>`` block gives none
+DEFAULT_CONTACT = {
+    'friction': (1.0, 0.005, 0.0001),
+    'solref': (0.02, 1.0),
+    'solimp': (0.9, 0.95, 0.001, 0.5, 2.0),
+    'condim': 3,
+}
+#: actuator parameters used when the ``<mujoco>`` block gives none
+DEFAULT_ACTUATOR = {'kv': 5.0, 'kp': 100.0, 'forcerange': (-20.0, 20.0)}
+
+COLLISION_GROUP = 3
+VISUAL_GROUP = 2
+_DEFAULT_RGBA = (0.7, 0.7, 0.7, 1.0)
+
+
+@dataclass
+class MujocoConfig:
+    """The parsed ``<mujoco>`` block of a URDF.
+
+    :param parameters: the ``<ros2_control parameters=...>`` URI (str) or None.
+    :param contact: default contact attributes, dict with ``friction`` (3 floats),
+        ``solref`` (2), ``solimp`` (5), ``condim`` (int).
+    :param link_contact: dict link name -> dict of overriding contact attributes.
+    :param actuator: default actuator attributes, dict with ``kv``, ``kp`` (float) and
+        ``forcerange`` (2 floats, N or N m).
+    :param joint_actuator: dict joint name -> dict of overriding actuator attributes.
+    """
+
+    parameters: str = None
+    contact: dict = field(default_factory=lambda: dict(DEFAULT_CONTACT))
+    link_contact: dict = field(default_factory=dict)
+    actuator: dict = field(default_factory=lambda: dict(DEFAULT_ACTUATOR))
+    joint_actuator: dict = field(default_factory=dict)
+
+
+_CONTACT_SIZES = {'friction': (1, 3), 'solref': (2, 2), 'solimp': (3, 5)}
+
+
+def _floats(text, name, where, sizes):
+    """Parse a space-separated float list of ``sizes[0]..sizes[1]`` entries."""
+    try:
+        values = tuple(float(v) for v in text.split())
+    except ValueError:
+        raise ValueError(f'<mujoco>: {where} {name}={text!r} must be numbers') from None
+    if not sizes[0] <= len(values) <= sizes[1] or not all(map(math.isfinite, values)):
+        raise ValueError(
+            f'<mujoco>: {where} {name}={text!r} must be {sizes[0]}..{sizes[1]} finite numbers')
+    return values
+
+
+def _contact_attrs(element, where):
+    """Return the contact attributes present on ``element`` as a dict."""
+    attrs = {}
+    for name, sizes in _CONTACT_SIZES.items():
+        if element.get(name) is not None:
+            attrs[name] = _floats(element.get(name), name, where, sizes)
+    if element.get('condim') is not None:
+        if element.get('condim') not in ('1', '3', '4', '6'):
+            raise ValueError(f'<mujoco>: {where} condim must be 1, 3, 4 or 6')
+        attrs['condim'] = int(element.get('condim'))
+    return attrs
+
+
+def _actuator_attrs(element, where):
+    """Return the actuator attributes present on ``element`` as a dict."""
+    attrs = {}
+    for name in ('kv', 'kp'):
+        if element.get(name) is not None:
+            value = _floats(element.get(name), name, where, (1, 1))[0]
+            if value < 0:
+                raise ValueError(f'<mujoco>: {where} {name} must be >= 0')
+            attrs[name] = value
+    if element.get('forcerange') is not None:
+        lo, hi = _floats(element.get('forcerange'), 'forcerange', where, (2, 2))
+        if lo > hi:
+            raise ValueError(f'<mujoco>: {where} forcerange must be "min max" with min <= max')
+        attrs['forcerange'] = (lo, hi)
+    return attrs
+
+
+def parse_mujoco_block(root):
+    """Read the ``<mujoco>`` child of a URDF ``<robot>`` element.
+
+    :param root: the ``<robot>`` ``xml.etree.ElementTree.Element``.
+    :returns: a :class:`MujocoConfig` (defaults when there is no block).
+    :raises ValueError: one-line message for a malformed attribute.
+    """
+    config = MujocoConfig()
+    for block in root.findall('mujoco'):
+        rc = block.find('ros2_control')
+        if rc is not None and rc.get('parameters'):
+            config.parameters = rc.get('parameters').strip()
+        for element in block.findall('contact'):
+            config.contact.update(_contact_attrs(element, '<contact>'))
+        for element in block.findall('link'):
+            name = element.get('name')
+            if not name:
+                raise ValueError('<mujoco>: <link> without a name')
+            config.link_contact.setdefault(name, {}).update(
+                _contact_attrs(element, f'<link name={name!r}>'))
+        for element in block.findall('actuator'):
+            joint = element.get('joint')
+            if joint:
+                config.joint_actuator.setdefault(joint, {}).update(
+                    _actuator_attrs(element, f'<actuator joint={joint!r}>'))
+            else:
+                config.actuator.update(_actuator_attrs(element, '<actuator>'))
+    return config
+
+
+def resolve_uri(uri):
+    """Resolve ``package://PKG/path``, ``$(find PKG)/path`` or ``file://path`` to a file path.
+
+    :param uri: the URI (str).
+    :returns: an absolute or relative file-system path (str).
+    :raises ValueError: when the package is not in the ament index.
+    """
+    pkg = rest = None
+    if uri.startswith('package://'):
+        pkg, _, rest = uri[len('package://'):].partition('/')
+    elif uri.startswith('$(find '):
+        pkg, _, rest = uri[len('$(find '):].partition(')')
+        rest = rest.lstrip('/')
+    elif uri.startswith('file://'):
+        return uri[len('file://'):]
+    else:
+        return uri
+    from ament_index_python.packages import get_package_share_directory
+    from ament_index_python.packages import PackageNotFoundError
+    try:
+        return os.path.join(get_package_share_directory(pkg), rest)
+    except PackageNotFoundError:
+        raise ValueError(f'cannot resolve {uri!r}: package {pkg!r} not found') from None
+
+
+def _mat_to_quat(rotation):
+    """Return the MuJoCo quaternion (w, x, y, z) of a 3x3 rotation matrix."""
+    quat = np.zeros(4)
+    mujoco.mju_mat2Quat(quat, np.ascontiguousarray(rotation, dtype=float).reshape(9))
+    return quat
+
+
+def rpy_to_quat(roll, pitch, yaw):
+    """Return the quaternion (w, x, y, z) of URDF fixed-axis roll, pitch, yaw (rad).
+
+    Rotation = Rz(yaw) Ry(pitch) Rx(roll), as in the URDF specification.
+
+    :returns: numpy array of shape (4,).
+    """
+    cr, sr = math.cos(roll / 2), math.sin(roll / 2)
+    cp, sp = math.cos(pitch / 2), math.sin(pitch / 2)
+    cy, sy = math.cos(yaw / 2), math.sin(yaw / 2)
+    return np.array([
+        cr * cp * cy + sr * sp * sy,
+        sr * cp * cy - cr * sp * sy,
+        cr * sp * cy + sr * cp * sy,
+        cr * cp * sy - sr * sp * cy])
+
+
+def _pad(values, default):
+    """Return ``values`` as a list completed with the trailing entries of ``default``."""
+    return list(values) + list(default[len(values):])
+
+
+def _set_frame(element, origin):
+    """Set ``pos``/``quat`` of a spec element from a 4x4 homogeneous transform (or None)."""
+    if origin is None:
+        return
+    origin = np.asarray(origin, dtype=float)
+    element.pos = origin[:3, 3]
+    element.quat = _mat_to_quat(origin[:3, :3])
+
+
+def _add_geometry(spec, body, geometry, origin, where):
+    """Add one geom for a URDF ``<geometry>``; return it, or None when unsupported."""
+    geom = None
+    if geometry.box is not None:
+        geom = body.add_geom(type=mujoco.mjtGeom.mjGEOM_BOX,
+                             size=np.asarray(geometry.box.size, dtype=float) / 2.0)
+    elif geometry.cylinder is not None:
+        geom = body.add_geom(type=mujoco.mjtGeom.mjGEOM_CYLINDER,
+                             size=[geometry.cylinder.radius, geometry.cylinder.length / 2.0, 0])
+    elif geometry.sphere is not None:
+        geom = body.add_geom(type=mujoco.mjtGeom.mjGEOM_SPHERE,
+                             size=[geometry.sphere.radius, 0, 0])
+    elif geometry.mesh is not None:
+        filename = geometry.mesh.filename
+        try:
+            path = resolve_uri(filename)
+        except ValueError as exc:
+            _LOG.warning('%s: mesh skipped: %s', where, exc)
+            return None
+        if not path.lower().endswith(('.stl', '.obj')) or not os.path.isfile(path):
+            _LOG.warning('%s: mesh %r skipped (only existing STL/OBJ files)', where, filename)
+            return None
+        mesh = spec.add_mesh(name=f'mesh_{len(spec.meshes)}', file=os.path.abspath(path))
+        if geometry.mesh.scale is not None:
+            mesh.scale = np.broadcast_to(np.asarray(geometry.mesh.scale, dtype=float), (3,))
+        geom = body.add_geom(type=mujoco.mjtGeom.mjGEOM_MESH, meshname=mesh.name)
+    else:
+        _LOG.warning('%s: geometry without box/cylinder/sphere/mesh skipped', where)
+        return None
+    _set_frame(geom, origin)
+    return geom
+
+
+def _rgba(visual, materials):
+    """Return the RGBA of a URDF visual: its own colour, else the named robot material."""
+    material = visual.material
+    if material is None:
+        return _DEFAULT_RGBA
+    if material.color is not None and material.color.rgba is not None:
+        return tuple(float(c) for c in material.color.rgba)
+    named = materials.get(material.name)
+    if named is not None and named.color is not None and named.color.rgba is not None:
+        return tuple(float(c) for c in named.color.rgba)
+    return _DEFAULT_RGBA
+
+
+def _set_inertial(body, inertial):
+    """Copy a URDF ``<inertial>`` (or None) to a spec body exactly."""
+    body.explicitinertial = True
+    if inertial is None:
+        body.mass = 0.0
+        body.inertia = [0.0, 0.0, 0.0]
+        return
+    origin = np.eye(4) if inertial.origin is None else np.asarray(inertial.origin, dtype=float)
+    rotation = origin[:3, :3]
+    tensor = rotation @ np.asarray(inertial.inertia, dtype=float) @ rotation.T
+    body.mass = float(inertial.mass)
+    body.ipos = origin[:3, 3]
+    body.fullinertia = [tensor[0, 0], tensor[1, 1], tensor[2, 2],
+                        tensor[0, 1], tensor[0, 2], tensor[1, 2]]
+
+
+def _add_joint(body, joint):
+    """Add the MuJoCo joint for a URDF joint to the child ``body`` (nothing for ``fixed``)."""
+    if joint.type == 'fixed':
+        return None
+    if joint.type == 'floating':
+        return body.add_freejoint(name=joint.name)
+    if joint.type not in ('continuous', 'revolute', 'prismatic'):
+        raise ValueError(f'URDF joint {joint.name!r}: type {joint.type!r} is not supported')
+    axis = np.array([1.0, 0.0, 0.0]) if joint.axis is None else np.asarray(joint.axis, float)
+    norm = np.linalg.norm(axis)
+    if not norm > 0:
+        raise ValueError(f'URDF joint {joint.name!r}: axis must be non-zero')
+    kind = mujoco.mjtJoint.mjJNT_SLIDE if joint.type == 'prismatic' \
+        else mujoco.mjtJoint.mjJNT_HINGE
+    mj_joint = body.add_joint(name=joint.name, type=kind, axis=axis / norm)
+    if joint.type != 'continuous' and joint.limit is not None \
+            and joint.limit.lower is not None and joint.limit.upper is not None \
+            and joint.limit.lower < joint.limit.upper:
+        mj_joint.limited = mujoco.mjtLimited.mjLIMITED_TRUE
+        mj_joint.range = [joint.limit.lower, joint.limit.upper]
+    else:
+        mj_joint.limited = mujoco.mjtLimited.mjLIMITED_FALSE
+    if joint.dynamics is not None:
+        mj_joint.damping = [float(joint.dynamics.damping or 0.0), 0.0, 0.0]
+        mj_joint.frictionloss = float(joint.dynamics.friction or 0.0)
+    return mj_joint
+
+
+def _add_actuators(spec, joint_types, hardware, config):
+    """Add one actuator per joint command interface of every ``<ros2_control>`` block."""
+    for info in hardware:
+        for joint in info.joints:
+            if joint.name not in joint_types:
+                raise ValueError(
+                    f'ros2_control {info.name!r}: joint {joint.name!r} is not in the URDF')
+            if joint_types[joint.name] in ('fixed', 'floating'):
+                raise ValueError(
+                    f'ros2_control {info.name!r}: joint {joint.name!r} is '
+                    f'{joint_types[joint.name]} and cannot be actuated')
+            params = dict(config.actuator)
+            params.update(config.joint_actuator.get(joint.name, {}))
+            for iface in joint.command_interfaces:
+                actuator = spec.add_actuator(
+                    name=f'{joint.name}/{iface.name}', target=joint.name,
+                    trntype=mujoco.mjtTrn.mjTRN_JOINT)
+                if iface.name == 'velocity':
+                    actuator.set_to_velocity(kv=params['kv'])
+                elif iface.name == 'position':
+                    actuator.set_to_position(kp=params['kp'], kv=0.0)
+                elif iface.name == 'effort':
+                    actuator.set_to_motor()
+                else:
+                    raise ValueError(
+                        f'ros2_control {info.name!r}: joint {joint.name!r} command interface '
+                        f'{iface.name!r} is not one of position, velocity, effort')
+                actuator.forcelimited = mujoco.mjtLimited.mjLIMITED_TRUE
+                actuator.forcerange = list(params['forcerange'])
+                if iface.min is not None and iface.max is not None and iface.min < iface.max:
+                    actuator.ctrllimited = mujoco.mjtLimited.mjLIMITED_TRUE
+                    actuator.ctrlrange = [iface.min, iface.max]
+
+
+def _load_urdf(urdf_xml):
+    """Parse the URDF text; return (ElementTree root, yourdfpy robot)."""
+    import yourdfpy
+    if isinstance(urdf_xml, str):
+        urdf_xml = urdf_xml.encode('utf-8')
+    try:
+        root = ET.fromstring(urdf_xml)
+    except ET.ParseError as exc:
+        raise ValueError(f'URDF is not well-formed XML: {exc}') from None
+    if root.tag != 'robot':
+        raise ValueError(f'URDF root element must be <robot>, found <{root.tag}>')
+    try:
+        urdf = yourdfpy.URDF.load(io.BytesIO(urdf_xml), build_scene_graph=False,
+                                  load_meshes=False, load_collision_meshes=False)
+    except Exception as exc:  # yourdfpy raises many types on bad input
+        raise ValueError(f'URDF could not be parsed: {exc}'.splitlines()[0]) from None
+    return root, urdf.robot
+
+
+def _root_link(robot):
+    """Return the name of the single link that is no joint's child."""
+    links = [link.name for link in robot.links]
+    if not links:
+        raise ValueError('URDF has no <link>')
+    known = set(links)
+    for joint in robot.joints:
+        for role in ('parent', 'child'):
+            if getattr(joint, role) not in known:
+                raise ValueError(
+                    f'URDF joint {joint.name!r}: {role} link {getattr(joint, role)!r} '
+                    'does not exist')
+    children = {joint.child for joint in robot.joints}
+    roots = [name for name in links if name not in children]
+    if len(roots) != 1:
+        raise ValueError(f'URDF must have exactly one root link, found {roots}')
+    return roots[0]
+
+
+def urdf_to_spec(urdf_xml, name='amr', pose=(0.0, 0.0, 0.0, 0.0, 0.0, 0.0), free=True):
+    """Build a MuJoCo spec holding the robot described by a URDF.
+
+    :param urdf_xml: the URDF document (str or bytes), with optional ``<ros2_control>``
+        and ``<mujoco>`` blocks.
+    :param name: the model name (``spec.modelname``), str.
+    :param pose: initial pose of the root link in the world frame, (x, y, z) in m and
+        (roll, pitch, yaw) in rad (URDF fixed-axis convention).
+    :param free: True to give the root body a free joint named ``<root link>`` (floating
+        robot), False to weld it to the world.
+    :returns: a ``mujoco.MjSpec`` whose worldbody holds the robot (body names = link names,
+        joint names = URDF joint names, actuators ``<joint>/<interface>``); compile with
+        ``spec.compile()`` or attach into a world with :mod:`amr_description.sim.world`.
+    :raises ValueError: one-line message when the URDF is malformed (XML, links, joints,
+        unsupported joint type), a ``<ros2_control>`` joint is missing from the URDF, or the
+        ``<mujoco>`` block is malformed.
+    """
+    root_element, robot = _load_urdf(urdf_xml)
+    config = parse_mujoco_block(root_element)
+    hardware = parse_ros2_control(urdf_xml)
+    root_name = _root_link(robot)
+    if len(pose) != 6 or not all(math.isfinite(float(v)) for v in pose):
+        raise ValueError(f'pose must be 6 finite numbers (x y z R P Y), found {pose!r}')
+
+    spec = mujoco.MjSpec()
+    spec.modelname = name
+    spec.compiler.inertiafromgeom = mujoco.mjtInertiaFromGeom.mjINERTIAFROMGEOM_FALSE
+    spec.compiler.autolimits = True
+    spec.compiler.degree = False
+
+    links = {link.name: link for link in robot.links}
+    materials = {m.name: m for m in robot.materials}
+    children = {}
+    for joint in robot.joints:
+        children.setdefault(joint.parent, []).append(joint)
+
+    def add_link(parent_body, link_name, joint):
+        link = links[link_name]
+        body = parent_body.add_body(name=link_name)
+        if joint is None:
+            body.pos = [float(v) for v in pose[:3]]
+            body.quat = rpy_to_quat(*[float(v) for v in pose[3:]])
+            if free:
+                body.add_freejoint(name=link_name)
+        else:
+            _set_frame(body, joint.origin)
+            _add_joint(body, joint)
+        _set_inertial(body, link.inertial)
+        contact = dict(config.contact)
+        contact.update(config.link_contact.get(link_name, {}))
+        for index, collision in enumerate(link.collisions):
+            geom = _add_geometry(spec, body, collision.geometry, collision.origin,
+                                 f'link {link_name!r} collision {index}')
+            if geom is None:
+                continue
+            geom.name = f'{link_name}/{collision.name or f"collision_{index}"}'
+            geom.group = COLLISION_GROUP
+            geom.contype = 1
+            geom.conaffinity = 1
+            geom.friction = _pad(contact['friction'], DEFAULT_CONTACT['friction'])
+            geom.solref = list(contact['solref'])
+            geom.solimp = _pad(contact['solimp'], DEFAULT_CONTACT['solimp'])
+            geom.condim = contact['condim']
+            geom.rgba = [0.5, 0.5, 0.9, 0.4]
+        for index, visual in enumerate(link.visuals):
+            geom = _add_geometry(spec, body, visual.geometry, visual.origin,
+                                 f'link {link_name!r} visual {index}')
+            if geom is None:
+                continue
+            geom.name = f'{link_name}/{visual.name or f"visual_{index}"}'
+            geom.group = VISUAL_GROUP
+            geom.contype = 0
+            geom.conaffinity = 0
+            geom.rgba = list(_rgba(visual, materials))
+        for child_joint in children.get(link_name, []):
+            add_link(body, child_joint.child, child_joint)
+
+    add_link(spec.worldbody, root_name, None)
+    _add_actuators(spec, {j.name: j.type for j in robot.joints}, hardware, config)
+    return spec

@@ -1,0 +1,214 @@
+# Copyright 2026 The amr_description Authors
+# Licensed under the Apache License, Version 2.0
+
+"""The MuJoCo world: an empty ground plane into which robots are spawned (no rclpy).
+
+Frames: the world frame is ENU (REP 103/105: x forward, z up, gravity -z). Every spawned
+robot is a free-floating body tree whose names are prefixed ``<robot name>/``.
+Physics: ``implicitfast`` integrator (the default Euler integrator goes unstable with
+velocity actuators on light wheels, see /work/shared/reference/environment.md) and a fixed
+step (default 1 ms).
+"""
+
+from dataclasses import dataclass
+
+import mujoco
+import numpy as np
+
+#: friction of the ground plane: sliding, torsional, rolling (MuJoCo geom friction)
+GROUND_FRICTION = (1.0, 0.005, 0.0001)
+
+
+@dataclass
+class Robot:
+    """A robot spawned into a :class:`World`.
+
+    :param name: entity name (unique in the world).
+    :param prefix: name prefix of its bodies, joints and actuators (``'<name>/'``).
+    :param root: URDF root link name (e.g. ``'base_footprint'``); the free joint has the
+        same name.
+    :param urdf_xml: the URDF it was built from (str).
+    """
+
+    name: str
+    prefix: str
+    root: str
+    urdf_xml: str = ''
+
+
+def make_world_spec(physics_step=0.001):
+    """Return the spec of the empty world: ground plane, light, sky.
+
+    :param physics_step: physics time step in seconds (> 0).
+    :returns: a ``mujoco.MjSpec`` (integrator ``implicitfast``, gravity -9.81 m/s^2 on z).
+    :raises ValueError: when ``physics_step`` is not a positive number.
+    """
+    if not physics_step > 0:
+        raise ValueError(f'physics_step must be > 0 s, found {physics_step!r}')
+    spec = mujoco.MjSpec()
+    spec.modelname = 'empty_world'
+    spec.option.timestep = float(physics_step)
+    spec.option.integrator = mujoco.mjtIntegrator.mjINT_IMPLICITFAST
+    spec.option.gravity = [0.0, 0.0, -9.81]
+    spec.compiler.inertiafromgeom = mujoco.mjtInertiaFromGeom.mjINERTIAFROMGEOM_FALSE
+    spec.add_texture(name='skybox', type=mujoco.mjtTexture.mjTEXTURE_SKYBOX,
+                     builtin=mujoco.mjtBuiltin.mjBUILTIN_GRADIENT,
+                     rgb1=[0.6, 0.8, 1.0], rgb2=[0.1, 0.15, 0.25], width=64, height=64)
+    spec.add_texture(name='grid', type=mujoco.mjtTexture.mjTEXTURE_2D,
+                     builtin=mujoco.mjtBuiltin.mjBUILTIN_CHECKER,
+                     rgb1=[0.35, 0.35, 0.38], rgb2=[0.45, 0.45, 0.48], width=256, height=256)
+    grid = spec.add_material(name='grid', texrepeat=[2, 2], reflectance=0.1)
+    grid.textures[mujoco.mjtTextureRole.mjTEXROLE_RGB] = 'grid'
+    spec.worldbody.add_geom(name='ground_plane', type=mujoco.mjtGeom.mjGEOM_PLANE,
+                            size=[0, 0, 0.05], friction=list(GROUND_FRICTION),
+                            material='grid', group=0)
+    spec.worldbody.add_light(name='sun', pos=[0, 0, 10], dir=[0.3, 0.2, -1],
+                             type=mujoco.mjtLightType.mjLIGHT_DIRECTIONAL,
+                             diffuse=[0.8, 0.8, 0.8], castshadow=True)
+    return spec
+
+
+class World:
+    """A MuJoCo world holding spawned robots, its compiled model and its data.
+
+    ``model`` and ``data`` are replaced by :meth:`spawn` and :meth:`remove` (the state of the
+    bodies already present is kept); holders of the old objects must re-read them.
+
+    :param physics_step: physics time step in seconds (default 1 ms).
+    """
+
+    def __init__(self, physics_step=0.001):
+        """Build and compile the empty world (see the class docstring)."""
+        self.spec = make_world_spec(physics_step)
+        self.model = self.spec.compile()
+        self.data = mujoco.MjData(self.model)
+        self.robots = {}
+        mujoco.mj_forward(self.model, self.data)
+
+    @property
+    def physics_step(self):
+        """Return the physics time step in seconds (float)."""
+        return float(self.model.opt.timestep)
+
+    @property
+    def time(self):
+        """Return the simulation time in seconds (float)."""
+        return float(self.data.time)
+
+    def spawn(self, robot_spec, name, urdf_xml=''):
+        """Add a robot (from :func:`~amr_description.sim.urdf_to_mjcf.urdf_to_spec`).
+
+        The world is recompiled; bodies already present keep their state and the
+        simulation time is unchanged.
+
+        :param robot_spec: a ``mujoco.MjSpec`` whose worldbody has exactly one body.
+        :param name: entity name, unique in this world (str, non-empty, no ``/``).
+        :param urdf_xml: the URDF text, kept for reference.
+        :returns: the :class:`Robot`.
+        :raises ValueError: when the name is taken or invalid, or MuJoCo cannot compile the
+            result (the world is left unchanged).
+        """
+        if not name or '/' in name:
+            raise ValueError(f'entity name must be non-empty without "/", found {name!r}')
+        if name in self.robots:
+            raise ValueError(f'an entity named {name!r} already exists')
+        root = robot_spec.worldbody.first_body()
+        if root is None:
+            raise ValueError('robot spec has no body')
+        root_name = root.name
+        prefix = f'{name}/'
+        frame = self.spec.worldbody.add_frame()
+        self.spec.attach(robot_spec, prefix=prefix, frame=frame)
+        try:
+            self._recompile()
+        except Exception as exc:
+            body = self.spec.body(prefix + root_name)
+            self._delete_robot_elements(prefix, body)
+            self.spec.delete(frame)
+            self._recompile()
+            raise ValueError(f'cannot compile robot {name!r}: {exc}'.splitlines()[0]) from None
+        robot = Robot(name=name, prefix=prefix, root=root_name, urdf_xml=urdf_xml)
+        self.robots[name] = robot
+        return robot
+
+    def _delete_robot_elements(self, prefix, body):
+        """Delete the actuators named ``prefix*`` and the body tree ``body`` from the spec."""
+        for actuator in list(self.spec.actuators):
+            if actuator.name.startswith(prefix):
+                self.spec.delete(actuator)
+        if body is not None:
+            self.spec.delete(body)
+
+    def remove(self, name):
+        """Remove a spawned robot; the other bodies keep their state.
+
+        :param name: entity name.
+        :raises KeyError: when no such robot exists.
+        """
+        robot = self.robots.pop(name)
+        self._delete_robot_elements(robot.prefix, self.spec.body(robot.prefix + robot.root))
+        self._recompile()
+
+    def _recompile(self):
+        """Recompile the spec keeping the state; refresh ``model`` and ``data``."""
+        self.model, self.data = self.spec.recompile(self.model, self.data)
+        mujoco.mj_forward(self.model, self.data)
+
+    def reset(self):
+        """Reset every robot to its spawn pose at rest, controls to zero, time to 0 s."""
+        mujoco.mj_resetData(self.model, self.data)
+        mujoco.mj_forward(self.model, self.data)
+
+    def step(self, nstep=1):
+        """Advance the physics by ``nstep`` steps (``mujoco.mj_step`` batch).
+
+        :param nstep: number of physics steps (int >= 1).
+        """
+        mujoco.mj_step(self.model, self.data, nstep=int(nstep))
+
+    def free_joint_address(self, name):
+        """Return (qpos address, qvel address) of a robot's root free joint.
+
+        :param name: entity name.
+        :returns: tuple of two ints (indices into ``data.qpos`` and ``data.qvel``).
+        :raises KeyError: when no such robot exists.
+        """
+        robot = self.robots[name]
+        joint = self.model.joint(robot.prefix + robot.root)
+        return int(joint.qposadr[0]), int(joint.dofadr[0])
+
+    def ground_truth(self, name):
+        """Return the pose and twist of a robot's root link (for ``nav_msgs/Odometry``).
+
+        :param name: entity name.
+        :returns: ``(position, orientation, linear, angular)``: position (3,) m in the world
+            frame; orientation (4,) quaternion (x, y, z, w) world <- root link (ROS order);
+            linear (3,) m/s and angular (3,) rad/s velocity of the root link expressed in the
+            root link frame (the Odometry ``child_frame_id`` convention).
+        :raises KeyError: when no such robot exists.
+        """
+        qadr, vadr = self.free_joint_address(name)
+        return free_joint_ground_truth(self.data.qpos[qadr:qadr + 7],
+                                       self.data.qvel[vadr:vadr + 6])
+
+
+def free_joint_ground_truth(qpos, qvel):
+    """Convert a MuJoCo free joint's qpos/qvel to pose and body-frame twist.
+
+    MuJoCo's free joint stores position (3) and quaternion (w, x, y, z) in ``qpos``, and in
+    ``qvel`` the linear velocity in the world frame followed by the angular velocity in the
+    body frame (MuJoCo documentation, "Floating objects").
+
+    :param qpos: array (7,).
+    :param qvel: array (6,).
+    :returns: ``(position (3,), quaternion xyzw (4,), linear body (3,), angular body (3,))``.
+    """
+    position = np.array(qpos[0:3], dtype=float)
+    wxyz = np.array(qpos[3:7], dtype=float)
+    wxyz /= np.linalg.norm(wxyz)
+    rotation = np.zeros(9)
+    mujoco.mju_quat2Mat(rotation, wxyz)
+    rotation = rotation.reshape(3, 3)
+    linear = rotation.T @ np.asarray(qvel[0:3], dtype=float)
+    angular = np.array(qvel[3:6], dtype=float)
+    return position, np.array([wxyz[1], wxyz[2], wxyz[3], wxyz[0]]), linear, angular
