@@ -1,0 +1,128 @@
+# Copyright 2026 The amr_description Authors
+# Licensed under the Apache License, Version 2.0
+"""joint_state_broadcaster: publishes ``sensor_msgs/JointState`` from state interfaces.
+
+As ros2_controllers' joint_state_broadcaster (jazzy): on every controller-manager update
+(not rate-limited) it publishes ``/joint_states`` (``~/joint_states`` with
+``use_local_topics``), stamped with the update time, one entry per joint in URDF order
+(joints absent from the URDF follow, in interface order, unless ``use_urdf_to_filter``
+removes them), with ``position``/``velocity``/``effort`` arrays holding NaN where a joint has
+no such interface; ``extra_joints`` are appended with 0.0.
+
+Parameters: ``joints``, ``interfaces`` (both set: only those; otherwise every available state
+interface), ``extra_joints``, ``use_local_topics`` (false), ``map_interface_to_joint_state.
+{position,velocity,effort}`` (interface name read for each field), ``use_urdf_to_filter``
+(true), ``frame_id`` ('base_link').
+"""
+
+import math
+import xml.etree.ElementTree as ET
+
+from rclpy.qos import QoSProfile
+from sensor_msgs.msg import JointState
+
+from amr_description.control.controller_interface import ControllerInterface
+from amr_description.control.controller_interface import time_to_msg
+from amr_description.control.controller_interface import TransitionCallbackReturn
+
+FIELDS = ('position', 'velocity', 'effort')
+
+
+class JointStateBroadcaster(ControllerInterface):
+    """Broadcast joint states of the robot (see the module docstring)."""
+
+    def on_init(self):
+        """Declare the upstream parameters; returns True."""
+        self.auto_declare('joints', [''])
+        self.auto_declare('interfaces', [''])
+        self.auto_declare('extra_joints', [''])
+        self.auto_declare('use_local_topics', False)
+        for field in FIELDS:
+            self.auto_declare(f'map_interface_to_joint_state.{field}', field)
+        self.auto_declare('use_urdf_to_filter', True)
+        self.auto_declare('frame_id', 'base_link')
+        self._publisher = None
+        self._rows = []
+        return True
+
+    def _list(self, name):
+        return [v for v in self.param(name, ['']) if v]
+
+    def state_interface_configuration(self):
+        """Return ``joint/interface`` for every listed joint and interface, None for all."""
+        joints, interfaces = self._list('joints'), self._list('interfaces')
+        if joints and interfaces:
+            return [f'{j}/{i}' for j in joints for i in interfaces]
+        return None
+
+    def on_configure(self, state):
+        """Read parameters and create the publisher."""
+        joints, interfaces = self._list('joints'), self._list('interfaces')
+        if bool(joints) != bool(interfaces):
+            self.get_logger().info(
+                "'joints' or 'interfaces' parameter is empty. All available state interfaces "
+                'will be published')
+        self._map = {f: self.param(f'map_interface_to_joint_state.{f}', f) for f in FIELDS}
+        self._extra = self._list('extra_joints')
+        self._frame_id = self.param('frame_id', 'base_link')
+        self._use_urdf = self.param('use_urdf_to_filter', True)
+        topic = '~/joint_states' if self.param('use_local_topics', False) else '/joint_states'
+        if self._publisher is None:
+            self._publisher = self.create_publisher(JointState, topic, QoSProfile(depth=10))
+        return TransitionCallbackReturn.SUCCESS
+
+    def _urdf_joints(self):
+        try:
+            root = ET.fromstring(self.robot_description)
+        except ET.ParseError:
+            return []
+        return [j.get('name') for j in root.findall('joint')
+                if j.get('type') not in ('fixed', None)]
+
+    def on_activate(self, state):
+        """Build the joint table from the assigned state interfaces."""
+        joints = []
+        for name in self.state_interfaces:
+            joint = name.rsplit('/', 1)[0]
+            if joint not in joints:
+                joints.append(joint)
+        urdf = self._urdf_joints()
+        if urdf:
+            ordered = [j for j in urdf if j in joints]
+            if not self._use_urdf:
+                ordered += [j for j in joints if j not in urdf]
+            joints = ordered
+        self._rows = []
+        for joint in joints:
+            handles = tuple(self.state_interfaces.get(f'{joint}/{self._map[f]}') for f in FIELDS)
+            if any(h is not None for h in handles):
+                self._rows.append((joint, handles))
+        if not self._rows and not self._extra:
+            self.get_logger().warn('No joint state interfaces to publish')
+        return TransitionCallbackReturn.SUCCESS
+
+    def on_deactivate(self, state):
+        """Stop publishing."""
+        self._rows = []
+        return TransitionCallbackReturn.SUCCESS
+
+    def update(self, time, period):
+        """Publish one JointState stamped ``time``; returns True."""
+        msg = JointState()
+        msg.header.stamp = time_to_msg(time)
+        msg.header.frame_id = self._frame_id
+        names, pos, vel, eff = [], [], [], []
+        for joint, (hp, hv, he) in self._rows:
+            names.append(joint)
+            pos.append(hp.value if hp is not None else math.nan)
+            vel.append(hv.value if hv is not None else math.nan)
+            eff.append(he.value if he is not None else math.nan)
+        for joint in self._extra:
+            if joint not in names:
+                names.append(joint)
+                pos.append(0.0)
+                vel.append(0.0)
+                eff.append(0.0)
+        msg.name, msg.position, msg.velocity, msg.effort = names, pos, vel, eff
+        self._publisher.publish(msg)
+        return True
