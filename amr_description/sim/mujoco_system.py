@@ -1,0 +1,141 @@
+# Copyright 2026 The amr_description Authors
+# Licensed under the Apache License, Version 2.0
+
+"""MuJoCo hardware component: ros2_control handles <-> ``MjData`` (the gz_ros2_control role).
+
+State interfaces read the joint's ``qpos`` (``position``: rad or m), ``qvel`` (``velocity``:
+rad/s or m/s) and actuator force (``effort``: N m or N). Command interfaces write the
+``ctrl`` of the actuator named ``<joint>/<interface>`` created by
+:func:`amr_description.sim.urdf_to_mjcf.urdf_to_spec`. Commands are clamped to the
+interface's ``min``/``max``; a NaN command means "no command": a velocity actuator then
+holds zero velocity, an effort actuator applies zero, a position actuator holds the current
+position.
+"""
+
+import math
+
+from amr_description.control.hardware_interface import SystemInterface
+
+_STATE_KINDS = ('position', 'velocity', 'effort')
+_COMMAND_KINDS = ('position', 'velocity', 'effort')
+
+
+class MujocoSystem(SystemInterface):
+    """A ``SystemInterface`` whose joints live in a MuJoCo model.
+
+    :param model: the compiled ``mujoco.MjModel`` holding the robot.
+    :param data: its ``mujoco.MjData``.
+    :param prefix: name prefix of the robot's joints and actuators in the model
+        (``'<entity name>/'`` when spawned by :class:`amr_description.sim.world.World`).
+    """
+
+    def __init__(self, model=None, data=None, prefix=''):
+        """Keep the model and data; addresses are resolved by :meth:`on_init`."""
+        super().__init__()
+        self.model = model
+        self.data = data
+        self.prefix = prefix
+        self._states = []    # (handle, array name, index)
+        self._commands = []  # (handle, actuator id, lo, hi, kind, qpos address)
+
+    def on_init(self, info):
+        """Create the handles and resolve every joint's addresses once.
+
+        :param info: the ``HardwareInfo`` of this component.
+        :returns: True.
+        :raises ValueError: one line when the model is missing, a joint is not in the model,
+            an interface is not position/velocity/effort, or a command interface has no
+            actuator.
+        """
+        super().on_init(info)
+        if self.model is None or self.data is None:
+            raise ValueError(
+                f'hardware component {self.name!r}: MujocoSystem needs the simulator '
+                '(run the robot in mujoco_sim)')
+        self._resolve()
+        self.read(0.0, 0.0)
+        return True
+
+    def rebind(self, model, data):
+        """Point at a recompiled model/data (after another entity was spawned) and re-resolve.
+
+        :param model: the new ``mujoco.MjModel``.
+        :param data: the new ``mujoco.MjData``.
+        :raises ValueError: as :meth:`on_init`.
+        """
+        self.model = model
+        self.data = data
+        self._resolve()
+
+    def _resolve(self):
+        """Fill the state/command address tables from the model."""
+        states, commands = [], []
+        for joint_info in self.info.joints:
+            name = self.prefix + joint_info.name
+            try:
+                joint = self.model.joint(name)
+            except KeyError:
+                raise ValueError(
+                    f'hardware component {self.name!r}: joint {joint_info.name!r} is not in '
+                    'the simulated model') from None
+            qadr, dadr = int(joint.qposadr[0]), int(joint.dofadr[0])
+            for iface in joint_info.state_interfaces:
+                if iface.name not in _STATE_KINDS:
+                    raise ValueError(
+                        f'hardware component {self.name!r}: joint {joint_info.name!r} state '
+                        f'interface {iface.name!r} is not one of {", ".join(_STATE_KINDS)}')
+                handle = self.state_handles[f'{joint_info.name}/{iface.name}']
+                array, index = {'position': ('qpos', qadr), 'velocity': ('qvel', dadr),
+                                'effort': ('qfrc_actuator', dadr)}[iface.name]
+                states.append((handle, array, index))
+            for iface in joint_info.command_interfaces:
+                actuator_name = f'{name}/{iface.name}'
+                try:
+                    actuator = int(self.model.actuator(actuator_name).id)
+                except KeyError:
+                    raise ValueError(
+                        f'hardware component {self.name!r}: no actuator {actuator_name!r} for '
+                        f'command interface {joint_info.name}/{iface.name}') from None
+                lo = -math.inf if iface.min is None else float(iface.min)
+                hi = math.inf if iface.max is None else float(iface.max)
+                handle = self.command_handles[f'{joint_info.name}/{iface.name}']
+                commands.append((handle, actuator, lo, hi, iface.name, qadr))
+        self._states = states
+        self._commands = commands
+
+    def read(self, time, period):
+        """Copy joint positions, velocities and efforts from ``MjData`` into the state handles.
+
+        :param time: sim time in s (unused).
+        :param period: s since the last read (unused).
+        :returns: True.
+        """
+        data = self.data
+        for handle, array, index in self._states:
+            handle.value = float(getattr(data, array)[index])
+        return True
+
+    def write(self, time, period):
+        """Copy the command handles into the actuators' ``ctrl`` (clamped; NaN = hold).
+
+        :param time: sim time in s (unused).
+        :param period: s since the last write (unused).
+        :returns: True.
+        """
+        ctrl = self.data.ctrl
+        qpos = self.data.qpos
+        for handle, actuator, lo, hi, kind, qadr in self._commands:
+            value = handle.value
+            if value != value:  # NaN: no command
+                value = qpos[qadr] if kind == 'position' else 0.0
+            ctrl[actuator] = min(max(value, lo), hi)
+        return True
+
+    def on_deactivate(self):
+        """Stop the joints: velocity and effort commands to zero, positions held.
+
+        :returns: True.
+        """
+        for handle, actuator, lo, hi, kind, qadr in self._commands:
+            self.data.ctrl[actuator] = self.data.qpos[qadr] if kind == 'position' else 0.0
+        return True
