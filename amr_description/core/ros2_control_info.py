@@ -45,8 +45,8 @@ class InterfaceInfo:
     """
 
     name: str
-    min: float = None
-    max: float = None
+    min: float = None  # noqa: A003 (ros2_control's name)
+    max: float = None  # noqa: A003 (ros2_control's name)
     initial_value: float = None
     data_type: str = 'double'
 
@@ -89,7 +89,7 @@ class HardwareInfo:
     """
 
     name: str
-    type: str
+    type: str  # noqa: A003 (ros2_control's name)
     plugin: str
     parameters: dict = field(default_factory=dict)
     joints: list = field(default_factory=list)

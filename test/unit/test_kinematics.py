@@ -6,10 +6,9 @@
 import math
 from types import SimpleNamespace
 
+from amr_description.core import kinematics as k
 import numpy as np
 import pytest
-
-from amr_description.core import kinematics as k
 
 H = math.sqrt(0.5)
 

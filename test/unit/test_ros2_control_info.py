@@ -5,9 +5,8 @@
 
 import os
 
-import pytest
-
 from amr_description.core.ros2_control_info import parse_ros2_control
+import pytest
 
 URDF_PATH = os.path.join(os.path.dirname(__file__), '..', '..', 'urdf', 'amr.urdf')
 

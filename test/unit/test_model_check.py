@@ -1,0 +1,226 @@
+# Copyright 2026 The amr_description Authors
+# Licensed under the Apache License, Version 2.0
+
+"""The model check passes urdf/amr.urdf and finds each defect in broken copies of it."""
+
+import os
+import re
+import shutil
+
+from amr_description.core import model_check as mc
+from amr_description.core.urdf_model import parse_urdf
+import numpy as np
+import pytest
+import yaml
+
+ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', '..')
+URDF_PATH = os.path.join(ROOT, 'urdf', 'amr.urdf')
+YAML_PATH = os.path.join(ROOT, 'config', 'controllers.yaml')
+
+
+@pytest.fixture(scope='module')
+def urdf_xml():
+    with open(URDF_PATH) as f:
+        return f.read()
+
+
+@pytest.fixture(scope='module')
+def controllers():
+    return mc.load_controllers(YAML_PATH)
+
+
+def tutorial_urdf(urdf_xml):
+    """Return the tutorial's original variant: every wheel mounted with rpy="1.5708 0 0"."""
+    assert urdf_xml.count('rpy="-1.5708 0 0"/>') == 4
+    text = urdf_xml.replace('rpy="-1.5708 0 0"/>', 'rpy="1.5708 0 0"/>')
+    return text
+
+
+def run(xml, controllers=None):
+    return mc.check_model(parse_urdf(xml), xml, controllers)
+
+
+def errors(findings):
+    return [f for f in findings if f.severity == mc.ERROR]
+
+
+def warnings(findings):
+    return [f for f in findings if f.severity == mc.WARNING]
+
+
+def link_block(xml, name):
+    start = xml.index(f'<link name="{name}">')
+    return start, xml.index('</link>', start) + len('</link>')
+
+
+def edit_link(xml, name, old, new):
+    start, end = link_block(xml, name)
+    block = xml[start:end]
+    assert old in block
+    return xml[:start] + block.replace(old, new, 1) + xml[end:]
+
+
+def remove_element(xml, link, tag):
+    start, end = link_block(xml, link)
+    block = re.sub(rf'\s*<{tag}>.*?</{tag}>', '', xml[start:end], count=1, flags=re.S)
+    return xml[:start] + block + xml[end:]
+
+
+def test_amr_passes_with_zero_errors_and_warnings(urdf_xml, controllers):
+    findings = run(urdf_xml, controllers)
+    assert errors(findings) == [] and warnings(findings) == []
+    ok = [str(f) for f in findings if f.severity == mc.INFO]
+    assert sum('drives forward' in line for line in ok) == 4
+    assert any('wheel_separation 0.3 m matches' in line for line in ok)
+    assert any('wheel_radius 0.1 m matches' in line for line in ok)
+
+
+def test_reversed_axle_of_the_tutorial_is_an_error(urdf_xml, controllers):
+    found = errors(run(tutorial_urdf(urdf_xml), controllers))
+    assert len(found) == 4
+    assert all('BACKWARDS' in f.message for f in found)
+    sides = ('front_left', 'front_right', 'back_left', 'back_right')
+    assert {f.element for f in found} == {f"joint 'joint_wheel_{s}'" for s in sides}
+    assert '(0, -1, 0)' in found[0].found
+
+
+def test_sideways_axle(urdf_xml):
+    xml = urdf_xml.replace('rpy="-1.5708 0 0"/>', 'rpy="0 1.5708 0"/>', 1)
+    found = errors(run(xml))
+    assert len(found) == 1 and 'sideways' in found[0].message
+
+
+def test_missing_inertial(urdf_xml):
+    found = errors(run(remove_element(urdf_xml, 'wheel_front_left', 'inertial')))
+    assert [(f.element, f.expected) for f in found] == [
+        ("link 'wheel_front_left'", '<inertial>')]
+
+
+def test_missing_collision(urdf_xml):
+    found = errors(run(remove_element(urdf_xml, 'base_link', 'collision')))
+    assert [(f.element, f.expected) for f in found] == [("link 'base_link'", '<collision>')]
+
+
+@pytest.mark.parametrize('mass', ['-0.5', '0'])
+def test_non_positive_mass(urdf_xml, mass):
+    xml = edit_link(urdf_xml, 'wheel_back_right', '<mass value="0.5"/>',
+                    f'<mass value="{mass}"/>')
+    found = errors(run(xml))
+    assert len(found) == 1 and found[0].message == 'mass must be positive'
+    assert found[0].found == f'{float(mass):g} kg'
+
+
+def test_inertia_not_positive_definite(urdf_xml):
+    xml = edit_link(urdf_xml, 'base_link', 'izz="0.14166666666666666"', 'izz="-0.1"')
+    found = errors(run(xml))
+    assert len(found) == 1 and 'positive definite' in found[0].message
+
+
+def test_inertia_triangle_inequality(urdf_xml):
+    # 0.0417 + 0.1083 < 0.5: positive definite but no real body has it.
+    xml = edit_link(urdf_xml, 'base_link', 'izz="0.14166666666666666"', 'izz="0.5"')
+    found = errors(run(xml))
+    assert len(found) == 1 and 'triangle inequality' in found[0].message
+
+
+def test_inertia_far_from_geometry_is_a_warning(urdf_xml):
+    # Swapping the wheel's axial and diametral moments: physical, but not this cylinder.
+    xml = edit_link(urdf_xml, 'wheel_front_right', 'izz="0.0025"', 'izz="0.0005"')
+    findings = run(xml)
+    assert errors(findings) == []
+    found = warnings(findings)
+    assert len(found) == 1 and 'collision geometry' in found[0].message
+    assert '0.0025' in found[0].expected
+
+
+def test_root_link_with_inertia_is_a_warning(urdf_xml):
+    xml = urdf_xml.replace(
+        '<link name="base_footprint"/>',
+        '<link name="base_footprint"><inertial><mass value="1"/>'
+        '<inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/></inertial></link>')
+    found = warnings(run(xml))
+    assert len(found) == 1 and 'KDL' in found[0].message
+
+
+def test_closed_form_inertias():
+    np.testing.assert_allclose(np.diag(mc.box_inertia(5.0, (0.5, 0.3, 0.1))),
+                               [5 * 0.1 / 12, 5 * 0.26 / 12, 5 * 0.34 / 12])
+    np.testing.assert_allclose(np.diag(mc.cylinder_inertia(0.5, 0.1, 0.04)),
+                               [0.5 * 0.0316 / 12, 0.5 * 0.0316 / 12, 0.0025])
+    np.testing.assert_allclose(mc.sphere_inertia(2.0, 0.5), np.eye(3) * 0.2)
+
+
+def test_drive_direction_closed_form():
+    np.testing.assert_allclose(mc.drive_direction((0, 1, 0)), [1, 0, 0])
+    np.testing.assert_allclose(mc.drive_direction((0, -1, 0)), [-1, 0, 0])
+    np.testing.assert_allclose(mc.drive_direction((1, 0, 0)), [0, -1, 0])
+    np.testing.assert_allclose(mc.drive_direction((0, 0, 1)), [0, 0, 0])
+
+
+@pytest.mark.parametrize('key, value, words', [
+    ('wheel_separation', 0.35, 'wheel_separation does not match'),
+    ('wheel_radius', 0.12, 'wheel_radius does not match'),
+    ('left_wheel_names', ['joint_wheel_front_left', 'joint_nope'], "'joint_nope' is not"),
+])
+def test_controllers_yaml_mismatch(tmp_path, urdf_xml, key, value, words):
+    with open(YAML_PATH) as f:
+        data = yaml.safe_load(f)
+    data['diff_drive_controller']['ros__parameters'][key] = value
+    path = tmp_path / 'controllers.yaml'
+    path.write_text(yaml.safe_dump(data))
+    found = errors(run(urdf_xml, mc.load_controllers(str(path))))
+    assert len(found) == 1 and words in str(found[0]), [str(f) for f in found]
+
+
+def test_separation_within_one_millimetre(urdf_xml, controllers):
+    data = yaml.safe_load(yaml.safe_dump(controllers))
+    data['diff_drive_controller']['ros__parameters']['wheel_separation'] = 0.3009
+    assert errors(run(urdf_xml, data)) == []
+
+
+def test_wheel_without_velocity_command_or_position_state(urdf_xml, controllers):
+    old = '<joint name="joint_wheel_back_left">\n      <command_interface name="velocity">'
+    assert old in urdf_xml
+    xml = urdf_xml.replace(old, old.replace('velocity', 'effort'))
+    xml = xml.replace('<state_interface name="position"/>', '', 1)
+    found = [str(f) for f in errors(run(xml, controllers))]
+    assert any('back_left' in f and 'velocity command' in f for f in found), found
+    assert any('front_left' in f and 'missing position state' in f for f in found), found
+    # the <mujoco> actuator of back_left now drives a joint without a velocity command
+    assert any('<actuator>' in f and 'joint_wheel_back_left' in f for f in found), found
+
+
+def test_mujoco_block_unknown_link(urdf_xml):
+    xml = urdf_xml.replace('<link name="wheel_front_left" friction', '<link name="wheel_x" '
+                           'friction')
+    found = errors(run(xml))
+    assert len(found) == 1 and "'wheel_x'" in found[0].found
+
+
+def test_installed_copy(tmp_path):
+    source = tmp_path / 'src.urdf'
+    source.write_text('<robot name="a"/>')
+    assert mc.compare_installed(str(source), str(source)).severity == mc.INFO
+    copy = tmp_path / 'copy.urdf'
+    shutil.copy(source, copy)
+    assert mc.compare_installed(str(source), str(copy)).severity == mc.INFO
+    copy.write_text('<robot name="b"/>')
+    assert mc.compare_installed(str(source), str(copy)).severity == mc.ERROR
+    assert mc.compare_installed(str(source), None).severity == mc.WARNING
+
+
+def test_cli_exit_codes(tmp_path, capsys, urdf_xml):
+    assert mc.main(['--controllers', YAML_PATH, URDF_PATH]) == 0
+    out = capsys.readouterr().out
+    assert "robot 'amr', 6 links, 5 joints: 0 error(s), 0 warning(s)" in out
+    broken = tmp_path / 'tutorial.urdf'
+    broken.write_text(tutorial_urdf(urdf_xml))
+    assert mc.main(['-q', str(broken)]) == 1
+    assert 'BACKWARDS' in capsys.readouterr().out
+    bad = tmp_path / 'bad.urdf'
+    bad.write_text('<robot name="x"><link name="a">')
+    assert mc.main([str(bad)]) == 2
+    err = capsys.readouterr().err.strip()
+    assert err.startswith(f'check_model: {bad}: not well-formed XML') and '\n' not in err
+    assert mc.main([str(tmp_path / 'missing.urdf')]) == 2
+    assert mc.main(['--controllers', str(bad), URDF_PATH]) == 2
