@@ -94,7 +94,7 @@ def read_key(fd, settings, timeout):
     :param timeout: seconds to wait, or None to wait forever.
     :returns: the key (one character), ``''`` on timeout, None at end of input.
     """
-    tty.setraw(fd)
+    tty.setraw(fd, termios.TCSANOW)  # TCSAFLUSH would drop keys typed ahead
     try:
         ready, _, _ = select.select([fd], [], [], timeout)
         if not ready:
@@ -170,6 +170,7 @@ def main(args=None):
             pass
         termios.tcsetattr(fd, termios.TCSADRAIN, settings)
         executor.shutdown(timeout_sec=1.0)
+        spinner.join(2.0)
         node.destroy_node()
         rclpy.try_shutdown()
     return 0
