@@ -3,14 +3,13 @@
 
 """Key map and speed scaling of the keyboard teleop (upstream teleop_twist_keyboard)."""
 
-import pytest
-
 from amr_description.core.teleop_keys import apply_key
 from amr_description.core.teleop_keys import BANNER
 from amr_description.core.teleop_keys import check_parameters
 from amr_description.core.teleop_keys import CTRL_C
 from amr_description.core.teleop_keys import format_speeds
 from amr_description.core.teleop_keys import TeleopState
+import pytest
 
 
 @pytest.mark.parametrize('key, expected', [

@@ -1,0 +1,138 @@
+# Copyright 2026 The amr_description Authors
+# Licensed under the Apache License, Version 2.0
+
+"""Node command lines built as launch_ros builds them; launch arguments as ros2 launch."""
+
+import os
+
+from amr_description.launch import stacks
+from amr_description.launch.actions import DeclareLaunchArgument
+from amr_description.launch.actions import format_arguments
+from amr_description.launch.actions import LaunchError
+from amr_description.launch.actions import Node
+from amr_description.launch.actions import OnProcessExit
+from amr_description.launch.actions import parse_launch_arguments
+from amr_description.launch.actions import Process
+import pytest
+import yaml
+
+
+def _node(**kwargs):
+    return Node('pkg', 'exe', exe_path='/opt/pkg/lib/pkg/exe', **kwargs)
+
+
+def test_plain_node_gets_ros_args_only():
+    node = _node()
+    assert node.build_cmd() == ['/opt/pkg/lib/pkg/exe', '--ros-args']
+    assert node.name == 'exe'
+
+
+def test_name_namespace_arguments_remappings_order():
+    node = _node(name='talker', namespace='robot1', arguments=['-topic', 'robot_description'],
+                 remappings=[('/a', '/b'), ('c', 'd')])
+    assert node.build_cmd() == [
+        '/opt/pkg/lib/pkg/exe', '-topic', 'robot_description', '--ros-args',
+        '-r', '__node:=talker', '-r', '__ns:=/robot1', '-r', '/a:=/b', '-r', 'c:=d']
+
+
+def test_absolute_namespace_kept():
+    assert '__ns:=/a/b' in _node(namespace='/a/b').build_cmd()
+
+
+def test_parameter_dicts_and_files(tmp_path):
+    params_file = tmp_path / 'controllers.yaml'
+    params_file.write_text('x: 1\n')
+    node = _node(name='n', parameters=[{'use_sim_time': True, 'rate': 2.5, 'name': 'a b'},
+                                       str(params_file), {'robot_description': '<robot/>'}])
+    cmd = node.build_cmd(params_dir=str(tmp_path))
+    assert cmd[:5] == ['/opt/pkg/lib/pkg/exe', '--ros-args', '-r', '__node:=n', '--params-file']
+    files = [cmd[i + 1] for i, part in enumerate(cmd) if part == '--params-file']
+    assert len(files) == 3 and files[1] == str(params_file)
+    assert all(os.path.basename(f).startswith('launch_params_') for f in (files[0], files[2]))
+    with open(files[0]) as f:
+        assert yaml.safe_load(f) == {
+            '/**': {'ros__parameters': {'use_sim_time': True, 'rate': 2.5, 'name': 'a b'}}}
+    with open(files[2]) as f:
+        assert yaml.safe_load(f) == {'/**': {'ros__parameters': {'robot_description': '<robot/>'}}}
+    assert node.temp_files() == [files[0], files[2]]
+
+
+def test_params_before_remappings():
+    cmd = _node(parameters=['/p.yaml'], remappings=[('a', 'b')]).build_cmd()
+    assert cmd[-4:] == ['--params-file', '/p.yaml', '-r', 'a:=b']
+
+
+def test_bad_parameters_type():
+    with pytest.raises(LaunchError, match='expected dicts or file paths'):
+        _node(parameters=[42])
+
+
+def test_missing_executable():
+    with pytest.raises(LaunchError, match="package 'no_such_package_xyz' not found"):
+        Node('no_such_package_xyz', 'exe').build_cmd()
+
+
+def test_process_defaults():
+    proc = Process(['/bin/echo', 'hi'])
+    assert proc.name == 'echo' and proc.build_cmd() == ['/bin/echo', 'hi']
+    assert not proc.respawn and not proc.required and proc.output == 'screen'
+
+
+def test_launch_arguments():
+    declared = [DeclareLaunchArgument('rtf', '1.0', 'Real-time factor'),
+                DeclareLaunchArgument('mode', 'a', 'Mode', choices=['a', 'b'])]
+    assert parse_launch_arguments(declared, []) == {'rtf': '1.0', 'mode': 'a'}
+    assert parse_launch_arguments(declared, ['rtf:=0', 'rtf:=2']) == {'rtf': '2', 'mode': 'a'}
+    with pytest.raises(LaunchError, match="malformed launch argument 'rtf', expected format"):
+        parse_launch_arguments(declared, ['rtf'])
+    with pytest.raises(LaunchError, match="unknown launch argument 'foo'"):
+        parse_launch_arguments(declared, ['foo:=1'])
+    with pytest.raises(LaunchError, match="provided value 'c' is not valid"):
+        parse_launch_arguments(declared, ['mode:=c'])
+    text = format_arguments(declared)
+    assert text.startswith("Arguments (pass arguments as '<name>:=<value>'):\n\n    'rtf':\n"
+                           "        Real-time factor\n        (default: '1.0')\n")
+
+
+def test_stack_names():
+    assert stacks.stack_name('sim') == 'sim'
+    assert stacks.stack_name('sim.launch.py') == 'sim'
+    assert stacks.stack_name('display.launch.py') == 'display'
+    with pytest.raises(LaunchError, match="file 'nope' was not found"):
+        stacks.stack_name('nope')
+
+
+def test_sim_stack_layout(monkeypatch):
+    monkeypatch.setattr(stacks, 'read_urdf', lambda path=None: '<robot name="amr"/>')
+    args = stacks.resolve('sim', ['rtf:=0', 'robot:=r2', 'x:=1', 'yaw:=1.57'])
+    mujoco_sim, rsp, create, on_create, on_jsb = stacks.sim(args)
+    assert mujoco_sim.executable == 'mujoco_sim'
+    assert mujoco_sim.parameters == [{'real_time_factor': 0.0, 'headless': True}]
+    assert mujoco_sim.remappings == [('/diff_drive_controller/odom', '/odom')]
+    assert rsp.parameters == [{'robot_description': '<robot name="amr"/>',
+                               'use_sim_time': True}]
+    assert create.arguments == ['-topic', 'robot_description', '-name', 'r2', '-x', '1.0',
+                                '-y', '0.0', '-z', '0.2', '-Y', '1.57']
+    assert isinstance(on_create, OnProcessExit) and on_create.target_action is create
+    assert on_create.only_on_success
+    jsb = on_create.on_exit[0]
+    assert jsb.executable == 'spawner' and jsb.arguments == ['joint_state_broadcaster']
+    assert on_jsb.target_action is jsb
+    assert on_jsb.on_exit[0].arguments == ['diff_drive_controller']
+    with pytest.raises(LaunchError, match="launch argument 'rtf': expected a number"):
+        stacks.sim(stacks.resolve('sim', ['rtf:=fast']))
+    with pytest.raises(LaunchError, match="launch argument 'headless': expected true or false"):
+        stacks.sim(stacks.resolve('sim', ['headless:=maybe']))
+
+
+def test_display_stack_layout(monkeypatch):
+    monkeypatch.setattr(stacks, 'read_urdf', lambda path=None: '<robot name="amr"/>')
+    rsp, jsp = stacks.display(stacks.resolve('display'))
+    assert (rsp.executable, jsp.executable) == ('robot_state_publisher', 'joint_state_publisher')
+    assert rsp.parameters == [{'robot_description': '<robot name="amr"/>',
+                               'use_sim_time': False}]
+
+
+def test_unreadable_urdf(tmp_path):
+    with pytest.raises(LaunchError, match="cannot read URDF '.*missing.urdf'"):
+        stacks.read_urdf(str(tmp_path / 'missing.urdf'))
