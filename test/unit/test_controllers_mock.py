@@ -1,0 +1,200 @@
+# Copyright 2026 The amr_description Authors
+# Licensed under the Apache License, Version 2.0
+"""Controller manager + joint_state_broadcaster + diff_drive_controller on mock hardware.
+
+In-process rclpy (own ROS_DOMAIN_ID, localhost discovery); ``update()`` is driven with
+synthetic time, so results are deterministic and compared with closed-form answers.
+"""
+
+import math
+import os
+import textwrap
+
+import pytest
+
+from conftest import next_domain_id  # noqa: I100
+
+rclpy = pytest.importorskip('rclpy')
+pytest.importorskip('controller_manager_msgs.srv')
+
+from geometry_msgs.msg import TwistStamped  # noqa: E402
+
+from amr_description.control.controller_manager import ControllerManager  # noqa: E402
+from amr_description.control.generic_system import GenericSystem  # noqa: E402
+from amr_description.control.controller_interface import time_to_msg  # noqa: E402, I100
+
+WHEELS = ('joint_wheel_front_left', 'joint_wheel_front_right', 'joint_wheel_back_left',
+          'joint_wheel_back_right')
+S, R = 0.3, 0.1
+
+
+def _urdf(wheels=WHEELS, extra_ros2_control_joint=None):
+    joints = ''.join(
+        f'<joint name="{w}" type="continuous"><parent link="base_link"/>'
+        f'<child link="{w}_link"/></joint><link name="{w}_link"/>' for w in wheels)
+    rc_joints = list(wheels) + ([extra_ros2_control_joint] if extra_ros2_control_joint else [])
+    rc = ''.join(
+        f'<joint name="{w}"><command_interface name="velocity"/>'
+        f'<state_interface name="position"/><state_interface name="velocity"/></joint>'
+        for w in rc_joints)
+    return (f'<robot name="t"><link name="base_link"/>{joints}'
+            f'<ros2_control name="Mock" type="system"><hardware>'
+            f'<plugin>mock_components/GenericSystem</plugin></hardware>{rc}</ros2_control>'
+            f'</robot>')
+
+
+PARAMS = textwrap.dedent("""
+    controller_manager:
+      ros__parameters:
+        update_rate: 100
+        joint_state_broadcaster:
+          type: joint_state_broadcaster/JointStateBroadcaster
+        diff_drive_controller:
+          type: diff_drive_controller/DiffDriveController
+        other:
+          type: diff_drive_controller/DiffDriveController
+    /**/diff_drive_controller:
+      ros__parameters:
+        left_wheel_names: [joint_wheel_front_left, joint_wheel_back_left]
+        right_wheel_names: [joint_wheel_front_right, joint_wheel_back_right]
+        wheel_separation: 0.3
+        wheel_radius: 0.1
+        cmd_vel_timeout: 0.5
+        publish_rate: 50.0
+    other:
+      ros__parameters:
+        left_wheel_names: [joint_wheel_front_left]
+        right_wheel_names: [joint_wheel_front_right]
+        wheel_separation: 0.3
+        wheel_radius: 0.1
+    """)
+
+
+@pytest.fixture
+def cm(tmp_path):
+    os.environ['ROS_DOMAIN_ID'] = str(next_domain_id())
+    os.environ['ROS_AUTOMATIC_DISCOVERY_RANGE'] = 'LOCALHOST'
+    params = tmp_path / 'controllers.yaml'
+    params.write_text(PARAMS)
+    context = rclpy.context.Context()
+    rclpy.init(context=context)
+    executor = rclpy.executors.SingleThreadedExecutor(context=context)
+    manager = ControllerManager(_urdf(), executor, lambda info: GenericSystem(),
+                                str(params), use_sim_time=False)
+    yield manager
+    manager.shutdown()
+    manager.destroy_node()
+    executor.shutdown()
+    rclpy.shutdown(context=context)
+
+
+def _activate(cm, *names):
+    for name in names:
+        assert cm.load_controller(name) is not None
+        assert cm.configure_controller(name)
+    ok, message = cm.switch_controller(list(names), [], wait=False)
+    assert ok, message
+    cm.update(0.0, 0.01)
+    for name in names:
+        assert cm.controllers[name].lifecycle_state == 'active'
+
+
+def _command(ddc, linear, angular, stamp):
+    msg = TwistStamped()
+    msg.header.stamp = time_to_msg(stamp)
+    msg.twist.linear.x = linear
+    msg.twist.angular.z = angular
+    ddc._on_cmd_vel(msg)
+
+
+def _wheel_cmds(cm):
+    return [cm.resource_manager.command_interfaces[f'{w}/velocity'].value for w in WHEELS]
+
+
+def test_wheel_commands_odometry_and_timeout(cm):
+    _activate(cm, 'joint_state_broadcaster', 'diff_drive_controller')
+    ddc = cm.controllers['diff_drive_controller']
+    # before the first command nothing is written
+    cm.update(0.01, 0.01)
+    assert all(math.isnan(v) for v in _wheel_cmds(cm))
+    t = 0.01
+    v, w = 0.5, 0.4
+    for _ in range(100):  # 1 s, commands refreshed every step
+        t += 0.01
+        _command(ddc, v, w, t)
+        cm.update(t, 0.01)
+    left = (v - w * S / 2) / R
+    right = (v + w * S / 2) / R
+    fl, fr, bl, br = _wheel_cmds(cm)
+    assert (fl, bl) == pytest.approx((left, left))
+    assert (fr, br) == pytest.approx((right, right))
+    odom = ddc.odometry
+    # one step of delay (mock mirrors the command at the next read): ~0.99 s of motion
+    assert odom.heading == pytest.approx(w * 0.99, abs=1e-6)
+    assert odom.x == pytest.approx(v / w * math.sin(odom.heading), abs=1e-6)
+    assert odom.linear == pytest.approx(v)
+    # timeout: the last command ages beyond 0.5 s -> zero wheel commands
+    for _ in range(60):
+        t += 0.01
+        cm.update(t, 0.01)
+    assert _wheel_cmds(cm) == pytest.approx([0.0] * 4)
+
+
+def test_nan_command_ignored_and_stale_dropped(cm):
+    _activate(cm, 'diff_drive_controller')
+    ddc = cm.controllers['diff_drive_controller']
+    cm.update(1.0, 0.01)
+    _command(ddc, 0.2, 0.0, 1.0)
+    _command(ddc, math.nan, 0.0, 1.0)
+    _command(ddc, 1.0, 0.0, 0.2)  # 0.8 s old: dropped
+    cm.update(1.01, 0.01)
+    assert _wheel_cmds(cm) == pytest.approx([2.0] * 4)
+
+
+def test_nan_state_deactivates(cm):
+    _activate(cm, 'diff_drive_controller')
+    cm.resource_manager.state_interfaces['joint_wheel_back_left/position'].value = math.nan
+    cm.resource_manager.components[0].command_handles.clear()  # keep the NaN state
+    cm.update(0.02, 0.01)
+    assert cm.controllers['diff_drive_controller'].lifecycle_state == 'inactive'
+    assert cm.resource_manager.claimed_by('diff_drive_controller') == []
+    assert _wheel_cmds(cm) == pytest.approx([0.0] * 4)  # deactivation writes zero
+
+
+def test_claim_conflict_rejected(cm):
+    _activate(cm, 'diff_drive_controller')
+    assert cm.load_controller('other') is not None
+    assert cm.configure_controller('other')
+    ok, message = cm.switch_controller(['other'], [], wait=False)
+    assert not ok
+    assert "already claimed by 'diff_drive_controller'" in message
+
+
+def test_joint_state_broadcaster_order_and_values(cm):
+    _activate(cm, 'joint_state_broadcaster')
+    jsb = cm.controllers['joint_state_broadcaster']
+    assert [row[0] for row in jsb._rows] == list(WHEELS)
+    received = []
+    jsb._publisher.publish = received.append
+    cm.update(0.5, 0.01)
+    msg = received[-1]
+    assert list(msg.name) == list(WHEELS)
+    assert msg.header.stamp.sec == 0 and msg.header.stamp.nanosec == 500_000_000
+    assert all(math.isnan(e) for e in msg.effort)
+    assert list(msg.position) == [0.0] * 4
+
+
+def test_configure_fails_without_wheels(cm, tmp_path):
+    cm.set_parameters([rclpy.parameter.Parameter('bad.type', value='diff_drive_controller/'
+                                                 'DiffDriveController')])
+    assert cm.load_controller('bad') is not None
+    assert not cm.configure_controller('bad')
+    assert cm.controllers['bad'].lifecycle_state == 'unconfigured'
+
+
+def test_unknown_type_and_ros2_control_joint_missing(cm):
+    cm.set_parameters([rclpy.parameter.Parameter('x.type', value='nope/Nope')])
+    assert cm.load_controller('x') is None
+    from amr_description.control.resource_manager import ResourceManager
+    with pytest.raises(ValueError, match="joint 'ghost'"):
+        ResourceManager(_urdf(extra_ros2_control_joint='ghost'), lambda i: GenericSystem())
