@@ -1,0 +1,204 @@
+# Copyright 2026 The amr_description Authors
+# Licensed under the Apache License, Version 2.0
+
+"""robot_state_publisher: URDF + /joint_states -> /tf, /tf_static and /robot_description.
+
+Reproduces the behaviour of upstream ``robot_state_publisher`` (ROS 2 Jazzy):
+
+- parameters ``robot_description`` (URDF text, must not be empty), ``publish_frequency``
+  (Hz, 20.0, range 0..1000; 0 publishes every message), ``ignore_timestamp`` (false),
+  ``frame_prefix`` ('' , prepended verbatim to every frame id), plus the standard
+  ``use_sim_time``;
+- ``/robot_description`` (std_msgs/String, reliable, transient local, depth 1) so late joiners
+  get the model;
+- ``/tf_static`` (tf2_msgs/TFMessage, transient local, depth 1): every fixed joint, once per
+  model, stamped with the node's clock;
+- ``/tf`` (depth 100): for each ``/joint_states`` message (sensor-data QoS) the transform
+  parent -> child of every revolute/continuous/prismatic joint it names, and of the mimic
+  joints following them (``multiplier * parent + offset``), stamped with the message stamp and
+  rate-limited per joint to ``publish_frequency`` (by message stamps; ``ignore_timestamp``
+  turns the limit off). A message whose ``name`` and ``position`` lengths differ is rejected
+  with an error; a joint missing from a message gets no transform;
+- setting ``robot_description`` at runtime re-parses the model (an invalid one is rejected and
+  the old one kept) and republishes the description and the static transforms.
+
+Forward kinematics: :mod:`amr_description.core.kinematics`; URDF: yourdfpy through
+:mod:`amr_description.core.urdf_model`.
+"""
+
+import sys
+
+from amr_description.core.kinematics import joint_transform
+from amr_description.core.kinematics import matrix_to_translation_quaternion
+from amr_description.core.urdf_model import parse_urdf
+from geometry_msgs.msg import TransformStamped
+from rcl_interfaces.msg import FloatingPointRange
+from rcl_interfaces.msg import ParameterDescriptor
+from rcl_interfaces.msg import SetParametersResult
+import rclpy
+from rclpy.exceptions import InvalidParameterTypeException
+from rclpy.exceptions import InvalidParameterValueException
+from rclpy.executors import ExternalShutdownException
+from rclpy.node import Node
+from rclpy.qos import DurabilityPolicy
+from rclpy.qos import qos_profile_sensor_data
+from rclpy.qos import QoSProfile
+from rclpy.qos import ReliabilityPolicy
+from sensor_msgs.msg import JointState
+from std_msgs.msg import String
+from tf2_msgs.msg import TFMessage
+
+LATCHED_QOS = QoSProfile(depth=1, durability=DurabilityPolicy.TRANSIENT_LOCAL,
+                         reliability=ReliabilityPolicy.RELIABLE)
+TF_QOS = QoSProfile(depth=100)
+
+
+class RobotStatePublisher(Node):
+    """Node ``robot_state_publisher`` (see the module docstring for its interface)."""
+
+    def __init__(self):
+        """Declare the parameters, parse the model and create publishers and subscription.
+
+        :raises ValueError: when ``robot_description`` is empty or not a valid URDF (one line).
+        """
+        super().__init__('robot_state_publisher')
+        self.declare_parameter('robot_description', '', ParameterDescriptor(
+            description='The original description of the robot'))
+        self.declare_parameter('publish_frequency', 20.0, ParameterDescriptor(
+            description='Maximum frequency (Hz) of /tf per joint',
+            floating_point_range=[FloatingPointRange(from_value=0.0, to_value=1000.0)]))
+        self.declare_parameter('ignore_timestamp', False)
+        self.declare_parameter('frame_prefix', '')
+        self._model = None
+        self._last_publish = {}  # joint name -> last published stamp (ns)
+        self._last_callback_ns = 0
+        self._description = self.get_parameter('robot_description').value
+        if not self._description:
+            raise ValueError('robot_description parameter must not be empty')
+        self._model = parse_urdf(self._description, source='robot_description')
+        self._description_pub = self.create_publisher(String, 'robot_description', LATCHED_QOS)
+        self._static_pub = self.create_publisher(TFMessage, '/tf_static', LATCHED_QOS)
+        self._tf_pub = self.create_publisher(TFMessage, '/tf', TF_QOS)
+        self.add_on_set_parameters_callback(self._validate_parameters)
+        self.add_post_set_parameters_callback(self._apply_parameters)
+        self._publish_model()
+        self.create_subscription(JointState, 'joint_states', self._on_joint_states,
+                                 qos_profile_sensor_data)
+
+    # -- model --------------------------------------------------------------------------------
+
+    def _publish_model(self):
+        """Log the segments, publish /robot_description and the fixed joints on /tf_static."""
+        for joint in self._model.joints.values():
+            self.get_logger().info(f'got segment {joint.child}')
+        self._description_pub.publish(String(data=self._description))
+        stamp = self.get_clock().now().to_msg()
+        transforms = [self._transform(joint, 0.0, stamp) for joint in self._model.fixed_joints()]
+        self._static_pub.publish(TFMessage(transforms=transforms))
+
+    def _validate_parameters(self, parameters):
+        """Reject an empty or unparsable ``robot_description`` (the old model stays)."""
+        for parameter in parameters:
+            if parameter.name == 'robot_description':
+                if not parameter.value:
+                    return SetParametersResult(
+                        successful=False, reason='robot_description must not be empty')
+                try:
+                    parse_urdf(parameter.value, source='robot_description')
+                except ValueError as exc:
+                    return SetParametersResult(successful=False, reason=str(exc))
+        return SetParametersResult(successful=True)
+
+    def _apply_parameters(self, parameters):
+        """Re-read the model after ``robot_description`` changed."""
+        for parameter in parameters:
+            if parameter.name == 'robot_description':
+                self._description = parameter.value
+                self._model = parse_urdf(self._description, source='robot_description')
+                self._last_publish.clear()
+                self._publish_model()
+
+    # -- transforms ---------------------------------------------------------------------------
+
+    def _transform(self, joint, position, stamp):
+        """Return the TransformStamped parent -> child of ``joint`` at ``position``."""
+        prefix = self.get_parameter('frame_prefix').value
+        xyz, quat = matrix_to_translation_quaternion(
+            joint_transform(joint.origin, joint.type, joint.axis, position))
+        msg = TransformStamped()
+        msg.header.stamp = stamp
+        msg.header.frame_id = prefix + joint.parent
+        msg.child_frame_id = prefix + joint.child
+        t = msg.transform.translation
+        t.x, t.y, t.z = (float(v) for v in xyz)
+        r = msg.transform.rotation
+        r.x, r.y, r.z, r.w = (float(v) for v in quat)
+        return msg
+
+    def _on_joint_states(self, msg):
+        """Publish /tf for the moving joints named in ``msg`` (upstream rules, module doc)."""
+        if len(msg.name) != len(msg.position):
+            self.get_logger().error(
+                f'Ignored an invalid JointState message on {self._joint_states_topic()}: '
+                f'{len(msg.name)} names but {len(msg.position)} positions')
+            return
+        stamp_ns = msg.header.stamp.sec * 1_000_000_000 + msg.header.stamp.nanosec
+        if stamp_ns < self._last_callback_ns:
+            self.get_logger().warning('Moved backwards in time, re-publishing joint transforms!')
+            self._last_publish.clear()
+        self._last_callback_ns = stamp_ns
+        frequency = self.get_parameter('publish_frequency').value
+        ignore_timestamp = self.get_parameter('ignore_timestamp').value
+        interval_ns = int(1e9 / frequency) if frequency > 0.0 else 0
+        model = self._model
+        positions = {}
+        for name, position in zip(msg.name, msg.position):
+            joint = model.joints.get(name)
+            if joint is not None and joint.type in ('revolute', 'continuous', 'prismatic'):
+                positions[name] = float(position)
+        if not positions:
+            return
+        last = min(self._last_publish.get(name, -1) for name in positions)
+        if not ignore_timestamp and last >= 0 and stamp_ns < last + interval_ns:
+            return
+        resolved = model.resolve_mimic(positions)
+        transforms = []
+        for name, position in resolved.items():
+            joint = model.joints[name]
+            if joint.type in ('revolute', 'continuous', 'prismatic'):
+                transforms.append(self._transform(joint, position, msg.header.stamp))
+        for name in positions:
+            self._last_publish[name] = stamp_ns
+        self._tf_pub.publish(TFMessage(transforms=transforms))
+
+    def _joint_states_topic(self):
+        """Return the resolved name of the joint states topic (for messages)."""
+        return self.resolve_topic_name('joint_states')
+
+
+def main(args=None):
+    """Run :class:`RobotStatePublisher` until Ctrl-C.
+
+    :param args: command-line arguments for rclpy (default ``sys.argv``).
+    :returns: 0 on a clean shutdown, 1 when ``robot_description`` is empty or invalid or a
+        parameter is out of range (one-line error, no traceback).
+    """
+    rclpy.init(args=args)
+    try:
+        node = RobotStatePublisher()
+    except (ValueError, InvalidParameterValueException, InvalidParameterTypeException) as exc:
+        rclpy.logging.get_logger('robot_state_publisher').error(' '.join(str(exc).split()))
+        rclpy.try_shutdown()
+        return 1
+    try:
+        rclpy.spin(node)
+    except (KeyboardInterrupt, ExternalShutdownException):
+        pass
+    finally:
+        node.destroy_node()
+        rclpy.try_shutdown()
+    return 0
+
+
+if __name__ == '__main__':
+    sys.exit(main())
