@@ -390,23 +390,34 @@ def urdf_to_spec(urdf_xml, name='amr', pose=(0.0, 0.0, 0.0, 0.0, 0.0, 0.0), free
     :param urdf_xml: the URDF document (str or bytes), with optional ``<ros2_control>``
         and ``<mujoco>`` blocks.
     :param name: the model name (``spec.modelname``), str.
-    :param pose: initial pose of the root link in the world frame, (x, y, z) in m and
-        (roll, pitch, yaw) in rad (URDF fixed-axis convention).
+    :param pose: initial pose of the root link in the world frame: (x, y, z) in m then
+        either (roll, pitch, yaw) in rad (URDF fixed-axis convention) or a quaternion
+        (qx, qy, qz, qw), normalised here.
     :param free: True to give the root body a free joint named ``<root link>`` (floating
         robot), False to weld it to the world.
     :returns: a ``mujoco.MjSpec`` whose worldbody holds the robot (body names = link names,
         joint names = URDF joint names, actuators ``<joint>/<interface>``); compile with
         ``spec.compile()`` or attach into a world with :mod:`amr_description.sim.world`.
     :raises ValueError: one-line message when the URDF is malformed (XML, links, joints,
-        unsupported joint type), a ``<ros2_control>`` joint is missing from the URDF, or the
-        ``<mujoco>`` block is malformed.
+        unsupported joint type), a ``<ros2_control>`` joint is missing from the URDF, the
+        ``<mujoco>`` block is malformed, or the pose is not 6/7 finite numbers.
     """
     root_element, robot = _load_urdf(urdf_xml)
     config = parse_mujoco_block(root_element)
     hardware = parse_ros2_control(urdf_xml)
     root_name = _root_link(robot)
-    if len(pose) != 6 or not all(math.isfinite(float(v)) for v in pose):
-        raise ValueError(f'pose must be 6 finite numbers (x y z R P Y), found {pose!r}')
+    pose = [float(v) for v in pose]
+    if len(pose) not in (6, 7) or not all(math.isfinite(v) for v in pose):
+        raise ValueError(
+            'pose must be 6 (x y z R P Y) or 7 (x y z qx qy qz qw) finite numbers, '
+            f'found {pose!r}')
+    if len(pose) == 6:
+        root_quat = rpy_to_quat(*pose[3:])
+    else:
+        root_quat = np.array([pose[6], pose[3], pose[4], pose[5]])
+        if not np.linalg.norm(root_quat) > 1e-9:
+            raise ValueError('pose quaternion must be non-zero')
+        root_quat /= np.linalg.norm(root_quat)
 
     spec = mujoco.MjSpec()
     spec.modelname = name
@@ -424,8 +435,8 @@ def urdf_to_spec(urdf_xml, name='amr', pose=(0.0, 0.0, 0.0, 0.0, 0.0, 0.0), free
         link = links[link_name]
         body = parent_body.add_body(name=link_name)
         if joint is None:
-            body.pos = [float(v) for v in pose[:3]]
-            body.quat = rpy_to_quat(*[float(v) for v in pose[3:]])
+            body.pos = pose[:3]
+            body.quat = root_quat
             if free:
                 body.add_freejoint(name=link_name)
         else:

@@ -1,0 +1,178 @@
+# Copyright 2026 The amr_description Authors
+# Licensed under the Apache License, Version 2.0
+
+"""``create``: spawn a robot into ``mujoco_sim`` (the ``ros_gz_sim create`` command line).
+
+Flags as upstream ``ros_gz_sim create``: one source of ``-topic TOPIC`` (a std_msgs/String
+published transient-local, e.g. ``robot_description``), ``-file PATH`` (also
+``package://``), ``-string XML`` or ``-param NAME`` (a string parameter of this node);
+``-name NAME``, ``-allow_renaming``, pose ``-x -y -z`` (m) and ``-R -P -Y`` (rad),
+``-world`` (accepted, ignored: mujoco_sim has one world). Extra: ``-service`` (default
+``/mujoco_sim/spawn_entity``) and ``-timeout`` (s to wait for the topic and the service,
+default 30). Exits 0 when the entity was created, 1 with a one-line error otherwise.
+"""
+
+import argparse
+import math
+import sys
+
+from geometry_msgs.msg import PoseStamped
+import rclpy
+from rclpy.executors import ExternalShutdownException
+from rclpy.node import Node
+from rclpy.qos import DurabilityPolicy
+from rclpy.qos import QoSProfile
+from rclpy.qos import ReliabilityPolicy
+from std_msgs.msg import String
+
+DEFAULT_SERVICE = '/mujoco_sim/spawn_entity'
+
+
+def build_parser():
+    """Return the argparse parser of the ``create`` flags (single-dash, as upstream)."""
+    parser = argparse.ArgumentParser(
+        prog='create', description='Spawn an entity (URDF) into mujoco_sim.')
+    source = parser.add_mutually_exclusive_group(required=True)
+    source.add_argument('-topic', help='topic with the robot description (std_msgs/String)')
+    source.add_argument('-file', help='URDF file (path or package://)')
+    source.add_argument('-string', help='URDF as a string')
+    source.add_argument('-param', help='string parameter of this node holding the URDF')
+    parser.add_argument('-name', default='', help='entity name (default: URDF robot name)')
+    parser.add_argument('-allow_renaming', action='store_true',
+                        help='rename the entity when the name is taken')
+    parser.add_argument('-world', default='', help='world name (ignored: a single world)')
+    for flag, meaning in (('x', 'x (m)'), ('y', 'y (m)'), ('z', 'z (m)'),
+                          ('R', 'roll (rad)'), ('P', 'pitch (rad)'), ('Y', 'yaw (rad)')):
+        parser.add_argument(f'-{flag}', type=float, default=0.0, help=meaning)
+    parser.add_argument('-service', default=DEFAULT_SERVICE, help='SpawnEntity service')
+    parser.add_argument('-timeout', type=float, default=30.0,
+                        help='seconds to wait for the topic and the service')
+    return parser
+
+
+def pose_from_rpy(x, y, z, roll, pitch, yaw):
+    """Return a PoseStamped in frame ``world`` from position (m) and fixed-axis RPY (rad)."""
+    cr, sr = math.cos(roll / 2), math.sin(roll / 2)
+    cp, sp = math.cos(pitch / 2), math.sin(pitch / 2)
+    cy, sy = math.cos(yaw / 2), math.sin(yaw / 2)
+    msg = PoseStamped()
+    msg.header.frame_id = 'world'
+    msg.pose.position.x, msg.pose.position.y, msg.pose.position.z = x, y, z
+    q = msg.pose.orientation
+    q.w = cr * cp * cy + sr * sp * sy
+    q.x = sr * cp * cy - cr * sp * sy
+    q.y = cr * sp * cy + sr * cp * sy
+    q.z = cr * cp * sy - sr * sp * cy
+    return msg
+
+
+class Create(Node):
+    """Node ``ros_gz_sim``-like ``create``: gets the URDF and calls the spawn service."""
+
+    def __init__(self, opts):
+        """Create the node (``-param`` is read from its parameter of that name).
+
+        :param opts: parsed :func:`build_parser` options.
+        """
+        super().__init__('create')
+        self.opts = opts
+        from simulation_interfaces.srv import SpawnEntity
+        self._srv_type = SpawnEntity
+        self._client = self.create_client(SpawnEntity, opts.service)
+
+    def description(self):
+        """Return the URDF text from the chosen source.
+
+        :raises RuntimeError: one line when it cannot be obtained in time.
+        """
+        opts = self.opts
+        if opts.string is not None:
+            return opts.string
+        if opts.file is not None:
+            from amr_description.sim.urdf_to_mjcf import resolve_uri
+            try:
+                with open(resolve_uri(opts.file), 'r') as f:
+                    return f.read()
+            except (OSError, ValueError) as exc:
+                raise RuntimeError(
+                    f'cannot read -file {opts.file}: {getattr(exc, "strerror", None) or exc}')
+        if opts.param is not None:
+            value = self.declare_parameter(opts.param, '').value
+            if not value:
+                raise RuntimeError(f'parameter [{opts.param}] is empty or not set')
+            return value
+        return self._from_topic(opts.topic)
+
+    def _from_topic(self, topic):
+        received = []
+        qos = QoSProfile(depth=1, durability=DurabilityPolicy.TRANSIENT_LOCAL,
+                         reliability=ReliabilityPolicy.RELIABLE)
+        sub = self.create_subscription(String, topic, lambda m: received.append(m.data), qos)
+        self.get_logger().info(f'Waiting messages on topic [{topic}].')
+        deadline = self.get_clock().now().nanoseconds * 1e-9 + self.opts.timeout
+        while rclpy.ok() and not received and \
+                self.get_clock().now().nanoseconds * 1e-9 < deadline:
+            rclpy.spin_once(self, timeout_sec=0.1)
+        self.destroy_subscription(sub)
+        if not received:
+            raise RuntimeError(f'timed out after {self.opts.timeout:g} s waiting for a message '
+                               f'on topic [{topic}]')
+        return received[0]
+
+    def spawn(self, urdf):
+        """Call the spawn service; return (ok, message)."""
+        opts = self.opts
+        self.get_logger().info(f'Waiting for service {opts.service}...')
+        if not self._client.wait_for_service(timeout_sec=opts.timeout):
+            return False, (f'service {opts.service} not available after {opts.timeout:g} s: '
+                           'is mujoco_sim running?')
+        request = self._srv_type.Request()
+        request.name = opts.name
+        request.allow_renaming = opts.allow_renaming
+        request.entity_resource.resource_string = urdf
+        request.initial_pose = pose_from_rpy(opts.x, opts.y, opts.z, opts.R, opts.P, opts.Y)
+        self.get_logger().info('Requested creation of entity.')
+        future = self._client.call_async(request)
+        rclpy.spin_until_future_complete(self, future, timeout_sec=opts.timeout + 30.0)
+        if not future.done() or future.result() is None:
+            return False, f'no answer from {opts.service}'
+        response = future.result()
+        if response.result.result != response.result.RESULT_OK:
+            return False, f'Failed request to create entity: {response.result.error_message}'
+        return True, f'OK creation of entity [{response.entity_name}].'
+
+
+def main(args=None):
+    """Parse the flags, spawn, and return the exit code (0 created, 1 failed)."""
+    argv = sys.argv[1:] if args is None else list(args)
+    from rclpy.utilities import remove_ros_args
+    own = remove_ros_args(['create'] + argv)[1:]
+    opts = build_parser().parse_args(own)
+    rclpy.init(args=['create'] + argv)
+    node = None
+    code = 1
+    try:
+        node = Create(opts)
+        urdf = node.description()
+        ok, message = node.spawn(urdf)
+        if ok:
+            node.get_logger().info(message)
+            code = 0
+        else:
+            node.get_logger().error(message)
+    except RuntimeError as exc:
+        if node is not None:
+            node.get_logger().error(str(exc))
+        else:
+            print(f'create: {exc}', file=sys.stderr)
+    except (KeyboardInterrupt, ExternalShutdownException):
+        pass
+    finally:
+        if node is not None:
+            node.destroy_node()
+        rclpy.try_shutdown()
+    return code
+
+
+if __name__ == '__main__':
+    sys.exit(main())
