@@ -1,0 +1,92 @@
+# Copyright 2026 The amr_description Authors
+# Licensed under the Apache License, Version 2.0
+
+"""``render``: draw the robot headless to a PNG, from a URDF file or ``/robot_description``.
+
+``ros2 run amr_description render [--urdf PATH] [-o out.png] [--width W] [--height H]
+[--frames] [--timeout S]``. Without ``--urdf`` a short-lived node ``render`` takes the model
+from the ``/robot_description`` topic (std_msgs/String, transient local, as published by
+robot_state_publisher). The picture itself: :mod:`amr_description.sim.render`.
+"""
+
+import argparse
+import os
+import sys
+import time
+
+
+def _parse(argv):
+    """Parse the non-ROS arguments."""
+    parser = argparse.ArgumentParser(prog='render', description='Render the robot to a PNG '
+                                     '(MuJoCo, headless).')
+    parser.add_argument('--urdf', metavar='PATH', help='URDF file (default: the '
+                        '/robot_description topic)')
+    parser.add_argument('-o', '--output', default='robot.png', help='PNG file (robot.png)')
+    parser.add_argument('--width', type=int, default=640, help='pixels (640)')
+    parser.add_argument('--height', type=int, default=480, help='pixels (480)')
+    parser.add_argument('--frames', action='store_true', help='draw the link frame axes')
+    parser.add_argument('--timeout', type=float, default=10.0,
+                        help='seconds to wait for /robot_description (10)')
+    return parser.parse_args(argv)
+
+
+def _description_from_topic(args, timeout):
+    """Return the first /robot_description message's data, or None after ``timeout`` s."""
+    import rclpy
+    from rclpy.qos import DurabilityPolicy
+    from rclpy.qos import QoSProfile
+    from std_msgs.msg import String
+
+    os.environ.setdefault('ROS_AUTOMATIC_DISCOVERY_RANGE', 'LOCALHOST')
+    rclpy.init(args=args)
+    node = rclpy.create_node('render')
+    received = []
+    node.create_subscription(String, 'robot_description', lambda msg: received.append(msg.data),
+                             QoSProfile(depth=1, durability=DurabilityPolicy.TRANSIENT_LOCAL))
+    try:
+        deadline = time.monotonic() + timeout
+        while not received and time.monotonic() < deadline:
+            rclpy.spin_once(node, timeout_sec=0.1)
+    finally:
+        node.destroy_node()
+        rclpy.try_shutdown()
+    return received[0] if received else None
+
+
+def main(args=None):
+    """Render the robot and write the PNG.
+
+    :param args: full argument list including ROS arguments (default ``sys.argv``).
+    :returns: 0 on success, 1 on a bad URDF, a missing description or an unwritable file
+        (one-line error on stderr).
+    """
+    from rclpy.utilities import remove_ros_args
+
+    argv = sys.argv if args is None else args
+    options = _parse(remove_ros_args(argv)[1:])
+    try:
+        if options.urdf:
+            try:
+                with open(options.urdf) as f:
+                    urdf_xml = f.read()
+            except OSError as exc:
+                raise ValueError(f'{options.urdf}: cannot read: {exc.strerror}') from None
+        else:
+            urdf_xml = _description_from_topic(argv, options.timeout)
+            if urdf_xml is None:
+                raise ValueError(f'no message on /robot_description within {options.timeout:g} s')
+        from amr_description.sim.render import render_urdf
+        from amr_description.sim.render import save_png
+        image = render_urdf(urdf_xml, options.width, options.height, options.frames)
+        save_png(image, options.output)
+    except KeyboardInterrupt:
+        return 1
+    except ValueError as exc:
+        print(f'render: {" ".join(str(exc).split())}', file=sys.stderr)
+        return 1
+    print(f'wrote {options.output} ({options.width}x{options.height})')
+    return 0
+
+
+if __name__ == '__main__':
+    sys.exit(main())

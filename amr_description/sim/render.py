@@ -1,0 +1,131 @@
+# Copyright 2026 The amr_description Authors
+# Licensed under the Apache License, Version 2.0
+
+"""Headless picture of a URDF robot with MuJoCo's renderer (no rclpy).
+
+The robot comes from :func:`amr_description.sim.urdf_to_mjcf.urdf_to_spec` (welded to the
+world, zero joint positions, URDF colours); this module adds a checkered ground plane at z = 0,
+a directional light and a free camera that frames the robot (looking at the centre of its
+bounding box from the front left, above). Set ``MUJOCO_GL=egl`` (done by :func:`render_urdf`
+when unset) to render without a display.
+"""
+
+import os
+
+import numpy as np
+
+
+def _ensure_gl():
+    """Default ``MUJOCO_GL`` to ``egl`` (headless) before mujoco is imported."""
+    os.environ.setdefault('MUJOCO_GL', 'egl')
+
+
+def build_scene(urdf_xml, width=640, height=480):
+    """Return a compiled ``(model, data)`` of the robot on a ground plane with a light.
+
+    :param urdf_xml: URDF text (str or bytes).
+    :param width: image width the offscreen buffer must hold, pixels.
+    :param height: image height, pixels.
+    :returns: ``(mujoco.MjModel, mujoco.MjData)`` after ``mj_forward``.
+    :raises ValueError: one line when the URDF cannot be converted.
+    """
+    _ensure_gl()
+    import mujoco
+    from amr_description.sim.urdf_to_mjcf import urdf_to_spec
+
+    spec = urdf_to_spec(urdf_xml, name='render', free=False)
+    spec.visual.global_.offwidth = max(int(width), 640)
+    spec.visual.global_.offheight = max(int(height), 480)
+    spec.visual.headlight.ambient = [0.35, 0.35, 0.35]
+    texture = spec.add_texture(
+        name='grid', type=mujoco.mjtTexture.mjTEXTURE_2D,
+        builtin=mujoco.mjtBuiltin.mjBUILTIN_CHECKER, rgb1=[0.82, 0.82, 0.8],
+        rgb2=[0.7, 0.7, 0.68], width=256, height=256)
+    material = spec.add_material(name='ground', texrepeat=[8, 8], reflectance=0.05)
+    material.textures[mujoco.mjtTextureRole.mjTEXROLE_RGB] = texture.name
+    spec.worldbody.add_geom(
+        name='ground', type=mujoco.mjtGeom.mjGEOM_PLANE, size=[5.0, 5.0, 0.05],
+        material='ground', contype=0, conaffinity=0)
+    spec.worldbody.add_light(name='sun', pos=[1.0, 1.0, 3.0], dir=[-0.3, -0.3, -1.0],
+                             diffuse=[0.8, 0.8, 0.8], castshadow=True)
+    model = spec.compile()
+    data = mujoco.MjData(model)
+    mujoco.mj_forward(model, data)
+    return model, data
+
+
+def frame_camera(model, data, azimuth=135.0, elevation=-25.0):
+    """Return a free ``mujoco.MjvCamera`` that frames every robot geom.
+
+    :param model: ``mujoco.MjModel``.
+    :param data: ``mujoco.MjData`` after ``mj_forward``.
+    :param azimuth: deg, 0 = looking along +x.
+    :param elevation: deg, negative = looking down.
+    :returns: the camera: ``lookat`` = centre of the geoms' bounding spheres' box,
+        ``distance`` = 2.2 x its half-diagonal (at least 0.5 m).
+    """
+    import mujoco
+
+    points = []
+    for geom in range(model.ngeom):
+        if model.geom_type[geom] == mujoco.mjtGeom.mjGEOM_PLANE:
+            continue
+        radius = model.geom_rbound[geom]
+        centre = data.geom_xpos[geom]
+        points.extend([centre - radius, centre + radius])
+    camera = mujoco.MjvCamera()
+    camera.type = mujoco.mjtCamera.mjCAMERA_FREE
+    if points:
+        points = np.array(points)
+        low, high = points.min(axis=0), points.max(axis=0)
+        camera.lookat[:] = (low + high) / 2.0
+        camera.distance = max(2.2 * np.linalg.norm(high - low) / 2.0, 0.5)
+    else:
+        camera.lookat[:] = [0.0, 0.0, 0.0]
+        camera.distance = 2.0
+    camera.azimuth = azimuth
+    camera.elevation = elevation
+    return camera
+
+
+def render_urdf(urdf_xml, width=640, height=480, frames=False):
+    """Render a URDF robot to an RGB image.
+
+    :param urdf_xml: URDF text.
+    :param width: pixels (> 0).
+    :param height: pixels (> 0).
+    :param frames: draw every body frame's axes (x red, y green, z blue).
+    :returns: numpy array of shape (height, width, 3), dtype uint8.
+    :raises ValueError: when the URDF cannot be converted or the size is not positive.
+    """
+    if int(width) <= 0 or int(height) <= 0:
+        raise ValueError(f'image size must be positive, found {width}x{height}')
+    model, data = build_scene(urdf_xml, width, height)
+    import mujoco
+
+    option = mujoco.MjvOption()
+    if frames:
+        option.frame = mujoco.mjtFrame.mjFRAME_BODY
+        model.vis.scale.framelength = 1.2
+        model.vis.scale.framewidth = 0.06
+    renderer = mujoco.Renderer(model, height=int(height), width=int(width))
+    try:
+        renderer.update_scene(data, camera=frame_camera(model, data), scene_option=option)
+        return renderer.render().copy()
+    finally:
+        renderer.close()
+
+
+def save_png(image, path):
+    """Write an (H, W, 3) uint8 image to ``path`` as PNG (matplotlib).
+
+    :raises ValueError: one line when the file cannot be written.
+    """
+    import matplotlib
+    matplotlib.use('Agg')
+    import matplotlib.image
+
+    try:
+        matplotlib.image.imsave(path, image)
+    except OSError as exc:
+        raise ValueError(f'{path}: cannot write: {exc.strerror}') from None

@@ -1,0 +1,77 @@
+# Copyright 2026 The amr_description Authors
+# Licensed under the Apache License, Version 2.0
+
+"""render writes a PNG of the robot: blue chassis, black wheels; from a file or the topic."""
+
+import os
+
+import numpy as np
+import pytest
+import yaml
+
+ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', '..')
+URDF_PATH = os.path.join(ROOT, 'urdf', 'amr.urdf')
+
+
+def colour_fractions(path):
+    """Return the fractions of (blue, black) pixels of a PNG."""
+    import matplotlib
+    matplotlib.use('Agg')
+    import matplotlib.image
+
+    image = matplotlib.image.imread(str(path))[..., :3]
+    r, g, b = image[..., 0], image[..., 1], image[..., 2]
+    blue = (b > 0.35) & (r < 0.2) & (g < 0.2)
+    black = (r < 0.08) & (g < 0.08) & (b < 0.08)
+    return blue.mean(), black.mean()
+
+
+def check_png(path, shape):
+    import matplotlib.image
+    assert path.stat().st_size > 1000
+    assert matplotlib.image.imread(str(path)).shape[:2] == shape
+    blue, black = colour_fractions(path)
+    assert blue > 0.02, blue
+    assert black > 0.01, black
+
+
+def test_render_from_file(procs, exe, ros_env, tmp_path):
+    out = tmp_path / 'amr.png'
+    env = dict(ros_env, MUJOCO_GL='egl')
+    proc = procs.start([exe('render'), '--urdf', URDF_PATH, '-o', str(out), '--width', '320',
+                        '--height', '240', '--frames'], env)
+    assert proc.wait(60.0) == 0, proc.output
+    check_png(out, (240, 320))
+
+
+def test_render_from_robot_description_topic(procs, exe, ros_env, tmp_path):
+    with open(URDF_PATH) as f:
+        params = {'robot_state_publisher': {'ros__parameters': {'robot_description': f.read()}}}
+    params_file = tmp_path / 'rsp.yaml'
+    params_file.write_text(yaml.safe_dump(params))
+    procs.start([exe('robot_state_publisher'), '--ros-args', '--params-file', str(params_file)],
+                ros_env)
+    out = tmp_path / 'topic.png'
+    proc = procs.start([exe('render'), '-o', str(out), '--width', '200', '--height', '150'],
+                       dict(ros_env, MUJOCO_GL='egl'))
+    assert proc.wait(60.0) == 0, proc.output
+    check_png(out, (150, 200))
+
+
+def test_bad_urdf_is_one_line_error(procs, exe, ros_env, tmp_path):
+    bad = tmp_path / 'bad.urdf'
+    bad.write_text('<robot name="x"><link name="a">')
+    proc = procs.start([exe('render'), '--urdf', str(bad), '-o', str(tmp_path / 'x.png')],
+                       ros_env)
+    assert proc.wait(60.0) == 1
+    assert 'Traceback' not in proc.output and proc.output.startswith('render: ')
+    assert not (tmp_path / 'x.png').exists()
+
+
+@pytest.mark.parametrize('frames', [False, True])
+def test_render_pure(frames):
+    os.environ.setdefault('MUJOCO_GL', 'egl')
+    from amr_description.sim.render import render_urdf
+    with open(URDF_PATH) as f:
+        image = render_urdf(f.read(), 160, 120, frames)
+    assert image.shape == (120, 160, 3) and image.dtype == np.uint8
