@@ -16,7 +16,7 @@ import numpy as np
 
 
 def _ensure_gl():
-    """Default ``MUJOCO_GL`` to ``egl`` (headless) before mujoco is imported."""
+    """Set ``MUJOCO_GL`` to ``egl`` (headless) when unset, before mujoco is imported."""
     os.environ.setdefault('MUJOCO_GL', 'egl')
 
 
