@@ -163,8 +163,12 @@ def run(node, args, cm):
     for name in names:
         listed = node.call(f'{cm}/list_controllers', srv.ListControllers,
                            srv.ListControllers.Request(), tmo, call_tmo)
-        if any(c.name == name for c in listed.controller):
+        loaded = [c for c in listed.controller if c.name == name]
+        if loaded:
             log.warn('Controller already loaded, skipping load_controller')
+            if loaded[0].state == 'active' and not (args.load_only or args.inactive):
+                log.warn(f'Controller {name} is already active, skipping')
+                continue
         else:
             if args.param_file:
                 files, type_name = _files_for(name, node.get_namespace(), args.param_file)
