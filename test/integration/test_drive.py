@@ -11,7 +11,6 @@ import math
 import os
 
 import pytest
-
 from test_sim import Peer  # noqa: I100 - the simulator tests' DDS peer
 
 ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', '..')
