@@ -433,7 +433,10 @@ class ControllerManager(Node):
     def _deactivate(self, name):
         ctrl = self.controllers[name]
         if ctrl.lifecycle_state == 'active':
-            ctrl.trigger_deactivate()
+            try:
+                ctrl.trigger_deactivate()
+            except Exception:  # noqa: B902 - e.g. context already shut down
+                ctrl.on_deactivate(None)
         ctrl.release_interfaces()
         self.resource_manager.release(name)
 
@@ -476,6 +479,8 @@ class ControllerManager(Node):
         :param time: current time in seconds (sim time when simulated).
         :param period: seconds since the previous update.
         """
+        if not self.context.ok():
+            return
         with self._lock:
             if self._pending is not None:
                 request, self._pending = self._pending, None
@@ -508,7 +513,10 @@ class ControllerManager(Node):
                 ctrl = self.controllers.pop(name)
                 try:
                     if ctrl.lifecycle_state == 'active':
-                        ctrl.trigger_deactivate()
+                        try:
+                            ctrl.trigger_deactivate()
+                        except Exception:  # noqa: B902 - context gone: zero the wheels
+                            ctrl.on_deactivate(None)
                     self._executor.remove_node(ctrl)
                     ctrl.destroy_node()
                 except Exception:  # noqa: B902 - best effort at shutdown
@@ -550,6 +558,7 @@ def main(args=None):
     rclpy.init(args=['controller_manager'] + ros_args)
     executor = rclpy.executors.MultiThreadedExecutor(num_threads=2)
     cm = None
+    thread = None
     stop = threading.Event()
     try:
         try:
@@ -565,7 +574,7 @@ def main(args=None):
             start = _time.monotonic()
             previous = 0.0
             k = 0
-            while not stop.is_set():
+            while not stop.is_set() and cm.context.ok():
                 k += 1
                 target = start + k * period
                 delay = target - _time.monotonic()
@@ -585,6 +594,8 @@ def main(args=None):
         pass
     finally:
         stop.set()
+        if thread is not None:
+            thread.join(timeout=2.0)
         if cm is not None:
             cm.shutdown()
             cm.destroy_node()
