@@ -11,9 +11,10 @@ Parameters (read at start):
   (double, 50.0 Hz of sim time).
 
 Topics: ``/clock`` (rosgraph_msgs/Clock, reliable, depth 10) after every control update, at
-least 100 Hz of sim time; ``/ground_truth/odom`` (nav_msgs/Odometry) of the first spawned
-robot: pose of its root link (``base_footprint``) in frame ``world``, twist in the root link
-frame (REP 105 / Odometry convention).
+least 100 Hz of sim time (an empty world runs in real time even with ``real_time_factor``
+0: fast-forward starts with the first spawned entity); ``/ground_truth/odom``
+(nav_msgs/Odometry) of the first spawned robot: pose of its root link (``base_footprint``)
+in frame ``world``, twist in the root link frame (REP 105 / Odometry convention).
 
 Services (simulation_interfaces): ``~/spawn_entity`` (SpawnEntity), ``~/reset_simulation``
 (ResetSimulation: resets poses, velocities and time to the spawn state; removing spawned
@@ -71,6 +72,39 @@ def make_controller_manager(urdf_xml, executor, hardware_factory, parameters_fil
                              use_sim_time=True)
 
 
+def take_over_time_source(node):
+    """Stop a node's /clock subscription so the caller can drive its sim time directly.
+
+    Only for nodes in this process with ``use_sim_time`` true; the caller then sets the time
+    of the source's clocks at every /clock instant, as rclpy ``TimeSource.clock_callback``
+    does.
+
+    :param node: an rclpy node.
+    :returns: the node's ``TimeSource``, or None when the node does not use sim time (then it
+        is left alone).
+    """
+    source = getattr(node, '_time_source', None)
+    if source is None or not source.ros_time_is_active:
+        return None
+    subscription = getattr(source, '_clock_sub', None)
+    if subscription is not None:
+        node.destroy_subscription(subscription)
+        source._clock_sub = None
+    return source
+
+
+def _prewarm_imports():
+    """Import the modules used at spawn time (URDF parser, controller manager, controllers)."""
+    import importlib
+    for module in ('yourdfpy', 'amr_description.control.controller_manager',
+                   'amr_description.control.joint_state_broadcaster',
+                   'amr_description.control.diff_drive_controller'):
+        try:
+            importlib.import_module(module)
+        except Exception:  # noqa: B902 - only a warm-up; the real import reports errors
+            pass
+
+
 class _Request:
     """A function to run in the simulation thread and its outcome."""
 
@@ -121,6 +155,8 @@ class MujocoSim(Node):
         self.quit_requested = threading.Event()
         self._viewer = None
         self._update_errors = 0
+        self._clock_nodes = []
+        self._clock_sources = []
 
         # the node's own clock follows the simulation (its sim time), without subscribing to
         # the /clock it publishes itself
@@ -140,6 +176,8 @@ class MujocoSim(Node):
         self.create_service(srv.StepSimulation, '~/step_simulation', self._on_step)
         if not self.headless:
             self._open_viewer()
+        # import the heavy modules a spawn needs (yourdfpy pulls trimesh) while waiting for it
+        threading.Thread(target=_prewarm_imports, name='prewarm', daemon=True).start()
         self._thread = threading.Thread(target=self._run, name='mujoco_sim', daemon=True)
         self._thread.start()
         self.get_logger().info(
@@ -421,7 +459,9 @@ class MujocoSim(Node):
                 self.world.step(count)
                 self._step_count += count
                 t = self._step_count * self.world.physics_step
+                self._set_clock_msg(t)
                 if self._step_count % per_update == 0 and self.controller_manager is not None:
+                    self._drive_node_clocks()
                     self._update_controllers(t, per_update * self.world.physics_step)
                 self._publish(t)
                 if self._step_waiters:
@@ -429,8 +469,13 @@ class MujocoSim(Node):
                 if self._viewer is not None and time.monotonic() - last_viewer_sync > 1 / 30:
                     last_viewer_sync = time.monotonic()
                     self._sync_viewer()
-                if self.real_time_factor > 0 and not self.paused:
-                    self._pace(t)
+                if not self.paused:
+                    if self.real_time_factor > 0:
+                        self._pace(t, self.real_time_factor)
+                    elif not self.world.robots:
+                        self._pace(t, 1.0)  # fast-forward starts with the first entity
+                    else:
+                        self._anchor = None
         except Exception as exc:  # noqa: B902 - log instead of a silent thread death
             self.get_logger().fatal(f'simulation thread stopped: {exc!r}')
             self.quit_requested.set()
@@ -454,25 +499,53 @@ class MujocoSim(Node):
                 waiting.append((target, event))
         self._step_waiters = waiting
 
-    def _pace(self, t):
-        """Sleep so that sim time advances at ``real_time_factor`` times wall time."""
+    def _pace(self, t, factor):
+        """Sleep so that sim time ``t`` (s) advances at ``factor`` times wall time."""
         now = time.perf_counter()
         if self._anchor is None:
             self._anchor = (now, t)
             return
-        target = self._anchor[0] + (t - self._anchor[1]) / self.real_time_factor
+        target = self._anchor[0] + (t - self._anchor[1]) / factor
         if target > now:
             time.sleep(target - now)
         elif now - target > 0.25:  # far behind (e.g. a spawn): do not try to catch up
             self._anchor = (now, t)
 
-    def _publish(self, t, force_gt=False):
-        """Publish /clock (and the ground truth when due) at sim time ``t`` (s)."""
+    def _set_clock_msg(self, t):
+        """Set the /clock message to sim time ``t`` (s)."""
         nanoseconds = int(round(t * 1e9))
         stamp = self._clock_msg.clock
         stamp.sec, stamp.nanosec = divmod(nanoseconds, 1_000_000_000)
+
+    def _drive_node_clocks(self):
+        """Give the in-process controller nodes the current sim time, without DDS.
+
+        The controller manager and controllers run in this process with ``use_sim_time``
+        true. Instead of each receiving every /clock message through its own subscription
+        (three executor callbacks per control update, which halves fast-forward speed), the
+        simulation thread feeds their time source the /clock message it is about to publish,
+        right before ``cm.update``. Their ROS clocks therefore equal the update time.
+        """
+        cm = self.controller_manager
+        nodes = [cm]
+        nodes.extend(getattr(cm, 'controllers', {}).values())
+        if len(nodes) != len(self._clock_sources) or \
+                any(n is not known for n, known in zip(nodes, self._clock_nodes)):
+            self._clock_nodes = nodes
+            self._clock_sources = [take_over_time_source(n) for n in nodes]
+        now = Time.from_msg(self._clock_msg.clock)
+        for source in self._clock_sources:
+            if source is not None:
+                source._last_time_set = now  # what TimeSource.clock_callback does
+                for clock in source._associated_clocks:
+                    clock.set_ros_time_override(now)
+
+    def _publish(self, t, force_gt=False):
+        """Publish /clock (and the ground truth when due) at sim time ``t`` (s)."""
+        self._set_clock_msg(t)
         self._clock_pub.publish(self._clock_msg)
-        self.get_clock().set_ros_time_override(Time(nanoseconds=nanoseconds))
+        self.get_clock().set_ros_time_override(Time.from_msg(self._clock_msg.clock))
+        stamp = self._clock_msg.clock
         if self.publish_ground_truth and self._gt_robot is not None and self._gt_steps and \
                 (force_gt or self._step_count % self._gt_steps == 0):
             self._publish_ground_truth(stamp)

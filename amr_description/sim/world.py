@@ -11,6 +11,7 @@ step (default 1 ms).
 """
 
 from dataclasses import dataclass
+import math
 
 import mujoco
 import numpy as np
@@ -203,12 +204,16 @@ def free_joint_ground_truth(qpos, qvel):
     :param qvel: array (6,).
     :returns: ``(position (3,), quaternion xyzw (4,), linear body (3,), angular body (3,))``.
     """
+    w, x, y, z = (float(v) for v in qpos[3:7])
+    norm = math.sqrt(w * w + x * x + y * y + z * z)
+    w, x, y, z = w / norm, x / norm, y / norm, z / norm
+    vx, vy, vz = (float(v) for v in qvel[0:3])
+    # v_body = R^T v_world, with R the rotation matrix of (w, x, y, z); plain floats: this
+    # runs in the simulation loop, where small numpy calls cost more than the arithmetic
+    linear = np.array([
+        (1 - 2 * (y * y + z * z)) * vx + 2 * (x * y + w * z) * vy + 2 * (x * z - w * y) * vz,
+        2 * (x * y - w * z) * vx + (1 - 2 * (x * x + z * z)) * vy + 2 * (y * z + w * x) * vz,
+        2 * (x * z + w * y) * vx + 2 * (y * z - w * x) * vy + (1 - 2 * (x * x + y * y)) * vz])
     position = np.array(qpos[0:3], dtype=float)
-    wxyz = np.array(qpos[3:7], dtype=float)
-    wxyz /= np.linalg.norm(wxyz)
-    rotation = np.zeros(9)
-    mujoco.mju_quat2Mat(rotation, wxyz)
-    rotation = rotation.reshape(3, 3)
-    linear = rotation.T @ np.asarray(qvel[0:3], dtype=float)
     angular = np.array(qvel[3:6], dtype=float)
-    return position, np.array([wxyz[1], wxyz[2], wxyz[3], wxyz[0]]), linear, angular
+    return position, np.array([x, y, z, w]), linear, angular
