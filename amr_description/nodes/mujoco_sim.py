@@ -27,9 +27,11 @@ Simulation loop (docs/architecture.md): one thread steps MuJoCo in ``mj_step`` b
 the next control instant (every ``1/update_rate`` s of sim time), then runs
 ``cm.update(t, period)`` (read -> controllers -> write) and publishes ``/clock``, paced to
 ``real_time_factor``. The rclpy executor runs in the main thread; requests that touch the
-model (spawn, reset, step) are queued to the simulation thread.
+model (spawn, reset, step) are queued to the simulation thread. A publisher thread publishes
+/clock and the ground truth while the next physics batch runs.
 """
 
+import collections
 import math
 import os
 import queue
@@ -178,6 +180,11 @@ class MujocoSim(Node):
             self._open_viewer()
         # import the heavy modules a spawn needs (yourdfpy pulls trimesh) while waiting for it
         threading.Thread(target=_prewarm_imports, name='prewarm', daemon=True).start()
+        self._outbox = collections.deque()
+        self._outbox_ready = threading.Event()
+        self._publisher = threading.Thread(target=self._publish_loop, name='publisher',
+                                           daemon=True)
+        self._publisher.start()
         self._thread = threading.Thread(target=self._run, name='mujoco_sim', daemon=True)
         self._thread.start()
         self.get_logger().info(
@@ -444,6 +451,7 @@ class MujocoSim(Node):
             if self.ground_truth_rate > 0 else 0
         self._gt_steps = gt_steps
         last_viewer_sync = 0.0
+        physics_step = self.world.physics_step
         try:
             while self._running:
                 self._process_requests()
@@ -458,11 +466,10 @@ class MujocoSim(Node):
                     self._pending_steps -= count
                 self.world.step(count)
                 self._step_count += count
-                t = self._step_count * self.world.physics_step
-                self._set_clock_msg(t)
+                t = self._step_count * physics_step
                 if self._step_count % per_update == 0 and self.controller_manager is not None:
-                    self._drive_node_clocks()
-                    self._update_controllers(t, per_update * self.world.physics_step)
+                    self._drive_node_clocks(t)
+                    self._update_controllers(t, per_update * physics_step)
                 self._publish(t)
                 if self._step_waiters:
                     self._release_step_waiters()
@@ -511,20 +518,16 @@ class MujocoSim(Node):
         elif now - target > 0.25:  # far behind (e.g. a spawn): do not try to catch up
             self._anchor = (now, t)
 
-    def _set_clock_msg(self, t):
-        """Set the /clock message to sim time ``t`` (s)."""
-        nanoseconds = int(round(t * 1e9))
-        stamp = self._clock_msg.clock
-        stamp.sec, stamp.nanosec = divmod(nanoseconds, 1_000_000_000)
-
-    def _drive_node_clocks(self):
+    def _drive_node_clocks(self, t):
         """Give the in-process controller nodes the current sim time, without DDS.
 
         The controller manager and controllers run in this process with ``use_sim_time``
         true. Instead of each receiving every /clock message through its own subscription
         (three executor callbacks per control update, which halves fast-forward speed), the
-        simulation thread feeds their time source the /clock message it is about to publish,
+        simulation thread feeds their time source the /clock time it is about to publish,
         right before ``cm.update``. Their ROS clocks therefore equal the update time.
+
+        :param t: sim time in s.
         """
         cm = self.controller_manager
         nodes = [cm]
@@ -533,7 +536,7 @@ class MujocoSim(Node):
                 any(n is not known for n, known in zip(nodes, self._clock_nodes)):
             self._clock_nodes = nodes
             self._clock_sources = [take_over_time_source(n) for n in nodes]
-        now = Time.from_msg(self._clock_msg.clock)
+        now = Time(nanoseconds=int(round(t * 1e9)))
         for source in self._clock_sources:
             if source is not None:
                 source._last_time_set = now  # what TimeSource.clock_callback does
@@ -541,21 +544,47 @@ class MujocoSim(Node):
                     clock.set_ros_time_override(now)
 
     def _publish(self, t, force_gt=False):
-        """Publish /clock (and the ground truth when due) at sim time ``t`` (s)."""
-        self._set_clock_msg(t)
-        self._clock_pub.publish(self._clock_msg)
-        self.get_clock().set_ros_time_override(Time.from_msg(self._clock_msg.clock))
-        stamp = self._clock_msg.clock
+        """Queue /clock (and the ground truth when due) at sim time ``t`` (s) for publishing.
+
+        The ground truth is read here, from the state at ``t``; the messages are filled and
+        published by the publisher thread, while the simulation thread runs the next
+        ``mj_step`` batch (which releases the GIL).
+        """
+        ground_truth = None
         if self.publish_ground_truth and self._gt_robot is not None and self._gt_steps and \
                 (force_gt or self._step_count % self._gt_steps == 0):
-            self._publish_ground_truth(stamp)
+            ground_truth = (self.world.robots[self._gt_robot].root,
+                            self.world.ground_truth(self._gt_robot))
+        self._outbox.append((int(round(t * 1e9)), ground_truth))
+        self._outbox_ready.set()
 
-    def _publish_ground_truth(self, stamp):
-        position, quat, linear, angular = self.world.ground_truth(self._gt_robot)
+    def _publish_loop(self):
+        """Publish the queued /clock and ground-truth messages in order (publisher thread)."""
+        outbox = self._outbox
+        clock_msg = self._clock_msg
+        try:
+            while self._running or outbox:
+                if not outbox:
+                    self._outbox_ready.wait(0.1)
+                    self._outbox_ready.clear()
+                    continue
+                nanoseconds, ground_truth = outbox.popleft()
+                stamp = clock_msg.clock
+                stamp.sec, stamp.nanosec = divmod(nanoseconds, 1_000_000_000)
+                self._clock_pub.publish(clock_msg)
+                self.get_clock().set_ros_time_override(Time(nanoseconds=nanoseconds))
+                if ground_truth is not None:
+                    self._publish_ground_truth(stamp, *ground_truth)
+        except Exception as exc:  # noqa: B902 - e.g. publishing after the context shut down
+            if self._running:
+                self.get_logger().error(f'publisher thread stopped: {exc!r}')
+
+    def _publish_ground_truth(self, stamp, root, state):
+        position, quat, linear, angular = state
         msg = self._odom_msg
         msg.header.stamp = stamp
         msg.header.frame_id = 'world'
-        msg.child_frame_id = self.world.robots[self._gt_robot].root
+        msg.child_frame_id = root
         p, q = msg.pose.pose.position, msg.pose.pose.orientation
         p.x, p.y, p.z = (float(v) for v in position)
         q.x, q.y, q.z, q.w = (float(v) for v in quat)
@@ -596,6 +625,8 @@ class MujocoSim(Node):
         self._running = False
         self._wake.set()
         self._thread.join(timeout=5.0)
+        self._outbox_ready.set()
+        self._publisher.join(timeout=5.0)
         if self.controller_manager is not None:
             shutdown = getattr(self.controller_manager, 'shutdown', None)
             try:
