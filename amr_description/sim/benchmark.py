@@ -240,7 +240,9 @@ def _run_stack(domain_id, real_time_factor, urdf_path, duration, log):
             for proc in stack.spawners + [stack.create]:
                 log(stack.output(proc))
             return result
-        if real_time_factor > 0:
+        if duration <= 0:
+            pass
+        elif real_time_factor > 0:
             result['rtf'], result['rates'] = observer.measure(duration)
         else:
             result['rtf'] = observer.measure_fast(duration)
@@ -263,13 +265,16 @@ def run(duration=10.0, urdf_path=None, log=print):
     log('raw mj_step throughput ...')
     raw = raw_step_rate(urdf, seconds=min(5.0, duration))
     raw_rtf = raw * 0.001
-    startups = [s for s in (realtime['startup'], afap['startup']) if s is not None]
+    log('(c) start-up, one more run ...')
+    extra = _run_stack(base + 2, 1.0, urdf_path, 0.0, log)
+    startups = [s for s in (realtime['startup'], afap['startup'], extra['startup'])
+                if s is not None]
     return {
         'rtf_realtime': realtime['rtf'], 'rates_realtime': realtime['rates'],
         'rtf_afap': afap['rtf'], 'rates_afap': afap['rates'],
         'raw_steps_per_s': raw, 'raw_rtf': raw_rtf,
         'afap_fraction_of_raw': afap['rtf'] / raw_rtf if raw_rtf else 0.0,
-        'startup_s': min(startups) if startups else None,
+        'startup_s': sorted(startups)[len(startups) // 2] if startups else None,
         'startup_runs_s': startups,
     }
 
@@ -296,7 +301,7 @@ def report(results, duration):
         f'{r["raw_rtf"]:.1f}x | | |',
         f'| (b) fraction of raw throughput | {100 * r["afap_fraction_of_raw"]:.1f} % | '
         f'>= 40 % | {mark(r["afap_fraction_of_raw"] >= 0.40)} |',
-        '| (c) mujoco_sim start -> both controllers active | ' +
+        '| (c) mujoco_sim start -> both controllers active (median of 3) | ' +
         (f'{startup:.2f} s | < 3 s | {mark(startup < 3.0)} |' if startup is not None
          else 'not reached | < 3 s | FAIL |'), '',
         'Topic rates received by an observer in real-time mode (Hz, wall): ' +
@@ -305,7 +310,8 @@ def report(results, duration):
         '(subscribing to every topic at ~30x would load the shared cores with its own '
         'callbacks).', '',
         f'Start-up runs (s): {", ".join(f"{s:.2f}" for s in r["startup_runs_s"])} '
-        '(best is reported; each starts mujoco_sim, create and two spawners together).', '',
+        '(the median is reported; each run starts mujoco_sim, create and the two spawners '
+        'together, as a launch file does, and polls list_controllers).', '',
     ]
     return '\n'.join(lines)
 
