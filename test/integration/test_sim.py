@@ -183,3 +183,30 @@ def test_create_times_out_without_simulator(procs, exe, ros_env):
     create = procs.start([exe('create'), '-file', URDF_PATH, '-timeout', '1'], ros_env)
     assert create.wait(30) == 1
     assert 'service /mujoco_sim/spawn_entity not available after 1 s' in create.output
+
+
+def test_create_from_topic_with_pose(procs, exe, ros_env, peer):
+    from rclpy.qos import DurabilityPolicy
+    from rclpy.qos import QoSProfile
+    from std_msgs.msg import String
+
+    latched = QoSProfile(depth=1, durability=DurabilityPolicy.TRANSIENT_LOCAL)
+    description = peer.node.create_publisher(String, 'robot_description', latched)
+    with open(URDF_PATH) as f:
+        description.publish(String(data=f.read()))
+    sim = _sim(procs, exe, ros_env)
+    create = procs.start([exe('create'), '-topic', 'robot_description', '-x', '1.0', '-y',
+                          '-2.0', '-z', '0.2', '-Y', '1.5707963'], ros_env)
+    # the latched description reaches create while the test spins its publisher
+    assert peer.spin_until(lambda: create.popen.poll() is not None, 40), create.output
+    assert create.popen.returncode == 0, create.output + sim.output
+    assert 'Waiting messages on topic [robot_description].' in create.output
+    assert peer.spin_until(lambda: peer.odom and peer.now > 2.0 and
+                           peer.odom[-1].header.stamp.sec >= 2, 20)
+    pose = peer.odom[-1].pose.pose
+    assert pose.position.x == pytest.approx(1.0, abs=2e-3)
+    assert pose.position.y == pytest.approx(-2.0, abs=2e-3)
+    assert abs(pose.position.z) < 0.005
+    # yaw 90 degrees: quaternion (0, 0, sin 45, cos 45)
+    assert pose.orientation.z == pytest.approx(0.7071, abs=2e-3)
+    assert pose.orientation.w == pytest.approx(0.7071, abs=2e-3)

@@ -182,3 +182,15 @@ def test_package_urdf_total_mass_7kg():
         model, _ = _compile(f.read())
     assert model.body(1).subtreemass[0] == pytest.approx(7.0)
     assert model.nu == 4
+
+
+def test_pose_as_quaternion_matches_rpy():
+    half = math.pi / 8
+    _, by_quat = _compile(tutorial_urdf(), pose=(1, 2, 3, 0, 0, 2 * math.sin(half),
+                                                 2 * math.cos(half)))  # normalised here
+    _, by_rpy = _compile(tutorial_urdf(), pose=(1, 2, 3, 0, 0, math.pi / 4))
+    np.testing.assert_allclose(by_quat.qpos[:7], by_rpy.qpos[:7], atol=1e-12)
+    with pytest.raises(ValueError, match='finite numbers'):
+        urdf_to_spec(tutorial_urdf(), pose=(0, 0, 0, 0, 0))
+    with pytest.raises(ValueError, match='non-zero'):
+        urdf_to_spec(tutorial_urdf(), pose=(0, 0, 0, 0, 0, 0, 0))
