@@ -11,8 +11,9 @@ Parameters (read at start):
   (double, 50.0 Hz of sim time).
 
 Topics: ``/clock`` (rosgraph_msgs/Clock, reliable, depth 10) after every control update, at
-least 100 Hz of sim time (an empty world runs in real time even with ``real_time_factor``
-0: fast-forward starts with the first spawned entity); ``/ground_truth/odom``
+least 100 Hz of sim time, and at 10 Hz (wall) with an unchanged time while paused (an empty
+world runs in real time even with ``real_time_factor`` 0: fast-forward starts with the
+first spawned entity); ``/ground_truth/odom``
 (nav_msgs/Odometry) of the first spawned robot: pose of its root link (``base_footprint``)
 in frame ``world``, twist in the root link frame (REP 105 / Odometry convention).
 
@@ -52,6 +53,7 @@ from amr_description.sim.world import World
 
 NO_ROBOT_CLOCK_RATE = 100.0  # Hz of sim time while no controller manager runs
 REQUEST_TIMEOUT = 30.0  # s a service waits for the simulation thread
+PAUSED_CLOCK_PERIOD = 0.1  # s (wall) between /clock messages while paused
 
 
 def _sim_msgs():
@@ -452,10 +454,17 @@ class MujocoSim(Node):
         self._gt_steps = gt_steps
         last_viewer_sync = 0.0
         physics_step = self.world.physics_step
+        last_paused_clock = 0.0
         try:
             while self._running:
                 self._process_requests()
                 if self.paused and self._pending_steps == 0:
+                    # paused: /clock keeps being published (same time, ~10 Hz wall), as gz does
+                    if time.monotonic() - last_paused_clock > PAUSED_CLOCK_PERIOD:
+                        last_paused_clock = time.monotonic()
+                        self._outbox.append((int(round(self._step_count * physics_step * 1e9)),
+                                             None))
+                        self._outbox_ready.set()
                     self._wake.wait(0.05)
                     self._wake.clear()
                     continue

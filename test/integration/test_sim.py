@@ -210,3 +210,15 @@ def test_create_from_topic_with_pose(procs, exe, ros_env, peer):
     # yaw 90 degrees: quaternion (0, 0, sin 45, cos 45)
     assert pose.orientation.z == pytest.approx(0.7071, abs=2e-3)
     assert pose.orientation.w == pytest.approx(0.7071, abs=2e-3)
+
+
+def test_start_paused_clock_and_step(procs, exe, ros_env, peer):
+    sim = _sim(procs, exe, ros_env, 'paused:=true', 'physics_step:=0.002')
+    assert peer.spin_until(lambda: len(peer.clock) >= 3, 15), sim.output
+    assert set(peer.clock) == {0.0}
+    step = peer.srv.StepSimulation.Request()
+    step.steps = 5
+    assert peer.call('step', step).result.result == peer.msg.Result.RESULT_OK
+    assert peer.spin_until(lambda: peer.now == pytest.approx(0.01, abs=1e-9), 5)
+    peer.spin_for(0.3)
+    assert peer.now == pytest.approx(0.01, abs=1e-9)
