@@ -10,7 +10,9 @@ Each command lives in ``amr_description.cli.<command>`` and exposes
 """
 
 import argparse
+import contextlib
 import importlib
+import os
 import sys
 
 COMMANDS = ('control', 'interface', 'launch', 'node', 'pkg', 'run', 'service', 'topic')
@@ -44,6 +46,12 @@ def main(argv=None):
     :param argv: command-line arguments without the program name.
     :returns: the process exit code (0 on success, 1 on a reported error).
     """
+    from amr_description.cli.common import CliError
+    from amr_description.cli.common import fail
+    # print line by line even into a pipe (tests, `| grep`), as a terminal would
+    with contextlib.suppress(AttributeError, ValueError):
+        sys.stdout.reconfigure(line_buffering=True)
+    os.environ.setdefault('ROS_AUTOMATIC_DISCOVERY_RANGE', 'LOCALHOST')
     parser = build_parser()
     args = parser.parse_args(argv)
     func = getattr(args, 'main', None)
@@ -54,6 +62,8 @@ def main(argv=None):
         return 0 if args.command is None else 1
     try:
         return int(func(args) or 0)
+    except CliError as exc:
+        return fail(str(exc))
     except KeyboardInterrupt:
         return 0
 

@@ -8,6 +8,7 @@ and logs ``Publishing: "Hello World: N"``, like the tutorial's ``minimal_publish
 """
 
 import rclpy
+from rclpy._rclpy_pybind11 import RCLError
 from rclpy.executors import ExternalShutdownException
 from rclpy.node import Node
 from std_msgs.msg import String
@@ -45,6 +46,11 @@ def main(args=None):
         rclpy.spin(node)
     except (KeyboardInterrupt, ExternalShutdownException):
         pass
+    except RCLError:
+        # Ctrl-C can shut the context down while the executor builds its wait set (an
+        # rclpy race); that is a normal shutdown, anything else is a real error
+        if rclpy.ok():
+            raise
     finally:
         node.destroy_node()
         rclpy.try_shutdown()
