@@ -64,6 +64,11 @@ def main(argv=None):
         return int(func(args) or 0)
     except CliError as exc:
         return fail(str(exc))
+    except BrokenPipeError:
+        # the reader went away (`ros2 pkg list | head`): stop quietly, as a shell tool does
+        with contextlib.suppress(OSError):
+            os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+        return 0
     except KeyboardInterrupt:
         return 0
 

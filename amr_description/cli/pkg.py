@@ -1,0 +1,93 @@
+# Copyright 2026 The amr_description Authors
+# Licensed under the Apache License, Version 2.0
+
+"""``ros2 pkg list|prefix|executables``: packages of the ament index (formats of ros2pkg).
+
+The index is the one ament_index_python reads: every prefix of ``AMENT_PREFIX_PATH``.
+"""
+
+import os
+
+from amr_description.cli.common import fail
+
+
+def package_prefixes():
+    """Return every package of the ament index with its prefix.
+
+    :returns: dict package name -> install prefix (the first prefix wins, as in ament).
+    """
+    from ament_index_python.packages import get_packages_with_prefixes
+    return get_packages_with_prefixes()
+
+
+def executable_paths(package, prefix):
+    """Find the executables of ``package``: files with the exec bit under ``prefix/lib/PKG``.
+
+    :param package: the package name.
+    :param prefix: its install prefix.
+    :returns: sorted list of absolute paths.
+    """
+    base = os.path.join(prefix, 'lib', package)
+    found = []
+    for dirpath, dirnames, filenames in os.walk(base):
+        dirnames[:] = [d for d in dirnames if not d.startswith('.')]
+        for filename in filenames:
+            path = os.path.join(dirpath, filename)
+            if os.path.isfile(path) and os.access(path, os.X_OK):
+                found.append(path)
+    return sorted(found)
+
+
+def _list(args):
+    for name in sorted(package_prefixes()):
+        print(name)
+    return 0
+
+
+def _prefix(args):
+    prefix = package_prefixes().get(args.package_name)
+    if prefix is None:
+        return fail('Package not found')
+    print(os.path.join(prefix, 'share', args.package_name) if args.share else prefix)
+    return 0
+
+
+def _executables(args):
+    prefixes = package_prefixes()
+    if args.package_name is not None:
+        if args.package_name not in prefixes:
+            return fail('Package not found')
+        names = [args.package_name]
+    else:
+        names = sorted(prefixes)
+    for name in names:
+        paths = executable_paths(name, prefixes[name])
+        if args.full_path:
+            lines = paths
+        else:
+            lines = sorted(f'{name} {os.path.basename(p)}' for p in paths)
+        for line in lines:
+            print(line)
+    return 0
+
+
+def add_command(subparsers):
+    """Add the ``pkg`` command and its verbs to the ``ros2`` parser.
+
+    :param subparsers: the top-level ``add_subparsers()`` object.
+    """
+    parser = subparsers.add_parser('pkg', help='Various package related sub-commands')
+    parser.set_defaults(_command_parser=parser)
+    verbs = parser.add_subparsers(title='Commands', dest='verb')
+    p = verbs.add_parser('list', help='Output a list of available packages')
+    p.set_defaults(main=_list)
+    p = verbs.add_parser('prefix', help='Output the prefix path of a package')
+    p.add_argument('package_name', help='The package name')
+    p.add_argument('--share', action='store_true',
+                   help='Show share directory for the package')
+    p.set_defaults(main=_prefix)
+    p = verbs.add_parser('executables', help='Output a list of package specific executables')
+    p.add_argument('package_name', nargs='?', help='The package name')
+    p.add_argument('--full-path', action='store_true',
+                   help='Show the full path of each executable')
+    p.set_defaults(main=_executables)
