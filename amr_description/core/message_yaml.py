@@ -387,8 +387,12 @@ def _convert_basic(value, typename, path):
             raise TypeError(f"The '{path}' field must be of type 'bool', got {_describe(value)}")
         return value
     if typename in _FLOAT_TYPES:
-        if isinstance(value, str) and value.strip().lower().lstrip('+-') in ('nan', 'inf'):
-            value = float(value)
+        if isinstance(value, str):
+            # PyYAML (YAML 1.1) reads 1e-3 and nan as strings; float() reads them as upstream
+            try:
+                value = float(value)
+            except ValueError:
+                pass
         if isinstance(value, bool) or not isinstance(value, (int, float)):
             raise TypeError(
                 f"The '{path}' field must be of type 'float', got {_describe(value)}")
