@@ -1,7 +1,8 @@
 # Copyright 2026 The amr_description Authors
 # Licensed under the Apache License, Version 2.0
 
-"""Shared pytest fixtures: an isolated ROS environment per test and a process runner.
+"""
+Shared pytest fixtures: an isolated ROS environment per test and a process runner.
 
 Every test that starts ROS processes takes ``ros_env`` (a fresh ``ROS_DOMAIN_ID``, discovery
 limited to localhost) and ``procs`` (starts processes in their own process group, reads their
@@ -21,7 +22,8 @@ _DOMAIN_IDS = itertools.count((os.getpid() * 7) % 200 + 1)
 
 
 def next_domain_id():
-    """Return a ROS domain ID not yet used by this test process (1..230).
+    """
+    Return a ROS domain ID not yet used by this test process (1..230).
 
     :returns: the domain ID, an int.
     """
@@ -29,7 +31,8 @@ def next_domain_id():
 
 
 def package_exe(name):
-    """Return the absolute path of an installed ``amr_description`` executable.
+    """
+    Return the absolute path of an installed ``amr_description`` executable.
 
     :param name: executable name, as in ``ros2 run amr_description NAME``.
     :returns: ``<prefix>/lib/amr_description/NAME`` found through the ament index.
@@ -50,7 +53,8 @@ def exe():
 
 @pytest.fixture
 def ros_env():
-    """Environment for child processes: a fresh ``ROS_DOMAIN_ID`` and localhost-only DDS.
+    """
+    Environment for child processes: a fresh ``ROS_DOMAIN_ID`` and localhost-only DDS.
 
     :returns: a dict to pass as ``env=`` to subprocesses; the test process itself is not changed.
     """
@@ -66,7 +70,8 @@ class Proc:
     """A started child process whose combined stdout/stderr goes to a temporary file."""
 
     def __init__(self, argv, env, cwd=None, stdin=subprocess.DEVNULL):
-        """Start ``argv`` in a new session (its own process group).
+        """
+        Start ``argv`` in a new session (its own process group).
 
         :param argv: command line, a list of str.
         :param env: environment dict.
@@ -86,7 +91,8 @@ class Proc:
             return f.read()
 
     def wait_for_output(self, text, timeout=20.0):
-        """Wait until ``text`` appears in the output.
+        """
+        Wait until ``text`` appears in the output.
 
         :param text: substring to wait for.
         :param timeout: seconds to wait.
@@ -129,13 +135,15 @@ class Proc:
 
 @pytest.fixture
 def procs():
-    """Start processes with ``procs.start(argv, env)``; all are killed when the test ends.
+    """
+    Start processes with ``procs.start(argv, env)``; all are killed when the test ends.
 
     :returns: an object with ``start(argv, env, **kwargs) -> Proc``.
     """
     started = []
 
     class _Runner:
+
         def start(self, argv, env, **kwargs):
             proc = Proc(argv, env, **kwargs)
             started.append(proc)

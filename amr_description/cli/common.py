@@ -14,7 +14,8 @@ class CliError(Exception):
 
 
 def fail(message):
-    """Print ``message`` to stderr on one line and return exit code 1.
+    """
+    Print ``message`` to stderr on one line and return exit code 1.
 
     :param message: the error text, without a trailing newline.
     :returns: 1
@@ -24,7 +25,8 @@ def fail(message):
 
 
 def is_hidden_name(name):
-    """Tell whether a node, topic or service name is hidden (a token starts with ``_``).
+    """
+    Tell whether a node, topic or service name is hidden (a token starts with ``_``).
 
     :param name: a fully qualified or relative ROS name.
     :returns: True when any ``/``-separated token starts with an underscore, as in rclpy.
@@ -33,7 +35,8 @@ def is_hidden_name(name):
 
 
 def default_node_name():
-    """Return a hidden, per-process node name like ros2cli's direct node.
+    """
+    Return a hidden, per-process node name like ros2cli's direct node.
 
     :returns: ``_ros2cli_<pid>``.
     """
@@ -41,7 +44,8 @@ def default_node_name():
 
 
 def wait_for_graph(node, query, settle=0.4, minimum=0.3, maximum=3.0, ready=None):
-    """Spin ``node`` until the answer of ``query(node)`` has settled, then return it.
+    """
+    Spin ``node`` until the answer of ``query(node)`` has settled, then return it.
 
     Discovery over DDS takes a while (measured here: 0.3 to 2.7 s before a new participant
     sees an existing one); ros2cli's direct node also spins before asking the graph. This
@@ -71,7 +75,8 @@ def wait_for_graph(node, query, settle=0.4, minimum=0.3, maximum=3.0, ready=None
 
 
 def add_spin_time_argument(parser, default=3.0):
-    """Add ``-s/--spin-time``, the seconds a verb listens to discovery before answering.
+    """
+    Add ``-s/--spin-time``, the seconds a verb listens to discovery before answering.
 
     :param parser: the verb's argparse parser.
     :param default: default seconds.
@@ -83,7 +88,8 @@ def add_spin_time_argument(parser, default=3.0):
 
 
 def spin_once(node, timeout_sec=None):
-    """Execute at most one callback of ``node`` in the context it was created in.
+    """
+    Execute at most one callback of ``node`` in the context it was created in.
 
     :param node: a node made by :func:`cli_node` (or any node; a private executor is created
         for its context on first use).
@@ -100,7 +106,8 @@ def spin_once(node, timeout_sec=None):
 
 @contextlib.contextmanager
 def cli_node(name='_ros2cli', args=None):
-    """Create rclpy context + node for one CLI call and tear both down afterwards.
+    """
+    Create rclpy context + node for one CLI call and tear both down afterwards.
 
     :param name: node name (ros2cli uses a hidden name starting with ``_``).
     :param args: extra rcl arguments, e.g. ``['--ros-args', '-p', 'use_sim_time:=true']``.

@@ -1,6 +1,7 @@
 # Copyright 2026 The amr_description Authors
 # Licensed under the Apache License, Version 2.0
-"""``ros2 control`` verbs: talk to a controller manager through its services.
+"""
+``ros2 control`` verbs: talk to a controller manager through its services.
 
 Output formats follow ros2controlcli (jazzy): ``list_controllers`` prints
 ``name type  state`` with columns padded to the longest entry, ``list_hardware_interfaces``
@@ -45,7 +46,8 @@ def _cm_name(node, name):
 
 def call_service(node, service_name, service_type, request, service_timeout=0.0,
                  call_timeout=10.0):
-    """Call ``service_name`` and return the response (waits for it like upstream).
+    """
+    Call ``service_name`` and return the response (waits for it like upstream).
 
     :param node: the CLI node.
     :param service_name: absolute service name.
@@ -301,7 +303,8 @@ def _common(parser):
 
 
 def add_command(subparsers):
-    """Add the ``control`` command and its verbs to the ``ros2`` parser.
+    """
+    Add the ``control`` command and its verbs to the ``ros2`` parser.
 
     :param subparsers: the top-level ``add_subparsers()`` object.
     """

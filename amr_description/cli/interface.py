@@ -1,7 +1,8 @@
 # Copyright 2026 The amr_description Authors
 # Licensed under the Apache License, Version 2.0
 
-"""``ros2 interface show TYPE`` and ``ros2 interface list`` (output of ros2interface, jazzy).
+"""
+``ros2 interface show TYPE`` and ``ros2 interface list`` (output of ros2interface, jazzy).
 
 ``show`` prints the ``.msg``/``.srv``/``.action`` file found under ``share/PKG/<kind>/`` of
 the ament index. Every field of a non-primitive type is followed by that type's definition,
@@ -16,7 +17,8 @@ from amr_description.core.message_yaml import INTERFACE_KINDS
 
 
 def interface_path(identifier):
-    """Return the definition file of ``pkg/kind/Type`` (or ``pkg/Type``, any kind).
+    """
+    Return the definition file of ``pkg/kind/Type`` (or ``pkg/Type``, any kind).
 
     :param identifier: interface type name.
     :returns: path of the ``.msg``/``.srv``/``.action`` file.
@@ -64,7 +66,8 @@ def _parse_line(package, line):
 
 
 def show_lines(identifier, comments=True, nested_comments=False, indent=0):
-    """Return the lines ``ros2 interface show`` prints for ``identifier``.
+    """
+    Return the lines ``ros2 interface show`` prints for ``identifier``.
 
     :param identifier: interface type name.
     :param comments: keep comments and blank lines at this level.
@@ -122,7 +125,8 @@ def _list(args):
 
 
 def add_command(subparsers):
-    """Add the ``interface`` command and its verbs to the ``ros2`` parser.
+    """
+    Add the ``interface`` command and its verbs to the ``ros2`` parser.
 
     :param subparsers: the top-level ``add_subparsers()`` object.
     """

@@ -1,7 +1,8 @@
 # Copyright 2026 The amr_description Authors
 # Licensed under the Apache License, Version 2.0
 
-"""``ros2 launch PACKAGE STACK [name:=value ...]``: run one of the package's stacks.
+"""
+``ros2 launch PACKAGE STACK [name:=value ...]``: run one of the package's stacks.
 
 Stands in for ros2launch: the "launch files" are the Python stack descriptions in
 :mod:`amr_description.launch.stacks` (``sim`` or ``sim.launch.py``, ``display``).
@@ -20,7 +21,8 @@ def _main(args):
 
 
 def add_command(subparsers):
-    """Add the ``launch`` command to the ``ros2`` parser.
+    """
+    Add the ``launch`` command to the ``ros2`` parser.
 
     :param subparsers: the top-level ``add_subparsers()`` object.
     """

@@ -1,7 +1,8 @@
 # Copyright 2026 The amr_description Authors
 # Licensed under the Apache License, Version 2.0
 
-"""Entry point of the ``ros2`` command subset: ``ros2 <command> <verb> [options]``.
+"""
+Entry point of the ``ros2`` command subset: ``ros2 <command> <verb> [options]``.
 
 Each command lives in ``amr_description.cli.<command>`` and exposes
 ``add_command(subparsers)``, which adds its parser and verbs; every verb parser sets
@@ -19,7 +20,8 @@ COMMANDS = ('control', 'interface', 'launch', 'node', 'pkg', 'run', 'service', '
 
 
 def build_parser():
-    """Build the top-level ``ros2`` argument parser with every available command.
+    """
+    Build the top-level ``ros2`` argument parser with every available command.
 
     :returns: the :class:`argparse.ArgumentParser`.
     """
@@ -41,7 +43,8 @@ def build_parser():
 
 
 def main(argv=None):
-    """Run ``ros2`` with ``argv`` (default ``sys.argv[1:]``).
+    """
+    Run ``ros2`` with ``argv`` (default ``sys.argv[1:]``).
 
     :param argv: command-line arguments without the program name.
     :returns: the process exit code (0 on success, 1 on a reported error).

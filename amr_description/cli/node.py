@@ -10,7 +10,8 @@ from amr_description.cli.common import wait_for_graph
 
 
 def fully_qualified(name, namespace):
-    """Join a node name and namespace into ``/ns/name``.
+    """
+    Join a node name and namespace into ``/ns/name``.
 
     :param name: node name.
     :param namespace: its namespace (``/`` for the root).
@@ -37,7 +38,8 @@ def _list(args):
 
 
 def add_command(subparsers):
-    """Add the ``node`` command and its verbs to the ``ros2`` parser.
+    """
+    Add the ``node`` command and its verbs to the ``ros2`` parser.
 
     :param subparsers: the top-level ``add_subparsers()`` object.
     """

@@ -1,7 +1,8 @@
 # Copyright 2026 The amr_description Authors
 # Licensed under the Apache License, Version 2.0
 
-"""``ros2 pkg list|prefix|executables``: packages of the ament index (formats of ros2pkg).
+"""
+``ros2 pkg list|prefix|executables``: packages of the ament index (formats of ros2pkg).
 
 The index is the one ament_index_python reads: every prefix of ``AMENT_PREFIX_PATH``.
 """
@@ -12,7 +13,8 @@ from amr_description.cli.common import fail
 
 
 def package_prefixes():
-    """Return every package of the ament index with its prefix.
+    """
+    Return every package of the ament index with its prefix.
 
     :returns: dict package name -> install prefix (the first prefix wins, as in ament).
     """
@@ -21,7 +23,8 @@ def package_prefixes():
 
 
 def executable_paths(package, prefix):
-    """Find the executables of ``package``: files with the exec bit under ``prefix/lib/PKG``.
+    """
+    Find the executables of ``package``: files with the exec bit under ``prefix/lib/PKG``.
 
     :param package: the package name.
     :param prefix: its install prefix.
@@ -72,7 +75,8 @@ def _executables(args):
 
 
 def add_command(subparsers):
-    """Add the ``pkg`` command and its verbs to the ``ros2`` parser.
+    """
+    Add the ``pkg`` command and its verbs to the ``ros2`` parser.
 
     :param subparsers: the top-level ``add_subparsers()`` object.
     """

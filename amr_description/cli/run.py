@@ -1,7 +1,8 @@
 # Copyright 2026 The amr_description Authors
 # Licensed under the Apache License, Version 2.0
 
-"""``ros2 run PKG EXE [args] [--ros-args ...]``: run a package executable (as ros2run).
+"""
+``ros2 run PKG EXE [args] [--ros-args ...]``: run a package executable (as ros2run).
 
 The executable is ``<prefix>/lib/PKG/EXE`` of the package's prefix in the ament index. It
 runs as a child in the same process group, so a terminal Ctrl-C reaches it directly; SIGTERM
@@ -20,7 +21,8 @@ from amr_description.cli.pkg import package_prefixes
 
 
 def find_executable(package, executable):
-    """Return the path of ``executable`` of ``package``.
+    """
+    Return the path of ``executable`` of ``package``.
 
     :param package: package name.
     :param executable: executable file name.
@@ -62,13 +64,14 @@ def _main(args):
 
 
 def add_command(subparsers):
-    """Add the ``run`` command to the ``ros2`` parser.
+    """
+    Add the ``run`` command to the ``ros2`` parser.
 
     :param subparsers: the top-level ``add_subparsers()`` object.
     """
     parser = subparsers.add_parser('run', help='Run a package specific executable')
     parser.add_argument('--prefix', help='Prefix command, which should go before the '
-                        "executable. Command must be wrapped in quotes if it contains spaces "
+                        'executable. Command must be wrapped in quotes if it contains spaces '
                         "(e.g. --prefix 'gdb -ex run --args').")
     parser.add_argument('package_name', help='Name of the ROS package')
     parser.add_argument('executable_name', help='Name of the executable')

@@ -1,7 +1,8 @@
 # Copyright 2026 The amr_description Authors
 # Licensed under the Apache License, Version 2.0
 
-"""``ros2 service list|type|call`` with the output formats of ros2service (jazzy).
+"""
+``ros2 service list|type|call`` with the output formats of ros2service (jazzy).
 
 ``call`` prints ``requester: making request: <repr>`` then ``response:`` and the response
 repr, each followed by a blank line, as upstream.
@@ -101,7 +102,8 @@ def _call(args):
 
 
 def add_command(subparsers):
-    """Add the ``service`` command and its verbs to the ``ros2`` parser.
+    """
+    Add the ``service`` command and its verbs to the ``ros2`` parser.
 
     :param subparsers: the top-level ``add_subparsers()`` object.
     """

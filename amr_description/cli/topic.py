@@ -1,12 +1,13 @@
 # Copyright 2026 The amr_description Authors
 # Licensed under the Apache License, Version 2.0
 
-"""``ros2 topic list|echo|pub|hz|info|type``, with the output formats of ros2cli (jazzy).
+r"""
+``ros2 topic list|echo|pub|hz|info|type``, with the output formats of ros2cli (jazzy).
 
 Formats reproduced from ros2topic: ``echo`` prints the message YAML then ``---``; ``pub``
 prints ``Waiting for at least N matching subscription(s)...``, ``publisher: beginning loop``
 and ``publishing #N: <repr>``; ``hz`` prints ``average rate: %.3f`` and
-``\\tmin: %.3fs max: %.3fs std dev: %.5fs window: N`` once a second.
+``\tmin: %.3fs max: %.3fs std dev: %.5fs window: N`` once a second.
 """
 
 import math
@@ -14,8 +15,8 @@ import sys
 import time
 
 from amr_description.cli.common import add_spin_time_argument
-from amr_description.cli.common import CliError
 from amr_description.cli.common import cli_node
+from amr_description.cli.common import CliError
 from amr_description.cli.common import default_node_name
 from amr_description.cli.common import fail
 from amr_description.cli.common import is_hidden_name
@@ -28,7 +29,8 @@ QOS_PROFILES = ('default', 'sensor_data', 'services_default', 'parameters',
 
 
 def rate_statistics(deltas):
-    """Statistics of inter-arrival times as ``ros2 topic hz`` reports them.
+    """
+    Statistics of inter-arrival times as ``ros2 topic hz`` reports them.
 
     :param deltas: seconds between consecutive messages (at least one).
     :returns: ``(rate_hz, min_s, max_s, std_dev_s)``; the rate is 1/mean (0 when mean is 0),
@@ -42,10 +44,11 @@ def rate_statistics(deltas):
 
 
 def format_rate(deltas):
-    """Return the two lines ``ros2 topic hz`` prints for a window of inter-arrival times.
+    r"""
+    Return the two lines ``ros2 topic hz`` prints for a window of inter-arrival times.
 
     :param deltas: seconds between consecutive messages (at least one).
-    :returns: ``'average rate: R\\n\\tmin: As max: Bs std dev: Cs window: N'`` with
+    :returns: ``'average rate: R\n\tmin: As max: Bs std dev: Cs window: N'`` with
         N = number of messages = ``len(deltas) + 1``.
     """
     rate, low, high, std_dev = rate_statistics(deltas)
@@ -79,7 +82,7 @@ def _message_class(type_name):
 
 
 def _qos_from_args(args, default_key, node=None, topic=None):
-    """QoS profile: the preset, adapted to the publishers as ros2cli's choose_qos does."""
+    """Return the QoS profile: preset, adapted to the publishers as ros2cli's choose_qos does."""
     from rclpy.qos import QoSDurabilityPolicy
     from rclpy.qos import QoSHistoryPolicy
     from rclpy.qos import QoSPresetProfiles
@@ -368,7 +371,8 @@ def _hz(args):
 
 
 def add_command(subparsers):
-    """Add the ``topic`` command and its verbs to the ``ros2`` parser.
+    """
+    Add the ``topic`` command and its verbs to the ``ros2`` parser.
 
     :param subparsers: the top-level ``add_subparsers()`` object.
     """
@@ -386,7 +390,7 @@ def add_command(subparsers):
     add_spin_time_argument(p)
     p.set_defaults(main=_list)
 
-    p = verbs.add_parser('type', help='Print a topic\'s type')
+    p = verbs.add_parser('type', help="Print a topic's type")
     p.add_argument('topic_name', help="Name of the ROS topic to get type (e.g. '/chatter')")
     add_spin_time_argument(p)
     p.set_defaults(main=_type)

@@ -1,6 +1,7 @@
 # Copyright 2026 The amr_description Authors
 # Licensed under the Apache License, Version 2.0
-"""Base class of the controllers run by :class:`ControllerManager`.
+"""
+Base class of the controllers run by :class:`ControllerManager`.
 
 As ros2_control's ``controller_interface::ControllerInterface`` (jazzy): a controller is a
 lifecycle node named after the controller, created by the controller manager with its
@@ -39,7 +40,8 @@ def msg_to_time(msg):
 
 
 class ControllerInterface(LifecycleNode):
-    """A controller: lifecycle node + interface configuration + realtime ``update``.
+    """
+    A controller: lifecycle node + interface configuration + realtime ``update``.
 
     :param name: controller (and node) name.
     :param namespace: node namespace ('' = root).
@@ -69,7 +71,8 @@ class ControllerInterface(LifecycleNode):
 
     # ----------------------------------------------------------------- parameters
     def auto_declare(self, name, default):
-        """Declare parameter ``name`` with ``default`` unless given, and return its value.
+        """
+        Declare parameter ``name`` with ``default`` unless given, and return its value.
 
         Overrides from the YAML win; an override of another numeric type than the default is
         converted (``1`` for a double parameter gives ``1.0``).
@@ -83,7 +86,8 @@ class ControllerInterface(LifecycleNode):
         return self.param(name, default)
 
     def param(self, name, default=None):
-        """Return the current value of parameter ``name`` converted like ``default``.
+        """
+        Return the current value of parameter ``name`` converted like ``default``.
 
         :raises ValueError: when the value cannot be converted (message names the parameter).
         """
@@ -128,7 +132,8 @@ class ControllerInterface(LifecycleNode):
         return []
 
     def assign_interfaces(self, command_interfaces, state_interfaces):
-        """Receive handles before ``on_activate``.
+        """
+        Receive handles before ``on_activate``.
 
         :param command_interfaces: dict name -> Handle, the claimed command interfaces.
         :param state_interfaces: dict name -> Handle, the available state interfaces.
@@ -142,7 +147,8 @@ class ControllerInterface(LifecycleNode):
         self.state_interfaces = {}
 
     def update(self, time, period):
-        """Run one control step.
+        """
+        Run one control step.
 
         :param time: current time (s, sim time when simulated).
         :param period: time since the previous update (s).
@@ -163,7 +169,8 @@ class ControllerInterface(LifecycleNode):
 
 
 def parameters_from_dict(values):
-    """Return a list of :class:`rclpy.parameter.Parameter` from a flat dict name -> value.
+    """
+    Return a list of :class:`rclpy.parameter.Parameter` from a flat dict name -> value.
 
     Values whose type rclpy cannot infer (mixed lists, nested) are skipped.
 

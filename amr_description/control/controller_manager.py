@@ -1,6 +1,7 @@
 # Copyright 2026 The amr_description Authors
 # Licensed under the Apache License, Version 2.0
-"""Controller manager: loads controllers and runs read -> update -> write.
+"""
+Controller manager: loads controllers and runs read -> update -> write.
 
 As ros2_control's ``controller_manager`` (jazzy): an rclpy node ``controller_manager`` whose
 parameters come from the controllers YAML (same format; ``update_rate`` default 100 Hz,
@@ -32,13 +33,12 @@ import sys
 import threading
 import time as _time
 
-import rclpy
-from rclpy.executors import ExternalShutdownException
-from rclpy.node import Node
-
 from amr_description.control.controller_interface import parameters_from_dict
 from amr_description.control.resource_manager import ResourceManager
 from amr_description.core import ros_param_file
+import rclpy
+from rclpy.executors import ExternalShutdownException
+from rclpy.node import Node
 
 CONTROLLER_GROUP = 'amr_description.controllers'
 BASE_CLASSES = ['controller_interface::ControllerInterface',
@@ -65,7 +65,8 @@ class _Switch:
 
 
 class ControllerManager(Node):
-    """The controller manager node (see the module docstring).
+    """
+    The controller manager node (see the module docstring).
 
     :param urdf_xml: robot description with ``<ros2_control>`` blocks (str).
     :param executor: rclpy executor; the manager adds itself and every controller node.
@@ -241,7 +242,8 @@ class ControllerManager(Node):
         return values
 
     def load_controller(self, name):
-        """Load controller ``name`` by its ``<name>.type`` parameter (state: unconfigured).
+        """
+        Load controller ``name`` by its ``<name>.type`` parameter (state: unconfigured).
 
         :param name: controller name.
         :returns: the controller node, or None after logging a one-line error.
@@ -281,7 +283,8 @@ class ControllerManager(Node):
             return ctrl
 
     def configure_controller(self, name):
-        """Configure controller ``name`` (unconfigured or inactive -> inactive).
+        """
+        Configure controller ``name`` (unconfigured or inactive -> inactive).
 
         :returns: True on success; False with a one-line error log otherwise.
         """
@@ -340,7 +343,8 @@ class ControllerManager(Node):
 
     def switch_controller(self, activate, deactivate, strictness=2, timeout=0.0,
                           wait=True):
-        """Request activation/deactivation; performed by the next :meth:`update`.
+        """
+        Request activation/deactivation; performed by the next :meth:`update`.
 
         :param activate: controller names to activate (must be inactive).
         :param deactivate: controller names to deactivate (must be active).
@@ -474,7 +478,8 @@ class ControllerManager(Node):
         request.done.set()
 
     def update(self, time, period):
-        """One control cycle: pending switch, read, update active controllers, write.
+        """
+        One control cycle: pending switch, read, update active controllers, write.
 
         :param time: current time in seconds (sim time when simulated).
         :param period: seconds since the previous update.
@@ -530,7 +535,8 @@ def _mock_factory(info):
 
 
 def main(args=None):
-    """Run a controller manager standalone (ros2_control_node), wall-clock loop.
+    """
+    Run a controller manager standalone (ros2_control_node), wall-clock loop.
 
     Options: ``--urdf FILE`` (required), ``--params FILE`` (controllers YAML),
     ``--mock-hardware`` (every component is ``mock_components/GenericSystem``),

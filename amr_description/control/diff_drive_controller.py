@@ -1,6 +1,7 @@
 # Copyright 2026 The amr_description Authors
 # Licensed under the Apache License, Version 2.0
-"""diff_drive_controller: ``TwistStamped`` commands to wheel velocities, odometry and TF.
+"""
+diff_drive_controller: ``TwistStamped`` commands to wheel velocities, odometry and TF.
 
 Reproduced from ros2_controllers' diff_drive_controller (jazzy); parameters, defaults and
 topics as upstream:
@@ -27,14 +28,6 @@ topics as upstream:
 
 import math
 
-from geometry_msgs.msg import TransformStamped
-from geometry_msgs.msg import TwistStamped
-from nav_msgs.msg import Odometry as OdometryMsg
-from rclpy.qos import DurabilityPolicy
-from rclpy.qos import HistoryPolicy
-from rclpy.qos import QoSProfile
-from rclpy.qos import ReliabilityPolicy
-
 from amr_description.control.controller_interface import ControllerInterface
 from amr_description.control.controller_interface import msg_to_time
 from amr_description.control.controller_interface import time_to_msg
@@ -42,6 +35,13 @@ from amr_description.control.controller_interface import TransitionCallbackRetur
 from amr_description.core.odometry import Odometry
 from amr_description.core.speed_limiter import PARAMETER_NAMES as LIMIT_NAMES
 from amr_description.core.speed_limiter import SpeedLimiter
+from geometry_msgs.msg import TransformStamped
+from geometry_msgs.msg import TwistStamped
+from nav_msgs.msg import Odometry as OdometryMsg
+from rclpy.qos import DurabilityPolicy
+from rclpy.qos import HistoryPolicy
+from rclpy.qos import QoSProfile
+from rclpy.qos import ReliabilityPolicy
 
 try:
     from tf2_msgs.msg import TFMessage

@@ -1,6 +1,7 @@
 # Copyright 2026 The amr_description Authors
 # Licensed under the Apache License, Version 2.0
-"""Mock hardware, as ros2_control's ``mock_components/GenericSystem``: no physics.
+"""
+Mock hardware, as ros2_control's ``mock_components/GenericSystem``: no physics.
 
 Each command is mirrored to the state interface of the same name; a joint with a
 ``velocity`` command and a ``position`` state integrates the position over the period
@@ -18,7 +19,8 @@ class GenericSystem(SystemInterface):
     """Commands mirrored to states; position integrated from the velocity command."""
 
     def on_init(self, info):
-        """Create handles from ``info``; unset state values become 0.0.
+        """
+        Create handles from ``info``; unset state values become 0.0.
 
         :param info: a ``HardwareInfo``.
         :returns: True.
@@ -30,7 +32,8 @@ class GenericSystem(SystemInterface):
         return True
 
     def read(self, time, period):
-        """Copy commands to states and integrate positions.
+        """
+        Copy commands to states and integrate positions.
 
         :param time: current time (s).
         :param period: time since the previous read (s).

@@ -1,6 +1,7 @@
 # Copyright 2026 The amr_description Authors
 # Licensed under the Apache License, Version 2.0
-"""Hardware-interface layer in ros2_control vocabulary: handles and the system base class.
+"""
+Hardware-interface layer in ros2_control vocabulary: handles and the system base class.
 
 A hardware component exports *state* interfaces (read by controllers) and *command*
 interfaces (written by at most one controller), each a :class:`Handle` named
@@ -19,7 +20,8 @@ FINALIZED = 'finalized'
 
 
 class Handle:
-    """One named double value shared between a hardware component and controllers.
+    """
+    One named double value shared between a hardware component and controllers.
 
     :param prefix_name: joint (or sensor/GPIO) name, e.g. ``'joint_wheel_front_left'``.
     :param interface_name: interface name, e.g. ``'position'``, ``'velocity'``, ``'effort'``.
@@ -44,7 +46,8 @@ class Handle:
         return self.value
 
     def set_value(self, value):
-        """Set the value.
+        """
+        Set the value.
 
         :param value: the new value, converted to float.
         """
@@ -67,7 +70,8 @@ def _initial(interface_info):
 
 
 class SystemInterface:
-    """Base class of a multi-joint hardware component (ros2_control ``SystemInterface``).
+    """
+    Base class of a multi-joint hardware component (ros2_control ``SystemInterface``).
 
     Subclasses override ``read``/``write`` (and optionally the lifecycle callbacks); the
     base ``on_init`` creates one :class:`Handle` per interface listed in the component's
@@ -88,7 +92,8 @@ class SystemInterface:
         return getattr(self.info, 'name', None) or type(self).__name__
 
     def on_init(self, info):
-        """Store ``info`` and create the state/command handles it lists.
+        """
+        Store ``info`` and create the state/command handles it lists.
 
         Initial values come from each interface's ``initial_value`` (NaN when absent;
         command interfaces too, as in ros2_control).
@@ -138,7 +143,8 @@ class SystemInterface:
         return list(self.command_handles.values())
 
     def read(self, time, period):
-        """Update state handles from the hardware.
+        """
+        Update state handles from the hardware.
 
         :param time: current time in seconds (float).
         :param period: time since the previous read in seconds (float).
@@ -147,7 +153,8 @@ class SystemInterface:
         return True
 
     def write(self, time, period):
-        """Send command handles to the hardware.
+        """
+        Send command handles to the hardware.
 
         :param time: current time in seconds (float).
         :param period: time since the previous write in seconds (float).

@@ -1,6 +1,7 @@
 # Copyright 2026 The amr_description Authors
 # Licensed under the Apache License, Version 2.0
-"""joint_state_broadcaster: publishes ``sensor_msgs/JointState`` from state interfaces.
+"""
+joint_state_broadcaster: publishes ``sensor_msgs/JointState`` from state interfaces.
 
 As ros2_controllers' joint_state_broadcaster (jazzy): on every controller-manager update
 (not rate-limited) it publishes ``/joint_states`` (``~/joint_states`` with
@@ -18,12 +19,11 @@ interface), ``extra_joints``, ``use_local_topics`` (false), ``map_interface_to_j
 import math
 import xml.etree.ElementTree as ET
 
-from rclpy.qos import QoSProfile
-from sensor_msgs.msg import JointState
-
 from amr_description.control.controller_interface import ControllerInterface
 from amr_description.control.controller_interface import time_to_msg
 from amr_description.control.controller_interface import TransitionCallbackReturn
+from rclpy.qos import QoSProfile
+from sensor_msgs.msg import JointState
 
 FIELDS = ('position', 'velocity', 'effort')
 

@@ -1,6 +1,7 @@
 # Copyright 2026 The amr_description Authors
 # Licensed under the Apache License, Version 2.0
-"""Resource manager: hardware components built from a URDF and their interfaces.
+"""
+Resource manager: hardware components built from a URDF and their interfaces.
 
 As ros2_control's ``hardware_interface::ResourceManager`` (jazzy): every ``<ros2_control>``
 block of the URDF becomes a component through its ``<plugin>`` string (entry-point group
@@ -24,7 +25,8 @@ def hardware_plugins():
 
 
 def default_hardware_factory(info):
-    """Instantiate the class registered for ``info.plugin`` with no arguments.
+    """
+    Instantiate the class registered for ``info.plugin`` with no arguments.
 
     :param info: a ``HardwareInfo``.
     :returns: a :class:`SystemInterface` instance (not yet initialised).
@@ -39,7 +41,8 @@ def default_hardware_factory(info):
 
 
 class ResourceManager:
-    """Hardware components of one robot and their claimed interfaces.
+    """
+    Hardware components of one robot and their claimed interfaces.
 
     :param urdf_xml: the robot description (URDF XML string) with ``<ros2_control>`` blocks.
     :param hardware_factory: callable ``(HardwareInfo) -> SystemInterface``; default
@@ -91,7 +94,8 @@ class ResourceManager:
         table[handle.name] = handle
 
     def set_component_state(self, component, target):
-        """Move ``component`` to lifecycle ``target`` (``'inactive'`` or ``'active'``).
+        """
+        Move ``component`` to lifecycle ``target`` (``'inactive'`` or ``'active'``).
 
         :raises ValueError: when a lifecycle callback returns False.
         """
@@ -128,7 +132,8 @@ class ResourceManager:
                 and component.lifecycle_state in (hi.INACTIVE, hi.ACTIVE))
 
     def claim(self, controller, names):
-        """Claim command interfaces ``names`` for ``controller`` (all or none).
+        """
+        Claim command interfaces ``names`` for ``controller`` (all or none).
 
         :param controller: claiming controller name.
         :param names: iterable of command interface names.

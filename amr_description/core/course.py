@@ -1,7 +1,8 @@
 # Copyright 2026 The amr_description Authors
 # Licensed under the Apache License, Version 2.0
 
-"""A scripted course (straight legs and turns in place) and the per-leg comparison table.
+"""
+A scripted course (straight legs and turns in place) and the per-leg comparison table.
 
 Pure logic for the main job: no rclpy. Poses are planar ``(x, y, yaw)`` tuples in metres and
 radians (REP 103), in whichever fixed frame the caller uses (``odom`` or the simulator's
@@ -13,7 +14,8 @@ import math
 
 
 def wrap_angle(angle):
-    """Wrap an angle to ``(-pi, pi]``.
+    """
+    Wrap an angle to ``(-pi, pi]``.
 
     :param angle: angle in rad.
     :returns: the equivalent angle in ``(-pi, pi]``, rad.
@@ -24,7 +26,8 @@ def wrap_angle(angle):
 
 @dataclass(frozen=True)
 class Leg:
-    """One leg of a course.
+    """
+    One leg of a course.
 
     :ivar kind: ``'straight'`` (drive ``target`` metres forward) or ``'turn'`` (rotate in place
         by ``target`` rad, positive counter-clockwise).
@@ -37,7 +40,8 @@ class Leg:
     speed: float
 
     def __post_init__(self):
-        """Validate the leg.
+        """
+        Validate the leg.
 
         :raises ValueError: on an unknown kind, a non-finite target or a speed <= 0.
         """
@@ -50,7 +54,8 @@ class Leg:
 
 
 def square_course(side=1.0, speed=0.25, turn_rate=0.5, counter_clockwise=True):
-    """Return the legs of a closed square: four times (side, quarter turn).
+    """
+    Return the legs of a closed square: four times (side, quarter turn).
 
     :param side: side length in m, > 0.
     :param speed: linear cruise speed in m/s.
@@ -70,7 +75,8 @@ def square_course(side=1.0, speed=0.25, turn_rate=0.5, counter_clockwise=True):
 
 
 def leg_progress(leg, start, pose):
-    """Return how far a leg has come from its start pose.
+    """
+    Return how far a leg has come from its start pose.
 
     :param leg: the :class:`Leg`.
     :param start: ``(x, y, yaw)`` when the leg began.
@@ -85,7 +91,8 @@ def leg_progress(leg, start, pose):
 
 
 class CourseFollower:
-    """Closed-loop follower of a list of legs, fed with odometry poses.
+    """
+    Closed-loop follower of a list of legs, fed with odometry poses.
 
     Straight legs drive at the leg speed and slow down linearly within ``slow_zone`` of the
     target (never below ``min_fraction`` of the cruise speed); turns do the same in angle.
@@ -94,7 +101,8 @@ class CourseFollower:
 
     def __init__(self, legs, slow_zone=(0.15, 0.3), min_fraction=0.15,
                  tolerance=(0.002, 0.005)):
-        """Create the follower.
+        """
+        Create the follower.
 
         :param legs: list of :class:`Leg`.
         :param slow_zone: ``(metres, radians)`` before the target where the speed ramps down.
@@ -114,7 +122,8 @@ class CourseFollower:
         return self.index >= len(self.legs)
 
     def step(self, pose):
-        """Advance with a new pose and return the command to send.
+        """
+        Advance with a new pose and return the command to send.
 
         :param pose: current ``(x, y, yaw)`` in m, m, rad.
         :returns: ``(linear_x, angular_z, leg_index_finished)``: velocities in m/s and rad/s
@@ -140,7 +149,8 @@ class CourseFollower:
 
 
 def leg_delta(start, end):
-    """Return what a leg did between two poses of one source.
+    """
+    Return what a leg did between two poses of one source.
 
     :param start: ``(x, y, yaw)`` at the leg's start.
     :param end: ``(x, y, yaw)`` at its end.
@@ -152,7 +162,8 @@ def leg_delta(start, end):
 
 
 def format_leg_table(legs, odom_poses, truth_poses):
-    """Format the per-leg table: commanded, ``/odom`` and ground truth, distance and heading.
+    """
+    Format the per-leg table: commanded, ``/odom`` and ground truth, distance and heading.
 
     :param legs: the :class:`Leg` list driven.
     :param odom_poses: ``len(legs) + 1`` odometry poses: the start, then the end of each leg.
@@ -179,7 +190,8 @@ def format_leg_table(legs, odom_poses, truth_poses):
 
 
 def closure_error(poses):
-    """Return how far a closed course ends from where it began.
+    """
+    Return how far a closed course ends from where it began.
 
     :param poses: the course's poses, first = start, last = end, ``(x, y, yaw)``.
     :returns: ``(position_error, heading_error)`` in m and rad (absolute, wrapped).

@@ -1,6 +1,7 @@
 # Copyright 2026 The amr_description Authors
 # Licensed under the Apache License, Version 2.0
-"""Differential-drive wheel kinematics (REP 103: x forward, z up, CCW positive).
+"""
+Differential-drive wheel kinematics (REP 103: x forward, z up, CCW positive).
 
 Reproduced behaviour (diff_drive_controller, ros2_controllers jazzy): every wheel of a side
 gets that side's speed ``v_left = (v - w*s/2) / r_left``, ``v_right = (v + w*s/2) / r_right``;
@@ -9,7 +10,8 @@ feedback is the mean over the wheels of a side.
 
 
 def wheel_velocities(linear, angular, wheel_separation, left_wheel_radius, right_wheel_radius):
-    """Return ``(left, right)`` wheel angular velocities (rad/s) for a body twist.
+    """
+    Return ``(left, right)`` wheel angular velocities (rad/s) for a body twist.
 
     :param linear: forward speed of the base (m/s).
     :param angular: yaw rate of the base (rad/s, CCW positive).
@@ -37,7 +39,8 @@ def body_twist(left_velocity, right_velocity, wheel_separation, left_wheel_radiu
 
 
 def side_mean(values):
-    """Return the mean of the feedback values of one side, NaN if any is NaN.
+    """
+    Return the mean of the feedback values of one side, NaN if any is NaN.
 
     :param values: sequence of floats, non-empty.
     :returns: float.

@@ -1,7 +1,8 @@
 # Copyright 2026 The amr_description Authors
 # Licensed under the Apache License, Version 2.0
 
-"""Rigid transforms and URDF joint forward kinematics (pure numpy, no rclpy).
+"""
+Rigid transforms and URDF joint forward kinematics (pure numpy, no rclpy).
 
 Conventions (URDF specification, REP 103):
 
@@ -43,7 +44,8 @@ def rot_z(angle):
 
 
 def rpy_to_matrix(rpy):
-    """Return the 3x3 rotation of a URDF ``rpy`` triple.
+    """
+    Return the 3x3 rotation of a URDF ``rpy`` triple.
 
     :param rpy: (roll, pitch, yaw) in rad.
     :returns: ``Rz(yaw) @ Ry(pitch) @ Rx(roll)`` (URDF fixed-axis convention), shape (3, 3).
@@ -53,7 +55,8 @@ def rpy_to_matrix(rpy):
 
 
 def origin_to_matrix(xyz=(0.0, 0.0, 0.0), rpy=(0.0, 0.0, 0.0)):
-    """Return the 4x4 pose of a URDF ``<origin xyz rpy>``.
+    """
+    Return the 4x4 pose of a URDF ``<origin xyz rpy>``.
 
     :param xyz: translation (m), 3 floats.
     :param rpy: rotation (rad), 3 floats, see :func:`rpy_to_matrix`.
@@ -66,7 +69,8 @@ def origin_to_matrix(xyz=(0.0, 0.0, 0.0), rpy=(0.0, 0.0, 0.0)):
 
 
 def axis_angle_matrix(axis, angle):
-    """Return the 3x3 rotation by ``angle`` rad about ``axis`` (Rodrigues' formula).
+    """
+    Return the 3x3 rotation by ``angle`` rad about ``axis`` (Rodrigues' formula).
 
     :param axis: rotation axis, 3 floats, any non-zero length (normalized here).
     :param angle: rad, right-hand rule.
@@ -83,7 +87,8 @@ def axis_angle_matrix(axis, angle):
 
 
 def joint_motion(joint_type, axis, position):
-    """Return the 4x4 motion a joint adds after its origin.
+    """
+    Return the 4x4 motion a joint adds after its origin.
 
     :param joint_type: URDF joint type string.
     :param axis: joint axis in the joint frame, 3 floats (ignored for non-moving types).
@@ -106,7 +111,8 @@ def joint_motion(joint_type, axis, position):
 
 
 def joint_transform(origin, joint_type, axis, position=0.0):
-    """Return the parent -> child pose of a URDF joint at ``position``.
+    """
+    Return the parent -> child pose of a URDF joint at ``position``.
 
     :param origin: the joint's ``<origin>`` as a 4x4 matrix (None = identity).
     :param joint_type: URDF joint type string.
@@ -119,7 +125,8 @@ def joint_transform(origin, joint_type, axis, position=0.0):
 
 
 def matrix_to_quaternion(R):
-    """Return the unit quaternion (x, y, z, w) of a rotation matrix.
+    """
+    Return the unit quaternion (x, y, z, w) of a rotation matrix.
 
     Shepperd's method: pick the largest of w, x, y, z to divide by, for numerical stability.
 
@@ -161,7 +168,8 @@ def quaternion_to_matrix(q):
 
 
 def matrix_to_translation_quaternion(T):
-    """Split a 4x4 pose into translation and quaternion.
+    """
+    Split a 4x4 pose into translation and quaternion.
 
     :param T: homogeneous matrix, shape (4, 4).
     :returns: ``(translation [x, y, z] in m, quaternion [x, y, z, w])``, numpy arrays.
@@ -176,7 +184,8 @@ def mimic_position(parent_position, multiplier=1.0, offset=0.0):
 
 
 def chain_transform(joints, positions=None):
-    """Compose the poses of a chain of joints, root first.
+    """
+    Compose the poses of a chain of joints, root first.
 
     :param joints: iterable of objects with ``origin`` (4x4 or None), ``type``, ``axis`` and
         ``name`` attributes (e.g. yourdfpy joints).

@@ -1,7 +1,8 @@
 # Copyright 2026 The amr_description Authors
 # Licensed under the Apache License, Version 2.0
 
-"""ROS interface classes from type names, and ROS messages to/from YAML (no rclpy).
+"""
+ROS interface classes from type names, and ROS messages to/from YAML (no rclpy).
 
 This is our stand-in for the parts of ``rosidl_runtime_py`` (not on PyPI) that ``ros2 topic
 echo``/``pub`` and ``ros2 service call`` need. Reproduced upstream behaviour (jazzy):
@@ -51,7 +52,8 @@ _FLOAT_TYPES = ('float', 'double', 'long double')
 
 
 def split_type_name(identifier, default_kind='msg'):
-    """Split ``pkg/kind/Type`` (or ``pkg/Type``, meaning ``default_kind``) into its parts.
+    """
+    Split ``pkg/kind/Type`` (or ``pkg/Type``, meaning ``default_kind``) into its parts.
 
     :param identifier: the interface type name, e.g. ``'geometry_msgs/msg/Twist'``.
     :param default_kind: the kind assumed for a two-part name.
@@ -69,7 +71,8 @@ def split_type_name(identifier, default_kind='msg'):
 
 
 def get_interface(identifier, default_kind='msg'):
-    """Import and return the Python class of an interface type.
+    """
+    Import and return the Python class of an interface type.
 
     :param identifier: ``'pkg/msg/Type'``, ``'pkg/srv/Type'``, ``'pkg/action/Type'`` or
         ``'pkg/Type'`` (kind ``default_kind``).
@@ -89,7 +92,8 @@ def get_interface(identifier, default_kind='msg'):
 
 
 def get_message(identifier):
-    """Return the message class named ``'pkg/msg/Type'`` or ``'pkg/Type'``.
+    """
+    Return the message class named ``'pkg/msg/Type'`` or ``'pkg/Type'``.
 
     :param identifier: the message type name.
     :returns: the generated message class.
@@ -101,7 +105,8 @@ def get_message(identifier):
 
 
 def get_service(identifier):
-    """Return the service class named ``'pkg/srv/Type'`` or ``'pkg/Type'``.
+    """
+    Return the service class named ``'pkg/srv/Type'`` or ``'pkg/Type'``.
 
     :param identifier: the service type name.
     :returns: the generated service class (with ``Request`` and ``Response``).
@@ -116,7 +121,8 @@ def get_service(identifier):
 
 
 def type_name_of(msg_or_class):
-    """Return the ``pkg/msg/Type`` name of a message instance or class.
+    """
+    Return the ``pkg/msg/Type`` name of a message instance or class.
 
     :param msg_or_class: a generated message (or service) instance or class.
     :returns: e.g. ``'std_msgs/msg/String'``.
@@ -168,7 +174,8 @@ def _abbreviate_sequence(value, field_type):
 
 
 def message_to_ordereddict(msg, *, truncate_length=None, no_arr=False, no_str=False):
-    """Convert a message into an :class:`OrderedDict` of plain Python values, in field order.
+    """
+    Convert a message into an :class:`OrderedDict` of plain Python values, in field order.
 
     :param msg: a generated message instance.
     :param truncate_length: keep at most this many items/characters of every sequence,
@@ -229,7 +236,8 @@ _EchoDumper.add_representer(OrderedDict, _represent_ordereddict)
 
 
 def to_yaml(data, flow_style=False):
-    """Dump plain data (as made by :func:`message_to_ordereddict`) like ``ros2 topic echo``.
+    """
+    Dump plain data (as made by :func:`message_to_ordereddict`) like ``ros2 topic echo``.
 
     :param data: OrderedDicts, lists and scalars.
     :param flow_style: True for one-line flow style (``--flow-style``).
@@ -242,7 +250,8 @@ def to_yaml(data, flow_style=False):
 
 def message_to_yaml(msg, *, truncate_length=None, no_arr=False, no_str=False,
                     flow_style=False):
-    """Return the YAML text ``ros2 topic echo`` prints for ``msg`` (without the ``---``).
+    """
+    Return the YAML text ``ros2 topic echo`` prints for ``msg`` (without the ``---``).
 
     :param msg: a generated message instance.
     :param truncate_length: see :func:`message_to_ordereddict`.
@@ -261,7 +270,8 @@ def message_to_yaml(msg, *, truncate_length=None, no_arr=False, no_str=False,
 
 
 def parse_yaml_values(text):
-    """Parse the YAML values argument of ``ros2 topic pub`` / ``ros2 service call``.
+    """
+    Parse the YAML values argument of ``ros2 topic pub`` / ``ros2 service call``.
 
     :param text: YAML text of a mapping (an empty text means ``{}``).
     :returns: the dict.
@@ -283,7 +293,8 @@ def parse_yaml_values(text):
 
 
 def set_message_fields(msg, values, expand_header_auto=False, expand_time_now=False):
-    """Set the fields of ``msg`` from ``values`` (a dict, possibly nested), checking types.
+    """
+    Set the fields of ``msg`` from ``values`` (a dict, possibly nested), checking types.
 
     :param msg: the message instance to fill (modified in place).
     :param values: dict of field name -> value; nested messages as dicts, sequences as lists,
@@ -441,7 +452,8 @@ def _convert_sequence(value, field_type, path, setters, header_auto, time_now):
 
 
 def message_from_values(msg_class, values, expand_header_auto=False, expand_time_now=False):
-    """Create a ``msg_class`` instance filled from ``values`` (see :func:`set_message_fields`).
+    """
+    Create a ``msg_class`` instance filled from ``values`` (see :func:`set_message_fields`).
 
     :param msg_class: the generated message class.
     :param values: dict of field values, or YAML text of one.

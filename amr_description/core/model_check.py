@@ -1,7 +1,8 @@
 # Copyright 2026 The amr_description Authors
 # Licensed under the Apache License, Version 2.0
 
-"""Model checks beyond ``check_urdf``: physics, drive wheels, ros2_control and controllers.yaml.
+"""
+Model checks beyond ``check_urdf``: physics, drive wheels, ros2_control and controllers.yaml.
 
 ``check_urdf`` (urdfdom) only proves the file parses into a tree. The checks here catch what
 makes a robot fall through the floor, explode, or drive backwards in simulation:
@@ -50,7 +51,8 @@ INERTIA_TOLERANCE = 0.1  # relative Frobenius distance tolerated from the geomet
 
 @dataclass
 class Finding:
-    """One result of a check.
+    """
+    One result of a check.
 
     :param severity: ``'error'``, ``'warning'`` or ``'ok'`` (a passed check worth reporting).
     :param element: what it is about, e.g. ``"link 'base_link'"`` or ``"joint 'j'"``.
@@ -88,7 +90,8 @@ def _origin(origin):
 # ---------------------------------------------------------------------------------------------
 
 def box_inertia(mass, size):
-    """Return the 3x3 inertia (kg m^2) of a solid box about its centre, box axes.
+    """
+    Return the 3x3 inertia (kg m^2) of a solid box about its centre, box axes.
 
     :param mass: kg.
     :param size: (x, y, z) edge lengths, m.
@@ -99,7 +102,8 @@ def box_inertia(mass, size):
 
 
 def cylinder_inertia(mass, radius, length):
-    """Return the 3x3 inertia (kg m^2) of a solid cylinder about its centre, axis along z.
+    """
+    Return the 3x3 inertia (kg m^2) of a solid cylinder about its centre, axis along z.
 
     :returns: ``diag(m (3 r^2 + h^2) / 12, same, m r^2 / 2)``.
     """
@@ -113,7 +117,8 @@ def sphere_inertia(mass, radius):
 
 
 def geometry_inertia(geometry, mass):
-    """Return the inertia of a yourdfpy ``Geometry`` primitive about its own frame, or None.
+    """
+    Return the inertia of a yourdfpy ``Geometry`` primitive about its own frame, or None.
 
     :param geometry: yourdfpy ``Geometry`` (box, cylinder or sphere; meshes give None).
     :param mass: kg.
@@ -131,7 +136,8 @@ def geometry_inertia(geometry, mass):
 
 
 def inertia_problems(inertia):
-    """Return why a 3x3 inertia matrix is not physical, or [] when it is.
+    """
+    Return why a 3x3 inertia matrix is not physical, or [] when it is.
 
     :param inertia: 3x3 array, kg m^2.
     :returns: list of (message, expected, found) tuples: not symmetric, not positive definite
@@ -155,7 +161,8 @@ def inertia_problems(inertia):
 
 
 def check_links(model):
-    """Check collision, inertial, mass and inertia of every link.
+    """
+    Check collision, inertial, mass and inertia of every link.
 
     :param model: :class:`~amr_description.core.urdf_model.RobotModel`.
     :returns: list of :class:`Finding`.
@@ -227,7 +234,8 @@ def _compare_geometry_inertia(element, link, mass):
 # ---------------------------------------------------------------------------------------------
 
 def drive_direction(axle):
-    """Return the base velocity direction of positive wheel speed for an axle direction.
+    """
+    Return the base velocity direction of positive wheel speed for an axle direction.
 
     :param axle: wheel axle (joint axis) in the base frame, 3 floats, REP 103 (z up).
     :returns: ``a x z`` normalized (numpy, 3 floats): the direction the wheel centre moves
@@ -242,7 +250,8 @@ def drive_direction(axle):
 
 
 def wheel_radius(model, link_name, axis=None):
-    """Return the wheel radius (m) of a link from its collision (else visual) geometry.
+    """
+    Return the wheel radius (m) of a link from its collision (else visual) geometry.
 
     :param model: :class:`~amr_description.core.urdf_model.RobotModel`.
     :param link_name: the wheel link.
@@ -262,7 +271,8 @@ def wheel_radius(model, link_name, axis=None):
 
 
 def wheel_joints(model, controllers=None):
-    """Return the names of the drive wheel joints.
+    """
+    Return the names of the drive wheel joints.
 
     :param model: :class:`~amr_description.core.urdf_model.RobotModel`.
     :param controllers: parsed controllers.yaml (dict) or None.
@@ -281,7 +291,8 @@ def wheel_joints(model, controllers=None):
 
 
 def axle_in_frame(model, joint_name, frame):
-    """Return a joint's axis expressed in link ``frame`` at zero joint positions.
+    """
+    Return a joint's axis expressed in link ``frame`` at zero joint positions.
 
     :returns: unit vector (numpy, 3 floats): ``R_frame^T R_parent R_origin axis``.
     """
@@ -300,7 +311,8 @@ def joint_position_in_frame(model, joint_name, frame):
 
 
 def check_wheels(model, joints, base_frame):
-    """Check that positive speed of each drive wheel rolls the base forward.
+    """
+    Check that positive speed of each drive wheel rolls the base forward.
 
     :param model: :class:`~amr_description.core.urdf_model.RobotModel`.
     :param joints: wheel joint names.
@@ -363,7 +375,8 @@ def _check_cylinder_axis(model, joint):
 # ---------------------------------------------------------------------------------------------
 
 def diff_drive_params(controllers):
-    """Return the ros__parameters of every diff_drive_controller in a controllers.yaml.
+    """
+    Return the ros__parameters of every diff_drive_controller in a controllers.yaml.
 
     :param controllers: the parsed YAML (dict), ros2_control format.
     :returns: dict controller name -> its ``ros__parameters`` dict (empty when absent).
@@ -378,7 +391,8 @@ def diff_drive_params(controllers):
 
 
 def check_ros2_control(model, urdf_xml, controllers=None):
-    """Check the ``<ros2_control>`` blocks, and the diff_drive_controller against them.
+    """
+    Check the ``<ros2_control>`` blocks, and the diff_drive_controller against them.
 
     :param model: :class:`~amr_description.core.urdf_model.RobotModel`.
     :param urdf_xml: the URDF text (for the ``<ros2_control>`` blocks).
@@ -487,7 +501,8 @@ def _check_wheel_interfaces(element, wheel, component, model, position_feedback)
 # ---------------------------------------------------------------------------------------------
 
 def check_mujoco_block(model, urdf_xml):
-    """Check the ``<mujoco>`` extension block (format: docs/architecture.md).
+    """
+    Check the ``<mujoco>`` extension block (format: docs/architecture.md).
 
     :returns: list of :class:`Finding`: link/joint names that do not exist, actuators on joints
         without a velocity command interface, malformed numbers.
@@ -561,7 +576,8 @@ def _check_mujoco_element(model, element, commands):
 # ---------------------------------------------------------------------------------------------
 
 def compare_installed(source_path, installed_path):
-    """Compare a source file with its installed copy (the stale-install lesson).
+    """
+    Compare a source file with its installed copy (the stale-install lesson).
 
     :param source_path: the file in the source tree.
     :param installed_path: the file under ``share/<pkg>/...``, or None when not installed.
@@ -582,7 +598,8 @@ def compare_installed(source_path, installed_path):
 
 
 def installed_counterpart(source_path, package='amr_description'):
-    """Return the installed path of a source-tree file of ``package``, or None.
+    """
+    Return the installed path of a source-tree file of ``package``, or None.
 
     Only files of the package's own source tree (``<src>/package.xml`` names ``package`` and
     the file is under ``<src>/urdf`` or ``<src>/config``) have a counterpart.
@@ -610,7 +627,8 @@ def installed_counterpart(source_path, package='amr_description'):
 # ---------------------------------------------------------------------------------------------
 
 def check_model(model, urdf_xml, controllers=None):
-    """Run every model check that needs no file system.
+    """
+    Run every model check that needs no file system.
 
     :param model: :class:`~amr_description.core.urdf_model.RobotModel`.
     :param urdf_xml: the URDF text.
@@ -628,7 +646,8 @@ def check_model(model, urdf_xml, controllers=None):
 
 
 def load_controllers(path):
-    """Read a controllers.yaml.
+    """
+    Read a controllers.yaml.
 
     :returns: the parsed dict.
     :raises ValueError: one line naming ``path`` when unreadable or not a YAML mapping.
@@ -646,7 +665,8 @@ def load_controllers(path):
 
 
 def main(argv=None):
-    """Check a URDF (and optionally its controllers.yaml); print findings.
+    """
+    Check a URDF (and optionally its controllers.yaml); print findings.
 
     ``ros2 run amr_description check_model [--controllers YAML] [--quiet] URDF``
 

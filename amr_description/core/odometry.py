@@ -1,6 +1,7 @@
 # Copyright 2026 The amr_description Authors
 # Licensed under the Apache License, Version 2.0
-"""Planar differential-drive odometry, as diff_drive_controller's ``Odometry`` class.
+"""
+Planar differential-drive odometry, as diff_drive_controller's ``Odometry`` class.
 
 Pose ``(x, y, heading)`` of the base frame in the odometry frame (REP 105: metres, radians,
 counter-clockwise positive); twist ``(linear, angular)`` in the base frame (m/s, rad/s).
@@ -21,7 +22,8 @@ RK2_THRESHOLD = 1e-6
 
 
 class RollingMean:
-    """Mean of the last ``size`` values pushed (the mean of what there is while filling).
+    """
+    Mean of the last ``size`` values pushed (the mean of what there is while filling).
 
     :param size: window length, int >= 1.
     :raises ValueError: when ``size`` < 1.
@@ -47,7 +49,8 @@ class RollingMean:
 
 
 class Odometry:
-    """Differential-drive dead reckoning from wheel positions or wheel travel.
+    """
+    Differential-drive dead reckoning from wheel positions or wheel travel.
 
     :param wheel_separation: distance between the left and right wheel contact lines (m, > 0).
     :param left_wheel_radius: left wheel radius (m, > 0).
@@ -98,7 +101,8 @@ class Odometry:
         self._angular_mean.clear()
 
     def update(self, left_pos, right_pos, time):
-        """Integrate from absolute wheel angles (rad), averaged per side.
+        """
+        Integrate from absolute wheel angles (rad), averaged per side.
 
         The first call only records the angles (no travel). A NaN angle leaves the pose
         unchanged and returns False.
@@ -121,7 +125,8 @@ class Odometry:
         return self._apply(dl, dr, time)
 
     def update_from_velocity(self, left_travel, right_travel, time):
-        """Integrate wheel travel over the last step (m per side, e.g. ``omega * r * dt``).
+        """
+        Integrate wheel travel over the last step (m per side, e.g. ``omega * r * dt``).
 
         :param left_travel: left wheel rolling distance since the previous update (m).
         :param right_travel: right wheel rolling distance since the previous update (m).
@@ -133,7 +138,8 @@ class Odometry:
         return self._apply(float(left_travel), float(right_travel), time)
 
     def update_open_loop(self, linear, angular, time):
-        """Integrate the commanded twist (m/s, rad/s) over the time since the previous call.
+        """
+        Integrate the commanded twist (m/s, rad/s) over the time since the previous call.
 
         The reported twist is the command itself (no rolling mean), as upstream.
 
@@ -150,7 +156,8 @@ class Odometry:
         return True
 
     def integrate(self, distance, dheading):
-        """Advance the pose by ``distance`` (m) along an arc turning by ``dheading`` (rad).
+        """
+        Advance the pose by ``distance`` (m) along an arc turning by ``dheading`` (rad).
 
         Exact arc when ``|dheading| >= 1e-6``, otherwise Runge-Kutta 2 (midpoint heading).
         """

@@ -1,7 +1,8 @@
 # Copyright 2026 The amr_description Authors
 # Licensed under the Apache License, Version 2.0
 
-"""Parse the ``<ros2_control>`` blocks of a URDF into plain dataclasses (no rclpy).
+"""
+Parse the ``<ros2_control>`` blocks of a URDF into plain dataclasses (no rclpy).
 
 The structure follows ros2_control's ``hardware_interface::HardwareInfo`` /
 ``ComponentInfo`` / ``InterfaceInfo`` (jazzy), reduced to what a Python resource manager
@@ -35,7 +36,8 @@ HARDWARE_TYPES = ('system', 'actuator', 'sensor')
 
 @dataclass
 class InterfaceInfo:
-    """One command or state interface of a component.
+    """
+    One command or state interface of a component.
 
     :param name: interface name, e.g. ``'velocity'`` (ros2_control vocabulary).
     :param min: lower limit from ``<param name="min">`` (float, joint units), or None.
@@ -53,7 +55,8 @@ class InterfaceInfo:
 
 @dataclass
 class ComponentInfo:
-    """A ``<joint>``, ``<sensor>`` or ``<gpio>`` element of a ``<ros2_control>`` block.
+    """
+    A ``<joint>``, ``<sensor>`` or ``<gpio>`` element of a ``<ros2_control>`` block.
 
     :param name: the component name (for joints: the URDF joint name).
     :param command_interfaces: list of :class:`InterfaceInfo`, in document order.
@@ -77,7 +80,8 @@ class ComponentInfo:
 
 @dataclass
 class HardwareInfo:
-    """One ``<ros2_control>`` block.
+    """
+    One ``<ros2_control>`` block.
 
     :param name: the ``name`` attribute, e.g. ``'AmrSystem'``.
     :param type: the ``type`` attribute: ``'system'``, ``'actuator'`` or ``'sensor'``.
@@ -186,7 +190,8 @@ def _hardware(element):
 
 
 def parse_ros2_control(urdf_xml):
-    """Parse every ``<ros2_control>`` child of the URDF ``<robot>`` element.
+    """
+    Parse every ``<ros2_control>`` child of the URDF ``<robot>`` element.
 
     :param urdf_xml: the URDF document, str or bytes.
     :returns: list of :class:`HardwareInfo`, in document order (empty when none).

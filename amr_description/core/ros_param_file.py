@@ -1,6 +1,7 @@
 # Copyright 2026 The amr_description Authors
 # Licensed under the Apache License, Version 2.0
-"""ROS 2 parameter files (``--params-file`` YAML): which parameters apply to which node.
+"""
+ROS 2 parameter files (``--params-file`` YAML): which parameters apply to which node.
 
 Format as rcl's parameter-file parser (jazzy)::
 
@@ -28,7 +29,8 @@ ROS_PARAMS_KEY = 'ros__parameters'
 
 
 def load_yaml(path):
-    """Return the parsed YAML of a parameter file.
+    """
+    Return the parsed YAML of a parameter file.
 
     :param path: file path.
     :returns: dict.
@@ -62,7 +64,8 @@ def _flatten(params, prefix=''):
 
 
 def node_sections(data, path='parameter file'):
-    """Return ``[(node_pattern, flat_params), ...]`` in file order.
+    """
+    Return ``[(node_pattern, flat_params), ...]`` in file order.
 
     :param data: the parsed YAML (dict).
     :param path: file name for error messages.
@@ -113,7 +116,8 @@ def fully_qualified(name, namespace=''):
 
 
 def parameters_for_node(data, name, namespace='', path='parameter file'):
-    """Return the flat parameters a node gets from one parsed parameter file.
+    """
+    Return the flat parameters a node gets from one parsed parameter file.
 
     :param data: the parsed YAML (dict).
     :param name: node name.
@@ -133,7 +137,8 @@ def parameters_for_node(data, name, namespace='', path='parameter file'):
 
 
 def parse_params_file_value(value):
-    """Return the list of paths in a ``<controller>.params_file`` parameter value.
+    """
+    Return the list of paths in a ``<controller>.params_file`` parameter value.
 
     The upstream spawner (jazzy) sets it to ``str(list)`` (e.g. ``"['/a.yaml']"``); a plain
     path or a list of paths is also accepted.

@@ -1,6 +1,7 @@
 # Copyright 2026 The amr_description Authors
 # Licensed under the Apache License, Version 2.0
-"""Velocity, acceleration and jerk limiting of one command channel.
+"""
+Velocity, acceleration and jerk limiting of one command channel.
 
 Reproduced behaviour: diff_drive_controller (ros2_controllers jazzy) limits ``linear.x`` and
 ``angular.z`` with control_toolbox's rate limiter. Every limit is optional: NaN disables it.
@@ -31,7 +32,8 @@ def _clamp(value, low, high):
 
 
 class SpeedLimiter:
-    """Limit a velocity command given the two previous (limited) commands.
+    """
+    Limit a velocity command given the two previous (limited) commands.
 
     Keyword parameters are those of :data:`PARAMETER_NAMES` (float or NaN).
 
@@ -72,7 +74,8 @@ class SpeedLimiter:
         self.min_jerk = -p['max_jerk'] if _nan(p['min_jerk']) else p['min_jerk']
 
     def limit(self, v, v0, v1, dt):
-        """Return ``v`` limited by jerk, then acceleration, then velocity.
+        """
+        Return ``v`` limited by jerk, then acceleration, then velocity.
 
         :param v: requested command (channel units).
         :param v0: previous limited command.
@@ -93,7 +96,8 @@ class SpeedLimiter:
         return v
 
     def limit_acceleration(self, v, v0, dt):
-        """Limit the change ``v - v0`` over ``dt`` (s) by the direction-dependent limits.
+        """
+        Limit the change ``v - v0`` over ``dt`` (s) by the direction-dependent limits.
 
         Moving forwards (``v0 > 0``): ``[max_deceleration, max_acceleration] * dt``;
         backwards (``v0 < 0``): ``[max_acceleration_reverse, max_deceleration_reverse] * dt``;

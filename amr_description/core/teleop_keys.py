@@ -1,7 +1,8 @@
 # Copyright 2026 The amr_description Authors
 # Licensed under the Apache License, Version 2.0
 
-"""Keyboard -> velocity command mapping of ``teleop_twist_keyboard`` (pure, no rclpy).
+"""
+Keyboard -> velocity command mapping of ``teleop_twist_keyboard`` (pure, no rclpy).
 
 Reproduces the key map and speed scaling of the upstream ROS 2 ``teleop_twist_keyboard``
 (jazzy): a movement key sets direction factors ``(x, y, z, th)`` in {-1, 0, 1}; the command is
@@ -78,7 +79,8 @@ CTRL-C to quit
 
 
 def format_speeds(speed, turn):
-    """Return the status line printed after each speed change.
+    """
+    Return the status line printed after each speed change.
 
     :param speed: linear speed scale (m/s).
     :param turn: angular speed scale (rad/s).
@@ -90,7 +92,8 @@ def format_speeds(speed, turn):
 
 @dataclass
 class TeleopState:
-    """What the keyboard teleop remembers between key presses.
+    """
+    What the keyboard teleop remembers between key presses.
 
     :ivar speed: linear speed scale (m/s).
     :ivar turn: angular speed scale (rad/s).
@@ -110,7 +113,8 @@ class TeleopState:
     status: int = 0
 
     def twist(self):
-        """Return the command for the current state.
+        """
+        Return the command for the current state.
 
         :returns: ``(linear_x, linear_y, linear_z, angular_z)`` in m/s and rad/s (angular x
             and y are always 0).
@@ -121,7 +125,8 @@ class TeleopState:
 
 @dataclass
 class KeyResult:
-    """What to do after a key press.
+    """
+    What to do after a key press.
 
     :ivar finished: True for Ctrl-C (stop reading keys; the caller publishes zero and exits).
     :ivar publish: True when a twist must be published (every key except Ctrl-C).
@@ -134,7 +139,8 @@ class KeyResult:
 
 
 def apply_key(state, key):
-    """Update ``state`` for one key press, as upstream teleop_twist_keyboard does.
+    """
+    Update ``state`` for one key press, as upstream teleop_twist_keyboard does.
 
     :param state: a :class:`TeleopState`, modified in place.
     :param key: the key read (a one-character str; ``''`` counts as "any other key").
@@ -159,7 +165,8 @@ def apply_key(state, key):
 
 
 def stop(state):
-    """Zero the direction of ``state`` (key timeout or exit); speeds are kept.
+    """
+    Zero the direction of ``state`` (key timeout or exit); speeds are kept.
 
     :param state: a :class:`TeleopState`, modified in place.
     """
@@ -167,7 +174,8 @@ def stop(state):
 
 
 def check_parameters(stamped, frame_id, speed, turn, key_timeout):
-    """Validate the node parameters.
+    """
+    Validate the node parameters.
 
     :param stamped: publish TwistStamped (True) or Twist (False).
     :param frame_id: header frame of TwistStamped; must be empty when not stamped.

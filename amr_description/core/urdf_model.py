@@ -1,7 +1,8 @@
 # Copyright 2026 The amr_description Authors
 # Licensed under the Apache License, Version 2.0
 
-"""A URDF kinematic tree parsed with yourdfpy, with tree queries and link poses (no rclpy).
+"""
+A URDF kinematic tree parsed with yourdfpy, with tree queries and link poses (no rclpy).
 
 yourdfpy parses the elements; this module adds what yourdfpy leaves out when it does not
 build a scene graph: the root link, the joint above each link, the checks that make a tree
@@ -23,7 +24,8 @@ from .kinematics import MOVING_JOINT_TYPES
 
 @dataclass
 class RobotModel:
-    """A parsed URDF.
+    """
+    A parsed URDF.
 
     :param name: the robot name.
     :param root: name of the root link (the link that is no joint's child).
@@ -43,7 +45,8 @@ class RobotModel:
     urdf: object
 
     def chain(self, link):
-        """Return the joints from the root down to ``link``, root first (a list).
+        """
+        Return the joints from the root down to ``link``, root first (a list).
 
         :raises KeyError: when ``link`` is not a link of the model.
         :raises ValueError: when the joints above ``link`` form a cycle.
@@ -60,7 +63,8 @@ class RobotModel:
         return joints[::-1]
 
     def link_pose(self, link, positions=None):
-        """Return the pose of ``link`` in the root frame, shape (4, 4).
+        """
+        Return the pose of ``link`` in the root frame, shape (4, 4).
 
         :param link: link name.
         :param positions: dict joint name -> position (rad or m); missing joints are at 0,
@@ -77,7 +81,8 @@ class RobotModel:
         return [j for j in self.joints.values() if j.type == 'fixed']
 
     def resolve_mimic(self, positions):
-        """Return ``positions`` plus the positions of mimic joints whose parent is known.
+        """
+        Return ``positions`` plus the positions of mimic joints whose parent is known.
 
         :param positions: dict joint name -> position.
         :returns: a new dict; a mimic joint gets ``multiplier * parent + offset`` (URDF
@@ -109,7 +114,8 @@ def _one_line(text):
 
 
 def parse_urdf(urdf_xml, source='robot_description'):
-    """Parse a URDF document into a :class:`RobotModel`.
+    """
+    Parse a URDF document into a :class:`RobotModel`.
 
     :param urdf_xml: the URDF, str or bytes.
     :param source: what to name in error messages (a file path or parameter name).
@@ -175,7 +181,8 @@ def parse_urdf(urdf_xml, source='robot_description'):
 
 
 def parse_urdf_file(path):
-    """Read and parse a URDF file.
+    """
+    Read and parse a URDF file.
 
     :param path: file path.
     :returns: ``(urdf_xml str, RobotModel)``.

@@ -1,7 +1,8 @@
 # Copyright 2026 The amr_description Authors
 # Licensed under the Apache License, Version 2.0
 
-"""Descriptions of what a stack starts: processes, ROS nodes, exit handlers, launch arguments.
+"""
+Descriptions of what a stack starts: processes, ROS nodes, exit handlers, launch arguments.
 
 These mirror the entities of upstream ``launch`` / ``launch_ros`` (ROS 2 Jazzy) that the
 tutorial's launch files use: ``ExecuteProcess``, ``launch_ros.actions.Node``,
@@ -23,7 +24,8 @@ class LaunchError(Exception):
 
 
 def parse_bool(text, name='value'):
-    """Parse a launch-argument boolean as upstream launch conditions do.
+    """
+    Parse a launch-argument boolean as upstream launch conditions do.
 
     :param text: ``'true'``/``'false'``/``'1'``/``'0'`` (any case; also yes/no/on/off), or bool.
     :param name: argument name, for the error message.
@@ -41,7 +43,8 @@ def parse_bool(text, name='value'):
 
 
 def parse_float(text, name='value'):
-    """Parse a launch-argument number.
+    """
+    Parse a launch-argument number.
 
     :param text: a decimal number as str (or a number).
     :param name: argument name, for the error message.
@@ -58,7 +61,8 @@ def parse_float(text, name='value'):
 
 
 class DeclareLaunchArgument:
-    """A launch argument set as ``name:=value`` (``launch.actions.DeclareLaunchArgument``).
+    """
+    A launch argument set as ``name:=value`` (``launch.actions.DeclareLaunchArgument``).
 
     :param name: argument name.
     :param default_value: default as str (None: the argument is mandatory).
@@ -76,7 +80,8 @@ class DeclareLaunchArgument:
 
 
 def parse_launch_arguments(declared, argv):
-    """Resolve ``name:=value`` command-line arguments against declared launch arguments.
+    """
+    Resolve ``name:=value`` command-line arguments against declared launch arguments.
 
     :param declared: list of :class:`DeclareLaunchArgument`.
     :param argv: list of ``'name:=value'`` strings.
@@ -110,7 +115,8 @@ def parse_launch_arguments(declared, argv):
 
 
 def format_arguments(declared):
-    """Format declared launch arguments the way ``ros2 launch --show-args`` prints them.
+    """
+    Format declared launch arguments the way ``ros2 launch --show-args`` prints them.
 
     :param declared: list of :class:`DeclareLaunchArgument`.
     :returns: the text, ending with a newline.
@@ -132,7 +138,8 @@ def format_arguments(declared):
 
 
 class Process:
-    """A process to run (like ``launch.actions.ExecuteProcess``).
+    """
+    A process to run (like ``launch.actions.ExecuteProcess``).
 
     :param cmd: argv, a list of str (the first is the executable).
     :param name: base of the process label; the orchestrator appends ``-N`` (default: the
@@ -164,7 +171,8 @@ class Process:
         self.cwd = cwd
 
     def build_cmd(self, params_dir=None):
-        """Return the argv to execute.
+        """
+        Return the argv to execute.
 
         :param params_dir: unused for plain processes (see :meth:`Node.build_cmd`).
         :returns: list of str.
@@ -177,7 +185,8 @@ class Process:
 
 
 def find_executable(package, executable):
-    """Find ``<prefix>/lib/<package>/<executable>`` through the ament index, as ``ros2 run``.
+    """
+    Find ``<prefix>/lib/<package>/<executable>`` through the ament index, as ``ros2 run``.
 
     :param package: package name.
     :param executable: executable name.
@@ -199,7 +208,8 @@ def find_executable(package, executable):
 
 
 def write_params_file(params, directory=None):
-    """Write a parameter dict to a temporary YAML file as ``launch_ros`` does.
+    """
+    Write a parameter dict to a temporary YAML file as ``launch_ros`` does.
 
     The file holds ``{'/**': {'ros__parameters': params}}`` so it applies to any node name.
 
@@ -220,7 +230,8 @@ def _normalize_namespace(namespace):
 
 
 class Node(Process):
-    """A ROS node to run (like ``launch_ros.actions.Node``).
+    """
+    A ROS node to run (like ``launch_ros.actions.Node``).
 
     The command line is built as launch_ros builds it::
 
@@ -260,7 +271,8 @@ class Node(Process):
         super().__init__([exe_path or executable], name=executable, **kwargs)
 
     def build_cmd(self, params_dir=None):
-        """Return the argv; parameter dicts are written to fresh temporary YAML files.
+        """
+        Return the argv; parameter dicts are written to fresh temporary YAML files.
 
         :param params_dir: directory for the parameter files (default: system temp dir).
         :returns: list of str.
@@ -289,7 +301,8 @@ class Node(Process):
 
 
 class OnProcessExit:
-    """Start actions when a target process exits (like ``launch.event_handlers.OnProcessExit``).
+    """
+    Start actions when a target process exits (like ``launch.event_handlers.OnProcessExit``).
 
     :param target_action: the :class:`Process` to watch.
     :param on_exit: list of :class:`Process` (or other handlers) to start then.

@@ -1,7 +1,8 @@
 # Copyright 2026 The amr_description Authors
 # Licensed under the Apache License, Version 2.0
 
-"""``ros2 run amr_description bringup STACK [name:=value ...]``: run a stack in the foreground.
+"""
+``ros2 run amr_description bringup STACK [name:=value ...]``: run a stack in the foreground.
 
 Like ``ros2 launch``: ``-s``/``--show-args`` lists the stack's launch arguments, Ctrl-C shuts
 the stack down (SIGINT, then SIGTERM after 5 s, then SIGKILL after 5 s more).
@@ -19,7 +20,8 @@ from amr_description.launch.stacks import STACKS
 
 
 def add_arguments(parser):
-    """Add the stack name, its ``name:=value`` arguments and ``--show-args`` to ``parser``.
+    """
+    Add the stack name, its ``name:=value`` arguments and ``--show-args`` to ``parser``.
 
     :param parser: an :class:`argparse.ArgumentParser`.
     """
@@ -34,7 +36,8 @@ def add_arguments(parser):
 
 
 def run(stack, launch_arguments, show_args=False, out=None):
-    """Run (or describe) a stack; errors are printed on one line.
+    """
+    Run (or describe) a stack; errors are printed on one line.
 
     :param stack: stack name (``sim``, ``sim.launch.py``, ...).
     :param launch_arguments: list of ``'name:=value'``.
@@ -56,7 +59,8 @@ def run(stack, launch_arguments, show_args=False, out=None):
 
 
 def main(argv=None):
-    """Entry point of the ``bringup`` executable.
+    """
+    Entry point of the ``bringup`` executable.
 
     :param argv: arguments without the program name (default ``sys.argv[1:]``, ROS arguments
         after ``--ros-args`` are ignored).

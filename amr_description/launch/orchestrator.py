@@ -1,7 +1,8 @@
 # Copyright 2026 The amr_description Authors
 # Licensed under the Apache License, Version 2.0
 
-"""Run a stack of processes the way ``ros2 launch`` does: start, watch, chain, shut down.
+"""
+Run a stack of processes the way ``ros2 launch`` does: start, watch, chain, shut down.
 
 Reproduces the observable behaviour of upstream ``launch`` (ROS 2 Jazzy, ``ExecuteLocal``):
 
@@ -49,7 +50,8 @@ _PR_SET_PDEATHSIG = 1
 
 
 def _child_setup(parent_pid):
-    """Return a ``preexec_fn`` that ties the child's life to the orchestrator process.
+    """
+    Return a ``preexec_fn`` that ties the child's life to the orchestrator process.
 
     :param parent_pid: pid of the orchestrator.
     :returns: a callable run in the child between fork and exec.
@@ -70,7 +72,8 @@ def _child_setup(parent_pid):
 
 
 class RunningProcess:
-    """What the orchestrator knows about one started process action.
+    """
+    What the orchestrator knows about one started process action.
 
     :ivar action: the :class:`~amr_description.launch.actions.Process`.
     :ivar label: ``<name>-<N>``, kept across respawns.
@@ -98,7 +101,8 @@ class RunningProcess:
 
 
 class Orchestrator:
-    """Start and supervise a list of actions (processes, nodes, exit handlers).
+    """
+    Start and supervise a list of actions (processes, nodes, exit handlers).
 
     :param actions: list of :class:`~amr_description.launch.actions.Process` (or
         :class:`~amr_description.launch.actions.Node`) and
@@ -139,7 +143,8 @@ class Orchestrator:
 
     # ----------------------------------------------------------------- public API
     def start(self):
-        """Start the actions in a background thread and return immediately.
+        """
+        Start the actions in a background thread and return immediately.
 
         :returns: self.
         :raises RuntimeError: when already started.
@@ -151,7 +156,8 @@ class Orchestrator:
         return self
 
     def shutdown(self, reason='shutdown requested', due_to_sigint=False):
-        """Request the stack shutdown: SIGINT, then SIGTERM, then SIGKILL to each process.
+        """
+        Request the stack shutdown: SIGINT, then SIGTERM, then SIGKILL to each process.
 
         Safe to call from any thread or a signal handler, and more than once.
 
@@ -161,7 +167,8 @@ class Orchestrator:
         self._events.put(('shutdown', reason, due_to_sigint))
 
     def wait(self, timeout=None):
-        """Wait until every process has exited and nothing more can start.
+        """
+        Wait until every process has exited and nothing more can start.
 
         :param timeout: seconds, or None to wait forever.
         :returns: True when the stack is finished, False on timeout.
@@ -172,7 +179,8 @@ class Orchestrator:
         return not self._thread.is_alive()
 
     def run(self):
-        """Run in the foreground until done, handling Ctrl-C / SIGTERM like ``ros2 launch``.
+        """
+        Run in the foreground until done, handling Ctrl-C / SIGTERM like ``ros2 launch``.
 
         Must be called from the main thread.
 
@@ -203,7 +211,8 @@ class Orchestrator:
         return False
 
     def find(self, name):
-        """Return the :class:`RunningProcess` records whose action name or label is ``name``.
+        """
+        Return the :class:`RunningProcess` records whose action name or label is ``name``.
 
         :param name: e.g. ``'spawner'`` or ``'spawner-4'``.
         :returns: list of records, in start order.

@@ -1,7 +1,8 @@
 # Copyright 2026 The amr_description Authors
 # Licensed under the Apache License, Version 2.0
 
-"""The stacks that replace the tutorial's launch files: ``display`` and ``sim``.
+"""
+The stacks that replace the tutorial's launch files: ``display`` and ``sim``.
 
 Each stack is a function ``stack(arguments) -> list of actions`` plus its declared launch
 arguments (``STACKS[name] = (function, declared_arguments, description)``). Arguments are the
@@ -28,7 +29,8 @@ PACKAGE = 'amr_description'
 
 
 def urdf_path():
-    """Return the installed URDF, ``<share>/amr_description/urdf/amr.urdf``.
+    """
+    Return the installed URDF, ``<share>/amr_description/urdf/amr.urdf``.
 
     :returns: the path (str).
     :raises LaunchError: when the package is not installed.
@@ -43,7 +45,8 @@ def urdf_path():
 
 
 def read_urdf(path=None):
-    """Return the URDF text given to robot_state_publisher as ``robot_description``.
+    """
+    Return the URDF text given to robot_state_publisher as ``robot_description``.
 
     :param path: URDF file (default: :func:`urdf_path`).
     :returns: the file contents, str.
@@ -78,7 +81,8 @@ SIM_ARGUMENTS = [
 
 
 def display(args):
-    """Describe the ``display`` stack (the tutorial's display.launch.py without RViz).
+    """
+    Describe the ``display`` stack (the tutorial's display.launch.py without RViz).
 
     robot_state_publisher with ``robot_description`` = the installed URDF, and
     joint_state_publisher.
@@ -98,7 +102,8 @@ def display(args):
 
 
 def sim(args):
-    """Describe the ``sim`` stack (the tutorial's Gazebo + ros2_control launch file).
+    """
+    Describe the ``sim`` stack (the tutorial's Gazebo + ros2_control launch file).
 
     mujoco_sim (``real_time_factor``, ``headless``, ``/diff_drive_controller/odom`` remapped
     to ``/odom``); robot_state_publisher with ``use_sim_time``; ``create -topic
@@ -154,7 +159,8 @@ STACKS = {
 
 
 def stack_name(name):
-    """Map ``sim``, ``sim.launch.py`` or ``sim_launch.py`` to a stack name.
+    """
+    Map ``sim``, ``sim.launch.py`` or ``sim_launch.py`` to a stack name.
 
     :param name: what the user typed.
     :returns: the key of :data:`STACKS`.
@@ -172,7 +178,8 @@ def stack_name(name):
 
 
 def resolve(name, argv=()):
-    """Parse ``name:=value`` arguments for a stack.
+    """
+    Parse ``name:=value`` arguments for a stack.
 
     :param name: stack name (see :func:`stack_name`).
     :param argv: list of ``'name:=value'``.
@@ -184,7 +191,8 @@ def resolve(name, argv=()):
 
 
 def describe(name, argv=()):
-    """Return the actions of stack ``name`` for ``name:=value`` arguments ``argv``.
+    """
+    Return the actions of stack ``name`` for ``name:=value`` arguments ``argv``.
 
     :param name: stack name (see :func:`stack_name`).
     :param argv: list of ``'name:=value'``.

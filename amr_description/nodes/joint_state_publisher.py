@@ -1,7 +1,8 @@
 # Copyright 2026 The amr_description Authors
 # Licensed under the Apache License, Version 2.0
 
-"""joint_state_publisher (no GUI): sensor_msgs/JointState of every movable joint at ``rate``.
+"""
+joint_state_publisher (no GUI): sensor_msgs/JointState of every movable joint at ``rate``.
 
 Follows upstream ``joint_state_publisher`` (ROS 2):
 
@@ -120,7 +121,8 @@ class JointStatePublisher(Node):
 
 
 def main(args=None):
-    """Run :class:`JointStatePublisher` until Ctrl-C.
+    """
+    Run :class:`JointStatePublisher` until Ctrl-C.
 
     :param args: command-line arguments for rclpy (default ``sys.argv``).
     :returns: 0 on a clean shutdown, 1 on a bad parameter (one-line error).

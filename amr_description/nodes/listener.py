@@ -1,7 +1,8 @@
 # Copyright 2026 The amr_description Authors
 # Licensed under the Apache License, Version 2.0
 
-"""Minimal subscriber of the ROS 2 "writing a simple publisher and subscriber" tutorial.
+"""
+Minimal subscriber of the ROS 2 "writing a simple publisher and subscriber" tutorial.
 
 Subscribes to ``std_msgs/msg/String`` on ``topic`` and logs ``I heard: "<data>"``, like the
 tutorial's ``minimal_subscriber``.
@@ -24,7 +25,8 @@ class MinimalSubscriber(Node):
             String, 'topic', self.listener_callback, 10)
 
     def listener_callback(self, msg):
-        """Log the received text.
+        """
+        Log the received text.
 
         :param msg: the received ``std_msgs/msg/String``.
         """
@@ -32,7 +34,8 @@ class MinimalSubscriber(Node):
 
 
 def main(args=None):
-    """Spin :class:`MinimalSubscriber` until Ctrl-C (exit code 0, no traceback).
+    """
+    Spin :class:`MinimalSubscriber` until Ctrl-C (exit code 0, no traceback).
 
     :param args: command-line arguments for rclpy (default ``sys.argv``).
     """

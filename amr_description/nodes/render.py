@@ -1,7 +1,8 @@
 # Copyright 2026 The amr_description Authors
 # Licensed under the Apache License, Version 2.0
 
-"""``render``: draw the robot headless to a PNG, from a URDF file or ``/robot_description``.
+"""
+``render``: draw the robot headless to a PNG, from a URDF file or ``/robot_description``.
 
 ``ros2 run amr_description render [--urdf PATH] [-o out.png] [--width W] [--height H]
 [--frames] [--timeout S]``. Without ``--urdf`` a short-lived node ``render`` takes the model
@@ -54,7 +55,8 @@ def _description_from_topic(args, timeout):
 
 
 def main(args=None):
-    """Render the robot and write the PNG.
+    """
+    Render the robot and write the PNG.
 
     :param args: full argument list including ROS arguments (default ``sys.argv``).
     :returns: 0 on success, 1 on a bad URDF, a missing description or an unwritable file

@@ -1,7 +1,8 @@
 # Copyright 2026 The amr_description Authors
 # Licensed under the Apache License, Version 2.0
 
-"""robot_state_publisher: URDF + /joint_states -> /tf, /tf_static and /robot_description.
+"""
+robot_state_publisher: URDF + /joint_states -> /tf, /tf_static and /robot_description.
 
 Reproduces the behaviour of upstream ``robot_state_publisher`` (ROS 2 Jazzy):
 
@@ -57,7 +58,8 @@ class RobotStatePublisher(Node):
     """Node ``robot_state_publisher`` (see the module docstring for its interface)."""
 
     def __init__(self):
-        """Declare the parameters, parse the model and create publishers and subscription.
+        """
+        Declare the parameters, parse the model and create publishers and subscription.
 
         :raises ValueError: when ``robot_description`` is empty or not a valid URDF (one line).
         """
@@ -177,7 +179,8 @@ class RobotStatePublisher(Node):
 
 
 def main(args=None):
-    """Run :class:`RobotStatePublisher` until Ctrl-C.
+    """
+    Run :class:`RobotStatePublisher` until Ctrl-C.
 
     :param args: command-line arguments for rclpy (default ``sys.argv``).
     :returns: 0 on a clean shutdown, 1 when ``robot_description`` is empty or invalid or a

@@ -1,6 +1,7 @@
 # Copyright 2026 The amr_description Authors
 # Licensed under the Apache License, Version 2.0
-"""spawner: load, configure and activate controllers through controller-manager services.
+"""
+spawner: load, configure and activate controllers through controller-manager services.
 
 Command line and log lines as ros2_control's ``controller_manager spawner`` (jazzy)::
 
@@ -20,11 +21,10 @@ import os
 import sys
 import time
 
+from amr_description.core import ros_param_file
 import rclpy
 from rclpy.node import Node
 from rclpy.signals import SignalHandlerOptions
-
-from amr_description.core import ros_param_file
 
 STRICT = 2
 BEST_EFFORT = 1
@@ -44,7 +44,8 @@ class Spawner(Node):
 
     def call(self, service_name, service_type, request, service_timeout=0.0, call_timeout=10.0,
              attempts=3):
-        """Call a service and return its response.
+        """
+        Call a service and return its response.
 
         :param service_name: absolute service name.
         :param service_type: service class.
@@ -82,7 +83,9 @@ class Spawner(Node):
 
     def set_cm_parameter(self, cm, name, value):
         """Set string parameter ``name`` on the controller manager; returns True when set."""
-        from rcl_interfaces.msg import Parameter, ParameterType, ParameterValue
+        from rcl_interfaces.msg import Parameter
+        from rcl_interfaces.msg import ParameterType
+        from rcl_interfaces.msg import ParameterValue
         from rcl_interfaces.srv import SetParameters
         request = SetParameters.Request()
         request.parameters = [Parameter(name=name, value=ParameterValue(

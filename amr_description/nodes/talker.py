@@ -1,7 +1,8 @@
 # Copyright 2026 The amr_description Authors
 # Licensed under the Apache License, Version 2.0
 
-"""Minimal publisher of the ROS 2 "writing a simple publisher and subscriber" tutorial.
+"""
+Minimal publisher of the ROS 2 "writing a simple publisher and subscriber" tutorial.
 
 Publishes ``std_msgs/msg/String`` ``'Hello World: N'`` (N from 0) on ``topic`` every 0.5 s
 and logs ``Publishing: "Hello World: N"``, like the tutorial's ``minimal_publisher``.
@@ -36,7 +37,8 @@ class MinimalPublisher(Node):
 
 
 def main(args=None):
-    """Spin :class:`MinimalPublisher` until Ctrl-C (exit code 0, no traceback).
+    """
+    Spin :class:`MinimalPublisher` until Ctrl-C (exit code 0, no traceback).
 
     :param args: command-line arguments for rclpy (default ``sys.argv``).
     """

@@ -1,7 +1,8 @@
 # Copyright 2026 The amr_description Authors
 # Licensed under the Apache License, Version 2.0
 
-"""Keyboard teleoperation: keys in the terminal -> velocity commands on ``cmd_vel``.
+"""
+Keyboard teleoperation: keys in the terminal -> velocity commands on ``cmd_vel``.
 
 Behaves as the upstream ROS 2 ``teleop_twist_keyboard`` (jazzy): parameters ``stamped``
 (false: ``geometry_msgs/Twist``; true: ``geometry_msgs/TwistStamped`` stamped with the node's
@@ -42,7 +43,8 @@ from rclpy.signals import SignalHandlerOptions
 
 
 class TeleopTwistKeyboard(Node):
-    """Node ``teleop_twist_keyboard`` publishing Twist or TwistStamped on ``cmd_vel``.
+    """
+    Node ``teleop_twist_keyboard`` publishing Twist or TwistStamped on ``cmd_vel``.
 
     :raises ValueError: on invalid parameters (one-line message naming the parameter).
     """
@@ -64,7 +66,8 @@ class TeleopTwistKeyboard(Node):
         self.publisher = self.create_publisher(msg_type, 'cmd_vel', 10)
 
     def publish_twist(self, linear_x, linear_y, linear_z, angular_z):
-        """Publish one command.
+        """
+        Publish one command.
 
         :param linear_x: m/s, forward.
         :param linear_y: m/s, left.
@@ -87,7 +90,8 @@ class TeleopTwistKeyboard(Node):
 
 
 def read_key(fd, settings, timeout):
-    """Read one key from terminal ``fd`` in raw mode, restoring ``settings`` afterwards.
+    """
+    Read one key from terminal ``fd`` in raw mode, restoring ``settings`` afterwards.
 
     :param fd: file descriptor of the terminal.
     :param settings: termios attributes to restore.
@@ -136,7 +140,8 @@ def _interrupt(signum, frame):
 
 
 def main(args=None):
-    """Run the keyboard teleop until Ctrl-C; publish a zero twist and restore the terminal.
+    """
+    Run the keyboard teleop until Ctrl-C; publish a zero twist and restore the terminal.
 
     :param args: ROS command-line arguments (default ``sys.argv``).
     :returns: exit code: 0, or 1 when stdin is not a terminal or a parameter is invalid.

@@ -1,7 +1,8 @@
 # Copyright 2026 The amr_description Authors
 # Licensed under the Apache License, Version 2.0
 
-"""Headless picture of a URDF robot with MuJoCo's renderer (no rclpy).
+"""
+Headless picture of a URDF robot with MuJoCo's renderer (no rclpy).
 
 The robot comes from :func:`amr_description.sim.urdf_to_mjcf.urdf_to_spec` (welded to the
 world, zero joint positions, URDF colours); this module adds a checkered ground plane at z = 0,
@@ -21,7 +22,8 @@ def _ensure_gl():
 
 
 def build_scene(urdf_xml, width=640, height=480):
-    """Return a compiled ``(model, data)`` of the robot on a ground plane with a light.
+    """
+    Return a compiled ``(model, data)`` of the robot on a ground plane with a light.
 
     :param urdf_xml: URDF text (str or bytes).
     :param width: image width the offscreen buffer must hold, pixels.
@@ -55,7 +57,8 @@ def build_scene(urdf_xml, width=640, height=480):
 
 
 def frame_camera(model, data, azimuth=135.0, elevation=-25.0):
-    """Return a free ``mujoco.MjvCamera`` that frames every robot geom.
+    """
+    Return a free ``mujoco.MjvCamera`` that frames every robot geom.
 
     :param model: ``mujoco.MjModel``.
     :param data: ``mujoco.MjData`` after ``mj_forward``.
@@ -89,7 +92,8 @@ def frame_camera(model, data, azimuth=135.0, elevation=-25.0):
 
 
 def render_urdf(urdf_xml, width=640, height=480, frames=False):
-    """Render a URDF robot to an RGB image.
+    """
+    Render a URDF robot to an RGB image.
 
     :param urdf_xml: URDF text.
     :param width: pixels (> 0).
@@ -117,7 +121,8 @@ def render_urdf(urdf_xml, width=640, height=480, frames=False):
 
 
 def save_png(image, path):
-    """Write an (H, W, 3) uint8 image to ``path`` as PNG (matplotlib).
+    """
+    Write an (H, W, 3) uint8 image to ``path`` as PNG (matplotlib).
 
     :raises ValueError: one line when the file cannot be written.
     """

@@ -1,6 +1,7 @@
 # Copyright 2026 The amr_description Authors
 # Licensed under the Apache License, Version 2.0
-"""Full simulation: mujoco_sim + create + spawner; drive with TwistStamped, check the motion.
+"""
+Full simulation: mujoco_sim + create + spawner; drive with TwistStamped, check the motion.
 
 The simulator runs as fast as possible; to command exact sim-time durations it is paused
 and advanced with ``step_simulation`` in 0.25 s chunks, each preceded by a fresh command

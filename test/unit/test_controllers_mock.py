@@ -1,6 +1,7 @@
 # Copyright 2026 The amr_description Authors
 # Licensed under the Apache License, Version 2.0
-"""Controller manager + joint_state_broadcaster + diff_drive_controller on mock hardware.
+"""
+Controller manager + joint_state_broadcaster + diff_drive_controller on mock hardware.
 
 In-process rclpy (own ROS_DOMAIN_ID, localhost discovery); ``update()`` is driven with
 synthetic time, so results are deterministic and compared with closed-form answers.

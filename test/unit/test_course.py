@@ -5,8 +5,6 @@
 
 import math
 
-import pytest
-
 from amr_description.core.course import closure_error
 from amr_description.core.course import CourseFollower
 from amr_description.core.course import format_leg_table
@@ -14,6 +12,7 @@ from amr_description.core.course import Leg
 from amr_description.core.course import leg_delta
 from amr_description.core.course import square_course
 from amr_description.core.course import wrap_angle
+import pytest
 
 
 def test_wrap_angle():

@@ -2,9 +2,10 @@
 # Licensed under the Apache License, Version 2.0
 """Wheel kinematics of the differential drive against closed form."""
 
+from amr_description.core.diff_drive_kinematics import body_twist
+from amr_description.core.diff_drive_kinematics import side_mean
+from amr_description.core.diff_drive_kinematics import wheel_velocities
 import pytest
-
-from amr_description.core.diff_drive_kinematics import body_twist, side_mean, wheel_velocities
 
 
 def test_straight():

@@ -69,7 +69,7 @@ def test_fixed_array_numpy_truncation_and_no_arr():
     msg = PoseWithCovariance()
     msg.covariance[0] = 1.5
     text = my.message_to_yaml(msg, truncate_length=2)
-    assert text.endswith('covariance:\n- 1.5\n- 0.0\n- \'...\'\n')
+    assert text.endswith("covariance:\n- 1.5\n- 0.0\n- '...'\n")
     assert my.message_to_ordereddict(msg)['covariance'] == [1.5] + [0.0] * 35
     assert my.message_to_yaml(msg, no_arr=True).endswith(
         "covariance: '<array type: double[36]>'\n")
@@ -121,8 +121,8 @@ def test_sequences_arrays_bytes_bool_specials_from_yaml():
     assert my.message_from_values(Float64, '{data: nan}')[0].data != 0.0
     cov = my.message_from_values(PoseWithCovariance, {'covariance': list(range(36))})[0]
     assert cov.covariance[35] == 35.0
-    prim = my.message_from_values(SolidPrimitive, '{dimensions: [1, 2, 3], polygon: '
-                                                   '{points: [{x: 1}, {y: 2}]}}')[0]
+    prim = my.message_from_values(
+        SolidPrimitive, '{dimensions: [1, 2, 3], polygon: {points: [{x: 1}, {y: 2}]}}')[0]
     assert list(prim.dimensions) == [1.0, 2.0, 3.0]
     assert prim.polygon.points[1].y == 2.0
 

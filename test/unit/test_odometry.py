@@ -4,9 +4,9 @@
 
 import math
 
+from amr_description.core.odometry import Odometry
+from amr_description.core.odometry import RollingMean
 import pytest
-
-from amr_description.core.odometry import Odometry, RollingMean
 
 S, R = 0.4, 0.1
 

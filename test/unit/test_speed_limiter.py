@@ -4,9 +4,8 @@
 
 import math
 
-import pytest
-
 from amr_description.core.speed_limiter import SpeedLimiter
+import pytest
 
 
 def test_no_limits_passes_through():
