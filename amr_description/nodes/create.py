@@ -1,7 +1,8 @@
 # Copyright 2026 The amr_description Authors
 # Licensed under the Apache License, Version 2.0
 
-"""``create``: spawn a robot into ``mujoco_sim`` (the ``ros_gz_sim create`` command line).
+"""
+``create``: spawn a robot into ``mujoco_sim`` (the ``ros_gz_sim create`` command line).
 
 Flags as upstream ``ros_gz_sim create``: one source of ``-topic TOPIC`` (a std_msgs/String
 published transient-local, e.g. ``robot_description``), ``-file PATH`` (also
@@ -70,7 +71,8 @@ class Create(Node):
     """Node ``ros_gz_sim``-like ``create``: gets the URDF and calls the spawn service."""
 
     def __init__(self, opts):
-        """Create the node (``-param`` is read from its parameter of that name).
+        """
+        Create the node (``-param`` is read from its parameter of that name).
 
         :param opts: parsed :func:`build_parser` options.
         """
@@ -81,7 +83,8 @@ class Create(Node):
         self._client = self.create_client(SpawnEntity, opts.service)
 
     def description(self):
-        """Return the URDF text from the chosen source.
+        """
+        Return the URDF text from the chosen source.
 
         :raises RuntimeError: one line when it cannot be obtained in time.
         """

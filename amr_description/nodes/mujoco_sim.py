@@ -1,7 +1,8 @@
 # Copyright 2026 The amr_description Authors
 # Licensed under the Apache License, Version 2.0
 
-"""The ``mujoco_sim`` node: MuJoCo physics + in-process controller manager (gz sim's role).
+"""
+The ``mujoco_sim`` node: MuJoCo physics + in-process controller manager (gz sim's role).
 
 Parameters (read at start):
   ``physics_step`` (double, 0.001 s), ``real_time_factor`` (double, 1.0; 0 = as fast as
@@ -39,6 +40,9 @@ import queue
 import threading
 import time
 
+from amr_description.sim.urdf_to_mjcf import resolve_uri
+from amr_description.sim.urdf_to_mjcf import urdf_to_spec
+from amr_description.sim.world import World
 from nav_msgs.msg import Odometry
 import rclpy
 from rclpy.executors import ExternalShutdownException
@@ -46,10 +50,6 @@ from rclpy.executors import SingleThreadedExecutor
 from rclpy.node import Node
 from rclpy.time import Time
 from rosgraph_msgs.msg import Clock
-
-from amr_description.sim.urdf_to_mjcf import resolve_uri
-from amr_description.sim.urdf_to_mjcf import urdf_to_spec
-from amr_description.sim.world import World
 
 NO_ROBOT_CLOCK_RATE = 100.0  # Hz of sim time while no controller manager runs
 REQUEST_TIMEOUT = 30.0  # s a service waits for the simulation thread
@@ -64,7 +64,8 @@ def _sim_msgs():
 
 
 def make_controller_manager(urdf_xml, executor, hardware_factory, parameters_file, namespace):
-    """Create the in-sim controller manager (``amr_description.control.controller_manager``).
+    """
+    Create the in-sim controller manager (``amr_description.control.controller_manager``).
 
     :returns: the ControllerManager node, added with its controllers to ``executor``.
     :raises ValueError: one line, on bad input (unknown plugin, missing joint, bad YAML).
@@ -77,7 +78,8 @@ def make_controller_manager(urdf_xml, executor, hardware_factory, parameters_fil
 
 
 def take_over_time_source(node):
-    """Stop a node's /clock subscription so the caller can drive its sim time directly.
+    """
+    Stop a node's /clock subscription so the caller can drive its sim time directly.
 
     Only for nodes in this process with ``use_sim_time`` true; the caller then sets the time
     of the source's clocks at every /clock instant, as rclpy ``TimeSource.clock_callback``
@@ -123,7 +125,8 @@ class MujocoSim(Node):
     """Node ``mujoco_sim``: see the module docstring for parameters, topics and services."""
 
     def __init__(self, executor):
-        """Declare parameters, build the empty world, create publishers and services.
+        """
+        Declare parameters, build the empty world, create publishers and services.
 
         :param executor: the rclpy executor spinning this node (controller manager nodes are
             added to it).
@@ -196,7 +199,8 @@ class MujocoSim(Node):
 
     # ---------------------------------------------------------------- requests from services
     def _call(self, function, timeout=REQUEST_TIMEOUT):
-        """Run ``function()`` in the simulation thread and return its result.
+        """
+        Run ``function()`` in the simulation thread and return its result.
 
         :raises TimeoutError: when the simulation thread does not answer in ``timeout`` s.
         """
@@ -528,7 +532,8 @@ class MujocoSim(Node):
             self._anchor = (now, t)
 
     def _drive_node_clocks(self, t):
-        """Give the in-process controller nodes the current sim time, without DDS.
+        """
+        Give the in-process controller nodes the current sim time, without DDS.
 
         The controller manager and controllers run in this process with ``use_sim_time``
         true. Instead of each receiving every /clock message through its own subscription
@@ -553,7 +558,8 @@ class MujocoSim(Node):
                     clock.set_ros_time_override(now)
 
     def _publish(self, t, force_gt=False):
-        """Queue /clock (and the ground truth when due) at sim time ``t`` (s) for publishing.
+        """
+        Queue /clock (and the ground truth when due) at sim time ``t`` (s) for publishing.
 
         The ground truth is read here, from the state at ``t``; the messages are filled and
         published by the publisher thread, while the simulation thread runs the next

@@ -1,7 +1,8 @@
 # Copyright 2026 The amr_description Authors
 # Licensed under the Apache License, Version 2.0
 
-"""Simulation benchmark: real-time factor, fast-forward speed and start-up time, side by side.
+"""
+Simulation benchmark: real-time factor, fast-forward speed and start-up time, side by side.
 
 Runs, in one invocation, each against fresh processes on a private ROS domain (localhost only):
 
@@ -28,10 +29,9 @@ import sys
 import tempfile
 import time
 
-import mujoco
-
 from amr_description.sim.urdf_to_mjcf import urdf_to_spec
 from amr_description.sim.world import World
+import mujoco
 
 CONTROLLERS = ('joint_state_broadcaster', 'diff_drive_controller')
 
@@ -46,7 +46,8 @@ def _exe(name):
 
 
 def raw_step_rate(urdf_xml, seconds=3.0, physics_step=0.001):
-    """Measure raw ``mj_step`` throughput of the robot resting in the empty world.
+    """
+    Measure raw ``mj_step`` throughput of the robot resting in the empty world.
 
     :param urdf_xml: the robot URDF (str).
     :param seconds: measuring time (wall s).
@@ -94,7 +95,8 @@ class _Stack:
         return proc.log.read().decode(errors='replace')
 
     def activation_time(self):
-        """Return s from start to the last spawner's "Configured and activated" log line.
+        """
+        Return s from start to the last spawner's "Configured and activated" log line.
 
         The spawner logs that line when switch_controller answered ok; its ROS log stamp is
         wall-clock time. None when a spawner has not logged it.
@@ -193,7 +195,8 @@ class _Observer:
         return {c.name for c in future.result().controller if c.state == 'active'}
 
     def clock_sample(self, timeout=5.0):
-        """Return (wall, sim) of one /clock message from a short-lived subscription.
+        """
+        Return (wall, sim) of one /clock message from a short-lived subscription.
 
         Used in fast-forward mode, where receiving every /clock message would load the
         2-core machine with the observer's own callbacks.

@@ -1,7 +1,8 @@
 # Copyright 2026 The amr_description Authors
 # Licensed under the Apache License, Version 2.0
 
-"""MuJoCo hardware component: ros2_control handles <-> ``MjData`` (the gz_ros2_control role).
+"""
+MuJoCo hardware component: ros2_control handles <-> ``MjData`` (the gz_ros2_control role).
 
 State interfaces read the joint's ``qpos`` (``position``: rad or m), ``qvel`` (``velocity``:
 rad/s or m/s) and actuator force (``effort``: N m or N). Command interfaces write the
@@ -21,7 +22,8 @@ _COMMAND_KINDS = ('position', 'velocity', 'effort')
 
 
 class MujocoSystem(SystemInterface):
-    """A ``SystemInterface`` whose joints live in a MuJoCo model.
+    """
+    A ``SystemInterface`` whose joints live in a MuJoCo model.
 
     :param model: the compiled ``mujoco.MjModel`` holding the robot.
     :param data: its ``mujoco.MjData``.
@@ -39,7 +41,8 @@ class MujocoSystem(SystemInterface):
         self._commands = []  # (handle, actuator id, lo, hi, kind, qpos address)
 
     def on_init(self, info):
-        """Create the handles and resolve every joint's addresses once.
+        """
+        Create the handles and resolve every joint's addresses once.
 
         :param info: the ``HardwareInfo`` of this component.
         :returns: True.
@@ -57,7 +60,8 @@ class MujocoSystem(SystemInterface):
         return True
 
     def rebind(self, model, data):
-        """Point at a recompiled model/data (after another entity was spawned) and re-resolve.
+        """
+        Point at a recompiled model/data (after another entity was spawned) and re-resolve.
 
         :param model: the new ``mujoco.MjModel``.
         :param data: the new ``mujoco.MjData``.
@@ -104,7 +108,8 @@ class MujocoSystem(SystemInterface):
         self._commands = commands
 
     def read(self, time, period):
-        """Copy joint positions, velocities and efforts from ``MjData`` into the state handles.
+        """
+        Copy joint positions, velocities and efforts from ``MjData`` into the state handles.
 
         :param time: sim time in s (unused).
         :param period: s since the last read (unused).
@@ -116,7 +121,8 @@ class MujocoSystem(SystemInterface):
         return True
 
     def write(self, time, period):
-        """Copy the command handles into the actuators' ``ctrl`` (clamped; NaN = hold).
+        """
+        Copy the command handles into the actuators' ``ctrl`` (clamped; NaN = hold).
 
         :param time: sim time in s (unused).
         :param period: s since the last write (unused).
@@ -132,7 +138,8 @@ class MujocoSystem(SystemInterface):
         return True
 
     def on_deactivate(self):
-        """Stop the joints: velocity and effort commands to zero, positions held.
+        """
+        Stop the joints: velocity and effort commands to zero, positions held.
 
         :returns: True.
         """

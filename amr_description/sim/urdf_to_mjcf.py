@@ -1,7 +1,8 @@
 # Copyright 2026 The amr_description Authors
 # Licensed under the Apache License, Version 2.0
 
-"""Convert a URDF (with its ``<ros2_control>`` and ``<mujoco>`` blocks) into a ``mujoco.MjSpec``.
+"""
+Convert a URDF (with its ``<ros2_control>`` and ``<mujoco>`` blocks) into a ``mujoco.MjSpec``.
 
 Mapping (URDF -> MuJoCo, units SI, REP 103 axes):
 
@@ -42,10 +43,9 @@ import math
 import os
 import xml.etree.ElementTree as ET
 
+from amr_description.core.ros2_control_info import parse_ros2_control
 import mujoco
 import numpy as np
-
-from amr_description.core.ros2_control_info import parse_ros2_control
 
 _LOG = logging.getLogger(__name__)
 
@@ -66,7 +66,8 @@ _DEFAULT_RGBA = (0.7, 0.7, 0.7, 1.0)
 
 @dataclass
 class MujocoConfig:
-    """The parsed ``<mujoco>`` block of a URDF.
+    """
+    The parsed ``<mujoco>`` block of a URDF.
 
     :param parameters: the ``<ros2_control parameters=...>`` URI (str) or None.
     :param contact: default contact attributes, dict with ``friction`` (3 floats),
@@ -130,7 +131,8 @@ def _actuator_attrs(element, where):
 
 
 def parse_mujoco_block(root):
-    """Read the ``<mujoco>`` child of a URDF ``<robot>`` element.
+    """
+    Read the ``<mujoco>`` child of a URDF ``<robot>`` element.
 
     :param root: the ``<robot>`` ``xml.etree.ElementTree.Element``.
     :returns: a :class:`MujocoConfig` (defaults when there is no block).
@@ -160,7 +162,8 @@ def parse_mujoco_block(root):
 
 
 def resolve_uri(uri):
-    """Resolve ``package://PKG/path``, ``$(find PKG)/path`` or ``file://path`` to a file path.
+    """
+    Resolve ``package://PKG/path``, ``$(find PKG)/path`` or ``file://path`` to a file path.
 
     :param uri: the URI (str).
     :returns: an absolute or relative file-system path (str).
@@ -192,7 +195,8 @@ def _mat_to_quat(rotation):
 
 
 def rpy_to_quat(roll, pitch, yaw):
-    """Return the quaternion (w, x, y, z) of URDF fixed-axis roll, pitch, yaw (rad).
+    """
+    Return the quaternion (w, x, y, z) of URDF fixed-axis roll, pitch, yaw (rad).
 
     Rotation = Rz(yaw) Ry(pitch) Rx(roll), as in the URDF specification.
 
@@ -385,7 +389,8 @@ def _root_link(robot):
 
 
 def urdf_to_spec(urdf_xml, name='amr', pose=(0.0, 0.0, 0.0, 0.0, 0.0, 0.0), free=True):
-    """Build a MuJoCo spec holding the robot described by a URDF.
+    """
+    Build a MuJoCo spec holding the robot described by a URDF.
 
     :param urdf_xml: the URDF document (str or bytes), with optional ``<ros2_control>``
         and ``<mujoco>`` blocks.

@@ -1,7 +1,8 @@
 # Copyright 2026 The amr_description Authors
 # Licensed under the Apache License, Version 2.0
 
-"""The MuJoCo world: an empty ground plane into which robots are spawned (no rclpy).
+"""
+The MuJoCo world: an empty ground plane into which robots are spawned (no rclpy).
 
 Frames: the world frame is ENU (REP 103/105: x forward, z up, gravity -z). Every spawned
 robot is a free-floating body tree whose names are prefixed ``<robot name>/``.
@@ -22,7 +23,8 @@ GROUND_FRICTION = (1.0, 0.005, 0.0001)
 
 @dataclass
 class Robot:
-    """A robot spawned into a :class:`World`.
+    """
+    A robot spawned into a :class:`World`.
 
     :param name: entity name (unique in the world).
     :param prefix: name prefix of its bodies, joints and actuators (``'<name>/'``).
@@ -38,7 +40,8 @@ class Robot:
 
 
 def make_world_spec(physics_step=0.001):
-    """Return the spec of the empty world: ground plane, light, sky.
+    """
+    Return the spec of the empty world: ground plane, light, sky.
 
     :param physics_step: physics time step in seconds (> 0).
     :returns: a ``mujoco.MjSpec`` (integrator ``implicitfast``, gravity -9.81 m/s^2 on z).
@@ -70,7 +73,8 @@ def make_world_spec(physics_step=0.001):
 
 
 class World:
-    """A MuJoCo world holding spawned robots, its compiled model and its data.
+    """
+    A MuJoCo world holding spawned robots, its compiled model and its data.
 
     ``model`` and ``data`` are replaced by :meth:`spawn` and :meth:`remove` (the state of the
     bodies already present is kept); holders of the old objects must re-read them.
@@ -97,7 +101,8 @@ class World:
         return float(self.data.time)
 
     def spawn(self, robot_spec, name, urdf_xml=''):
-        """Add a robot (from :func:`~amr_description.sim.urdf_to_mjcf.urdf_to_spec`).
+        """
+        Add a robot (from :func:`~amr_description.sim.urdf_to_mjcf.urdf_to_spec`).
 
         The world is recompiled; bodies already present keep their state and the
         simulation time is unchanged.
@@ -141,7 +146,8 @@ class World:
             self.spec.delete(body)
 
     def remove(self, name):
-        """Remove a spawned robot; the other bodies keep their state.
+        """
+        Remove a spawned robot; the other bodies keep their state.
 
         :param name: entity name.
         :raises KeyError: when no such robot exists.
@@ -161,14 +167,16 @@ class World:
         mujoco.mj_forward(self.model, self.data)
 
     def step(self, nstep=1):
-        """Advance the physics by ``nstep`` steps (``mujoco.mj_step`` batch).
+        """
+        Advance the physics by ``nstep`` steps (``mujoco.mj_step`` batch).
 
         :param nstep: number of physics steps (int >= 1).
         """
         mujoco.mj_step(self.model, self.data, nstep=int(nstep))
 
     def free_joint_address(self, name):
-        """Return (qpos address, qvel address) of a robot's root free joint.
+        """
+        Return (qpos address, qvel address) of a robot's root free joint.
 
         :param name: entity name.
         :returns: tuple of two ints (indices into ``data.qpos`` and ``data.qvel``).
@@ -179,7 +187,8 @@ class World:
         return int(joint.qposadr[0]), int(joint.dofadr[0])
 
     def ground_truth(self, name):
-        """Return the pose and twist of a robot's root link (for ``nav_msgs/Odometry``).
+        """
+        Return the pose and twist of a robot's root link (for ``nav_msgs/Odometry``).
 
         :param name: entity name.
         :returns: ``(position, orientation, linear, angular)``: position (3,) m in the world
@@ -194,7 +203,8 @@ class World:
 
 
 def free_joint_ground_truth(qpos, qvel):
-    """Convert a MuJoCo free joint's qpos/qvel to pose and body-frame twist.
+    """
+    Convert a MuJoCo free joint's qpos/qvel to pose and body-frame twist.
 
     MuJoCo's free joint stores position (3) and quaternion (w, x, y, z) in ``qpos``, and in
     ``qvel`` the linear velocity in the world frame followed by the angular velocity in the

@@ -41,7 +41,8 @@ def _rc_joint(name):
 
 
 def tutorial_urdf(plugin='amr_description/MujocoSystem', extra=''):
-    """Return the tutorial skid-steer robot (7 kg) as a URDF string.
+    """
+    Return the tutorial skid-steer robot (7 kg) as a URDF string.
 
     ``base_footprint`` sits on the ground: wheel centres at z 0.1 (the wheel radius).
 

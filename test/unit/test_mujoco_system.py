@@ -5,13 +5,12 @@
 
 import math
 
-import pytest
-from sim_fixtures import tutorial_urdf
-
 from amr_description.core.ros2_control_info import parse_ros2_control
 from amr_description.sim.mujoco_system import MujocoSystem
 from amr_description.sim.urdf_to_mjcf import urdf_to_spec
 from amr_description.sim.world import World
+import pytest
+from sim_fixtures import tutorial_urdf
 
 
 def _system(urdf=None):

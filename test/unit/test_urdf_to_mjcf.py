@@ -6,17 +6,15 @@
 import math
 import os
 
-import mujoco
-import numpy as np
-import pytest
-
-from sim_fixtures import AMR_URDF
-from sim_fixtures import tutorial_urdf
-from sim_fixtures import WHEELS
-
 from amr_description.sim.urdf_to_mjcf import parse_mujoco_block
 from amr_description.sim.urdf_to_mjcf import rpy_to_quat
 from amr_description.sim.urdf_to_mjcf import urdf_to_spec
+import mujoco
+import numpy as np
+import pytest
+from sim_fixtures import AMR_URDF
+from sim_fixtures import tutorial_urdf
+from sim_fixtures import WHEELS
 
 
 def _compile(urdf, **kwargs):

@@ -5,15 +5,13 @@
 
 import math
 
-import mujoco
-import numpy as np
-import pytest
-
-from sim_fixtures import tutorial_urdf
-
 from amr_description.sim.urdf_to_mjcf import urdf_to_spec
 from amr_description.sim.world import free_joint_ground_truth
 from amr_description.sim.world import World
+import mujoco
+import numpy as np
+import pytest
+from sim_fixtures import tutorial_urdf
 
 WHEEL_RADIUS = 0.1
 
