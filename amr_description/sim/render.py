@@ -21,13 +21,16 @@ def _ensure_gl():
     os.environ.setdefault('MUJOCO_GL', 'egl')
 
 
-def build_scene(urdf_xml, width=640, height=480):
+def build_scene(urdf_xml, width=640, height=480, pose=(0.0, 0.0, 0.0, 0.0, 0.0, 0.0),
+                path=()):
     """
     Return a compiled ``(model, data)`` of the robot on a ground plane with a light.
 
     :param urdf_xml: URDF text (str or bytes).
     :param width: image width the offscreen buffer must hold, pixels.
     :param height: image height, pixels.
+    :param pose: root-link pose in the world, ``(x, y, z, roll, pitch, yaw)`` in m and rad.
+    :param path: planar points ``(x, y)`` in m drawn as small green markers on the ground.
     :returns: ``(mujoco.MjModel, mujoco.MjData)`` after ``mj_forward``.
     :raises ValueError: one line when the URDF cannot be converted.
     """
@@ -35,7 +38,7 @@ def build_scene(urdf_xml, width=640, height=480):
     import mujoco
     from amr_description.sim.urdf_to_mjcf import urdf_to_spec
 
-    spec = urdf_to_spec(urdf_xml, name='render', free=False)
+    spec = urdf_to_spec(urdf_xml, name='render', pose=pose, free=False)
     spec.visual.global_.offwidth = max(int(width), 640)
     spec.visual.global_.offheight = max(int(height), 480)
     spec.visual.headlight.ambient = [0.35, 0.35, 0.35]
@@ -48,6 +51,10 @@ def build_scene(urdf_xml, width=640, height=480):
     spec.worldbody.add_geom(
         name='ground', type=mujoco.mjtGeom.mjGEOM_PLANE, size=[5.0, 5.0, 0.05],
         material='ground', contype=0, conaffinity=0)
+    for x, y in path:
+        spec.worldbody.add_geom(
+            type=mujoco.mjtGeom.mjGEOM_SPHERE, size=[0.012, 0, 0], pos=[x, y, 0.012],
+            rgba=[0.1, 0.7, 0.2, 1.0], contype=0, conaffinity=0)
     spec.worldbody.add_light(name='sun', pos=[1.0, 1.0, 3.0], dir=[-0.3, -0.3, -1.0],
                              diffuse=[0.8, 0.8, 0.8], castshadow=True)
     model = spec.compile()
@@ -115,6 +122,39 @@ def render_urdf(urdf_xml, width=640, height=480, frames=False):
     renderer = mujoco.Renderer(model, height=int(height), width=int(width))
     try:
         renderer.update_scene(data, camera=frame_camera(model, data), scene_option=option)
+        return renderer.render().copy()
+    finally:
+        renderer.close()
+
+
+def render_scene(urdf_xml, pose, path=(), width=800, height=600, markers=150):
+    """
+    Render the robot at a planar pose on the ground, with the path it drove.
+
+    :param urdf_xml: URDF text.
+    :param pose: ``(x, y, yaw)`` of the root link (``base_footprint``) in the world, m and rad.
+    :param path: ``(x, y)`` points in the world frame, m; at most ``markers`` evenly spaced
+        ones are drawn.
+    :param width: pixels (> 0).
+    :param height: pixels (> 0).
+    :param markers: largest number of path markers, int > 0.
+    :returns: numpy array of shape (height, width, 3), dtype uint8, seen from above at 55 deg
+        so that the whole path and the robot are in view.
+    :raises ValueError: when the URDF cannot be converted.
+    """
+    points = list(path)
+    if len(points) > markers:
+        step = len(points) / float(markers)
+        points = [points[int(i * step)] for i in range(markers)] + [points[-1]]
+    model, data = build_scene(urdf_xml, width, height,
+                              pose=(pose[0], pose[1], 0.0, 0.0, 0.0, pose[2]), path=points)
+    import mujoco
+
+    renderer = mujoco.Renderer(model, height=int(height), width=int(width))
+    try:
+        camera = frame_camera(model, data, azimuth=-120.0, elevation=-55.0)
+        camera.distance *= 1.2
+        renderer.update_scene(data, camera=camera)
         return renderer.render().copy()
     finally:
         renderer.close()
