@@ -22,7 +22,8 @@ from rclpy.lifecycle import LifecycleNode
 from rclpy.lifecycle import TransitionCallbackReturn
 from rclpy.parameter import Parameter
 
-__all__ = ['ControllerInterface', 'TransitionCallbackReturn', 'time_to_msg', 'msg_to_time']
+__all__ = ['ControllerInterface', 'TransitionCallbackReturn', 'time_to_msg', 'msg_to_time',
+           'set_stamp']
 
 
 def time_to_msg(time):
@@ -32,6 +33,24 @@ def time_to_msg(time):
     if nanosec >= 1_000_000_000:
         sec, nanosec = sec + 1, nanosec - 1_000_000_000
     return TimeMsg(sec=int(sec), nanosec=nanosec)
+
+
+def set_stamp(stamp, time):
+    """
+    Write ``time`` (seconds, float >= 0) into an existing ``builtin_interfaces/Time``.
+
+    Same rounding as :func:`time_to_msg`, without creating a message: for the realtime
+    ``update`` of controllers that reuse their messages.
+
+    :param stamp: the ``builtin_interfaces/Time`` to change in place.
+    :param time: seconds (float).
+    """
+    sec = math.floor(time)
+    nanosec = int(round((time - sec) * 1e9))
+    if nanosec >= 1_000_000_000:
+        sec, nanosec = sec + 1, nanosec - 1_000_000_000
+    stamp.sec = int(sec)
+    stamp.nanosec = nanosec
 
 
 def msg_to_time(msg):

@@ -24,12 +24,17 @@ topics as upstream:
 - ``~/cmd_vel_out`` (TwistStamped) carries the limited command when
   ``publish_limited_velocity``.
 - a NaN wheel state makes ``update`` fail: the controller manager deactivates the controller.
+
+``update`` runs in the simulation loop: configuration is read into attributes at configure
+time, and the odometry/TF messages are built once and only their changing fields are written
+before each publication.
 """
 
 import math
 
 from amr_description.control.controller_interface import ControllerInterface
 from amr_description.control.controller_interface import msg_to_time
+from amr_description.control.controller_interface import set_stamp
 from amr_description.control.controller_interface import time_to_msg
 from amr_description.control.controller_interface import TransitionCallbackReturn
 from amr_description.core.odometry import Odometry
@@ -54,10 +59,6 @@ TF_QOS = QoSProfile(depth=100, history=HistoryPolicy.KEEP_LAST,
                     durability=DurabilityPolicy.VOLATILE)
 
 NAN = math.nan
-
-
-def _yaw_quaternion(yaw):
-    return 0.0, 0.0, math.sin(0.5 * yaw), math.cos(0.5 * yaw)
 
 
 class DiffDriveController(ControllerInterface):
@@ -94,6 +95,8 @@ class DiffDriveController(ControllerInterface):
         self._subscriber_active = False
         self._zero_stamp_warned = False
         self._wheels = ([], [])
+        self._feedback = ((), ())
+        self._commands = ((), ())
         return True
 
     # ------------------------------------------------------------------ configure
@@ -164,6 +167,10 @@ class DiffDriveController(ControllerInterface):
             cfg['wheel_radius'] * cfg['left_wheel_radius_multiplier'],
             cfg['wheel_radius'] * cfg['right_wheel_radius_multiplier'], cfg['window'])
         self._limiters = (cfg['linear.x'], cfg['angular.z'])
+        self._cmd_vel_timeout = cfg['cmd_vel_timeout']
+        self._open_loop = cfg['open_loop']
+        self._position_feedback = cfg['position_feedback']
+        self._publish_period = 1.0 / cfg['publish_rate']
         self._reset_buffers()
         qos = QoSProfile(depth=10)
         if self._odom_pub is None:
@@ -178,7 +185,36 @@ class DiffDriveController(ControllerInterface):
         if self._cmd_sub is None:
             self._cmd_sub = self.create_subscription(
                 TwistStamped, '~/cmd_vel', self._on_cmd_vel, qos)
+        self._build_messages(cfg)
         return TransitionCallbackReturn.SUCCESS
+
+    def _build_messages(self, cfg):
+        """Create the Odometry and TF messages reused by every publication."""
+        msg = OdometryMsg()
+        msg.header.frame_id = cfg['odom_frame']
+        msg.child_frame_id = cfg['base_frame']
+        pose_cov = [0.0] * 36
+        twist_cov = [0.0] * 36
+        for i in range(6):
+            pose_cov[7 * i] = cfg['pose_covariance_diagonal'][i]
+            twist_cov[7 * i] = cfg['twist_covariance_diagonal'][i]
+        msg.pose.covariance = pose_cov
+        msg.twist.covariance = twist_cov
+        self._odom_msg = msg
+        self._odom_stamp = msg.header.stamp
+        self._odom_position = msg.pose.pose.position
+        self._odom_orientation = msg.pose.pose.orientation
+        self._odom_linear = msg.twist.twist.linear
+        self._odom_angular = msg.twist.twist.angular
+        self._tf_msg = None
+        if self._tf_pub is not None and cfg['enable_odom_tf']:
+            tf = TransformStamped()
+            tf.header.frame_id = cfg['odom_frame']
+            tf.child_frame_id = cfg['base_frame']
+            self._tf_msg = TFMessage(transforms=[tf])
+            self._tf_stamp = tf.header.stamp
+            self._tf_translation = tf.transform.translation
+            self._tf_rotation = tf.transform.rotation
 
     def _reset_buffers(self):
         self._last_cmd = None
@@ -230,6 +266,8 @@ class DiffDriveController(ControllerInterface):
                 f'Unable to obtain wheel interfaces: {", ".join(missing)}')
             return TransitionCallbackReturn.FAILURE
         self._wheels = tuple(sides)
+        self._feedback = tuple(tuple(fb for _, fb in side) for side in sides)
+        self._commands = tuple(tuple(cmd for cmd, _ in side) for side in sides)
         self._subscriber_active = True
         return TransitionCallbackReturn.SUCCESS
 
@@ -238,6 +276,8 @@ class DiffDriveController(ControllerInterface):
         self._subscriber_active = False
         self._halt()
         self._wheels = ([], [])
+        self._feedback = ((), ())
+        self._commands = ((), ())
         self._last_cmd = None
         return TransitionCallbackReturn.SUCCESS
 
@@ -279,34 +319,36 @@ class DiffDriveController(ControllerInterface):
     def update(self, time, period):
         """Odometry, publishing, limits and wheel commands for one step (see module doc)."""
         self.last_update_time = time
-        cfg = self.cfg
         last = self._last_cmd
         if last is None:
             linear = angular = 0.0
         else:
             stamp, linear, angular = last
-            if cfg['cmd_vel_timeout'] > 0.0 and time - stamp > cfg['cmd_vel_timeout']:
+            timeout = self._cmd_vel_timeout
+            if timeout > 0.0 and time - stamp > timeout:
                 linear = angular = 0.0
-        if cfg['open_loop']:
-            self.odometry.update_open_loop(linear, angular, time)
+        odometry = self.odometry
+        if self._open_loop:
+            odometry.update_open_loop(linear, angular, time)
         else:
-            means = []
-            for side_name, side in zip(('left', 'right'), self._wheels):
-                values = [fb.value for _, fb in side]
-                for index, value in enumerate(values):
-                    if math.isnan(value):
-                        kind = 'position' if cfg['position_feedback'] else 'velocity'
-                        self.get_logger().error(
-                            f'Either the left or right wheel {kind} is invalid for index '
-                            f'[{index}] ({side_name} wheel {cfg[side_name][index]})')
-                        return False
-                means.append(sum(values) / len(values))
-            if cfg['position_feedback']:
-                self.odometry.update(means[0], means[1], time)
+            left_side, right_side = self._feedback
+            left = 0.0
+            for handle in left_side:
+                left += handle.value
+            right = 0.0
+            for handle in right_side:
+                right += handle.value
+            if left != left or right != right:  # NaN: find and report the wheel
+                if self._report_nan_feedback():
+                    return False
+            left /= len(left_side)
+            right /= len(right_side)
+            if self._position_feedback:
+                odometry.update(left, right, time)
             else:
-                self.odometry.update_from_velocity(
-                    means[0] * self.odometry.left_wheel_radius * period,
-                    means[1] * self.odometry.right_wheel_radius * period, time)
+                odometry.update_from_velocity(left * odometry.left_wheel_radius * period,
+                                              right * odometry.right_wheel_radius * period,
+                                              time)
         self._maybe_publish(time)
         if last is None:
             return True  # before the first command nothing is written
@@ -317,58 +359,65 @@ class DiffDriveController(ControllerInterface):
         if self._limited_pub is not None:
             out = TwistStamped()
             out.header.stamp = time_to_msg(time)
-            out.header.frame_id = cfg['base_frame']
+            out.header.frame_id = self.cfg['base_frame']
             out.twist.linear.x = linear
             out.twist.angular.z = angular
             self._limited_pub.publish(out)
-        separation = self.odometry.wheel_separation
-        left = (linear - angular * separation / 2.0) / self.odometry.left_wheel_radius
-        right = (linear + angular * separation / 2.0) / self.odometry.right_wheel_radius
-        for cmd, _ in self._wheels[0]:
+        half_turn = angular * odometry.wheel_separation / 2.0
+        left = (linear - half_turn) / odometry.left_wheel_radius
+        right = (linear + half_turn) / odometry.right_wheel_radius
+        left_commands, right_commands = self._commands
+        for cmd in left_commands:
             cmd.value = left
-        for cmd, _ in self._wheels[1]:
+        for cmd in right_commands:
             cmd.value = right
         return True
 
+    def _report_nan_feedback(self):
+        """Log the first NaN wheel state (left side first); returns True when one exists."""
+        cfg = self.cfg
+        for side_name, side in zip(('left', 'right'), self._feedback):
+            for index, handle in enumerate(side):
+                if math.isnan(handle.value):
+                    kind = 'position' if cfg['position_feedback'] else 'velocity'
+                    self.get_logger().error(
+                        f'Either the left or right wheel {kind} is invalid for index '
+                        f'[{index}] ({side_name} wheel {cfg[side_name][index]})')
+                    return True
+        return False
+
     def _maybe_publish(self, time):
-        publish_period = 1.0 / self.cfg['publish_rate']
-        if self._previous_publish is None or time < self._previous_publish:
+        publish_period = self._publish_period
+        previous = self._previous_publish
+        if previous is None or time < previous:
             self._previous_publish = time
-        elif self._previous_publish + publish_period <= time + 1e-9:
-            self._previous_publish += publish_period
-            if time - self._previous_publish > publish_period:
-                self._previous_publish = time  # fell behind (paused): do not burst
+        elif previous + publish_period <= time + 1e-9:
+            previous += publish_period
+            if time - previous > publish_period:
+                previous = time  # fell behind (paused): do not burst
+            self._previous_publish = previous
         else:
             return
-        cfg = self.cfg
         odom = self.odometry
-        stamp = time_to_msg(time)
-        qx, qy, qz, qw = _yaw_quaternion(odom.heading)
-        msg = OdometryMsg()
-        msg.header.stamp = stamp
-        msg.header.frame_id = cfg['odom_frame']
-        msg.child_frame_id = cfg['base_frame']
-        msg.pose.pose.position.x = odom.x
-        msg.pose.pose.position.y = odom.y
-        msg.pose.pose.orientation.x, msg.pose.pose.orientation.y = qx, qy
-        msg.pose.pose.orientation.z, msg.pose.pose.orientation.w = qz, qw
-        pose_cov = [0.0] * 36
-        twist_cov = [0.0] * 36
-        for i in range(6):
-            pose_cov[7 * i] = cfg['pose_covariance_diagonal'][i]
-            twist_cov[7 * i] = cfg['twist_covariance_diagonal'][i]
-        msg.pose.covariance = pose_cov
-        msg.twist.covariance = twist_cov
-        msg.twist.twist.linear.x = odom.linear
-        msg.twist.twist.angular.z = odom.angular
-        self._odom_pub.publish(msg)
-        if self._tf_pub is not None and cfg['enable_odom_tf']:
-            tf = TransformStamped()
-            tf.header.stamp = stamp
-            tf.header.frame_id = cfg['odom_frame']
-            tf.child_frame_id = cfg['base_frame']
-            tf.transform.translation.x = odom.x
-            tf.transform.translation.y = odom.y
-            r = tf.transform.rotation
-            r.x, r.y, r.z, r.w = qx, qy, qz, qw
-            self._tf_pub.publish(TFMessage(transforms=[tf]))
+        half_heading = 0.5 * odom.heading
+        qz, qw = math.sin(half_heading), math.cos(half_heading)
+        x, y = odom.x, odom.y
+        set_stamp(self._odom_stamp, time)
+        position = self._odom_position
+        position.x = x
+        position.y = y
+        orientation = self._odom_orientation
+        orientation.z = qz
+        orientation.w = qw
+        self._odom_linear.x = odom.linear
+        self._odom_angular.z = odom.angular
+        self._odom_pub.publish(self._odom_msg)
+        if self._tf_msg is not None:
+            set_stamp(self._tf_stamp, time)
+            translation = self._tf_translation
+            translation.x = x
+            translation.y = y
+            rotation = self._tf_rotation
+            rotation.z = qz
+            rotation.w = qw
+            self._tf_pub.publish(self._tf_msg)

@@ -8,7 +8,8 @@ As ros2_controllers' joint_state_broadcaster (jazzy): on every controller-manage
 ``use_local_topics``), stamped with the update time, one entry per joint in URDF order
 (joints absent from the URDF follow, in interface order, unless ``use_urdf_to_filter``
 removes them), with ``position``/``velocity``/``effort`` arrays holding NaN where a joint has
-no such interface; ``extra_joints`` are appended with 0.0.
+no such interface; ``extra_joints`` are appended with 0.0. The message is built once at
+activation; each update only copies the handle values and the stamp into it.
 
 Parameters: ``joints``, ``interfaces`` (both set: only those; otherwise every available state
 interface), ``extra_joints``, ``use_local_topics`` (false), ``map_interface_to_joint_state.
@@ -16,11 +17,12 @@ interface), ``extra_joints``, ``use_local_topics`` (false), ``map_interface_to_j
 (true), ``frame_id`` ('base_link').
 """
 
+from array import array
 import math
 import xml.etree.ElementTree as ET
 
 from amr_description.control.controller_interface import ControllerInterface
-from amr_description.control.controller_interface import time_to_msg
+from amr_description.control.controller_interface import set_stamp
 from amr_description.control.controller_interface import TransitionCallbackReturn
 from rclpy.qos import QoSProfile
 from sensor_msgs.msg import JointState
@@ -43,6 +45,8 @@ class JointStateBroadcaster(ControllerInterface):
         self.auto_declare('frame_id', 'base_link')
         self._publisher = None
         self._rows = []
+        self._msg = None
+        self._slots = ()
         return True
 
     def _list(self, name):
@@ -99,30 +103,40 @@ class JointStateBroadcaster(ControllerInterface):
                 self._rows.append((joint, handles))
         if not self._rows and not self._extra:
             self.get_logger().warn('No joint state interfaces to publish')
+        self._build_message()
         return TransitionCallbackReturn.SUCCESS
+
+    def _build_message(self):
+        """Create the JointState published by every update and the handle -> slot table."""
+        names = [joint for joint, _ in self._rows]
+        extras = []
+        for joint in self._extra:
+            if joint not in names and joint not in extras:
+                extras.append(joint)
+        columns = tuple(array('d', [math.nan] * len(names) + [0.0] * len(extras))
+                        for _ in FIELDS)
+        msg = JointState()
+        msg.header.frame_id = self._frame_id
+        msg.name = names + extras
+        msg.position, msg.velocity, msg.effort = columns
+        columns = (msg.position, msg.velocity, msg.effort)  # the setters copy the arrays
+        self._msg = msg
+        self._stamp = msg.header.stamp
+        # (array, index, handle) for every value read at each update; NaN slots stay NaN
+        self._slots = tuple((columns[f], i, handle)
+                            for i, (_, handles) in enumerate(self._rows)
+                            for f, handle in enumerate(handles) if handle is not None)
 
     def on_deactivate(self, state):
         """Stop publishing."""
         self._rows = []
+        self._slots = ()
         return TransitionCallbackReturn.SUCCESS
 
     def update(self, time, period):
         """Publish one JointState stamped ``time``; returns True."""
-        msg = JointState()
-        msg.header.stamp = time_to_msg(time)
-        msg.header.frame_id = self._frame_id
-        names, pos, vel, eff = [], [], [], []
-        for joint, (hp, hv, he) in self._rows:
-            names.append(joint)
-            pos.append(hp.value if hp is not None else math.nan)
-            vel.append(hv.value if hv is not None else math.nan)
-            eff.append(he.value if he is not None else math.nan)
-        for joint in self._extra:
-            if joint not in names:
-                names.append(joint)
-                pos.append(0.0)
-                vel.append(0.0)
-                eff.append(0.0)
-        msg.name, msg.position, msg.velocity, msg.effort = names, pos, vel, eff
-        self._publisher.publish(msg)
+        for column, index, handle in self._slots:
+            column[index] = handle.value
+        set_stamp(self._stamp, time)
+        self._publisher.publish(self._msg)
         return True

@@ -37,7 +37,7 @@ class MujocoSystem(SystemInterface):
         self.model = model
         self.data = data
         self.prefix = prefix
-        self._states = []    # (handle, array name, index)
+        self._states = []    # (handle, array, index): array is a view into self.data
         self._commands = []  # (handle, actuator id, lo, hi, kind, qpos address)
 
     def on_init(self, info):
@@ -89,8 +89,9 @@ class MujocoSystem(SystemInterface):
                         f'hardware component {self.name!r}: joint {joint_info.name!r} state '
                         f'interface {iface.name!r} is not one of {", ".join(_STATE_KINDS)}')
                 handle = self.state_handles[f'{joint_info.name}/{iface.name}']
-                array, index = {'position': ('qpos', qadr), 'velocity': ('qvel', dadr),
-                                'effort': ('qfrc_actuator', dadr)}[iface.name]
+                array, index = {'position': (self.data.qpos, qadr),
+                                'velocity': (self.data.qvel, dadr),
+                                'effort': (self.data.qfrc_actuator, dadr)}[iface.name]
                 states.append((handle, array, index))
             for iface in joint_info.command_interfaces:
                 actuator_name = f'{name}/{iface.name}'
@@ -106,6 +107,8 @@ class MujocoSystem(SystemInterface):
                 commands.append((handle, actuator, lo, hi, iface.name, qadr))
         self._states = states
         self._commands = commands
+        self._ctrl = self.data.ctrl
+        self._qpos = self.data.qpos
 
     def read(self, time, period):
         """
@@ -115,9 +118,8 @@ class MujocoSystem(SystemInterface):
         :param period: s since the last read (unused).
         :returns: True.
         """
-        data = self.data
         for handle, array, index in self._states:
-            handle.value = float(getattr(data, array)[index])
+            handle.value = array.item(index)
         return True
 
     def write(self, time, period):
@@ -128,8 +130,8 @@ class MujocoSystem(SystemInterface):
         :param period: s since the last write (unused).
         :returns: True.
         """
-        ctrl = self.data.ctrl
-        qpos = self.data.qpos
+        ctrl = self._ctrl
+        qpos = self._qpos
         for handle, actuator, lo, hi, kind, qadr in self._commands:
             value = handle.value
             if value != value:  # NaN: no command
