@@ -23,6 +23,7 @@ import time
 from amr_description.core.course import closure_error
 from amr_description.core.course import CourseFollower
 from amr_description.core.course import format_leg_table
+from amr_description.core.course import leg_progress
 from amr_description.core.course import square_course
 from geometry_msgs.msg import TwistStamped
 from nav_msgs.msg import Odometry
@@ -60,7 +61,8 @@ class SquareDriver(Node):
     Each ``/odom`` message advances the :class:`~amr_description.core.course.CourseFollower`
     and publishes the resulting command, stamped with the odometry stamp (sim time). After
     each leg the robot is held still for ``settle`` seconds of sim time, then both poses are
-    recorded and the next leg starts from the settled pose.
+    recorded and the next leg starts from the settled pose. Nothing is driven or recorded
+    before :attr:`enabled` is set.
     """
 
     def __init__(self, legs, settle=0.4):
@@ -81,6 +83,8 @@ class SquareDriver(Node):
         self.truth = None
         self.odom = None
         self._settle_until = None
+        self._next_progress = None
+        self.enabled = False
         self._cmd = self.create_publisher(TwistStamped, CMD_TOPIC, 10)
         self.create_subscription(Odometry, ODOM_TOPIC, self._on_odom, 50)
         self.create_subscription(Odometry, TRUTH_TOPIC, self._on_truth, 50)
@@ -107,7 +111,7 @@ class SquareDriver(Node):
         self.odom = pose
         self.odom_path.append(pose[:2])
         now = stamp_seconds(msg.header.stamp)
-        if self.truth is None:
+        if self.truth is None or not self.enabled:
             return
         if not self.odom_marks:
             self.odom_marks.append(pose)
@@ -125,8 +129,26 @@ class SquareDriver(Node):
             return
         linear, angular, finished = self.follower.step(pose)
         self._publish(msg.header.stamp, linear, angular)
+        self._progress(now, pose)
         if finished is not None:
             self._settle_until = now + self.settle
+
+    def _progress(self, now, pose):
+        """Print where the current leg stands, once per second of sim time."""
+        if self._next_progress is not None and now < self._next_progress:
+            return
+        self._next_progress = now + 1.0
+        if self.follower.done or self.follower.start is None:
+            return
+        index = self.follower.index
+        leg = self.legs[index]
+        done = leg_progress(leg, self.follower.start, pose)
+        if leg.kind == 'straight':
+            text = f'{done:.2f} of {leg.target:.2f} m'
+        else:
+            text = f'{math.degrees(done):.0f} of {math.degrees(leg.target):.0f} deg'
+        print(f'[drive_square] t={now:6.1f} s  leg {index + 1}/{len(self.legs)} {leg.kind}: '
+              f'{text}', flush=True)
 
     def _report_leg(self, index):
         leg = self.legs[index]
@@ -274,6 +296,7 @@ def main(args=None):
             return 1
         print(f'[drive_square] controllers active after {time.monotonic() - started:.1f} s; '
               f'driving a {opts.side:g} m square on {ODOM_TOPIC}', flush=True)
+        node.enabled = True
         deadline = time.monotonic() + opts.timeout
         while not node.done and time.monotonic() < deadline:
             rclpy.spin_once(node, timeout_sec=0.1)
