@@ -15,7 +15,6 @@ import io
 
 from lxml import etree
 import numpy as np
-import yourdfpy
 
 from .kinematics import chain_transform
 from .kinematics import mimic_position
@@ -135,6 +134,10 @@ def parse_urdf(urdf_xml, source='robot_description'):
         raise ValueError(f'{source}: root element must be <robot>, found <{root_element.tag}>')
     if not root_element.get('name'):
         raise ValueError(f'{source}: <robot> has no name attribute')
+    # imported here, not at module level: it pulls in trimesh (~1 s), whose imports swallow
+    # exceptions, so a Ctrl-C during a node's start-up must reach it only after main()
+    # installed the clean-shutdown signal handling (amr_description.nodes.shutdown)
+    import yourdfpy
     try:
         urdf = yourdfpy.URDF.load(
             io.BytesIO(urdf_xml), build_scene_graph=False, load_meshes=False)

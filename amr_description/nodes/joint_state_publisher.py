@@ -18,10 +18,10 @@ Follows upstream ``joint_state_publisher`` (ROS 2):
 import sys
 
 from amr_description.core.urdf_model import parse_urdf
+from amr_description.nodes import shutdown
 from rcl_interfaces.msg import ParameterDescriptor
 from rcl_interfaces.msg import ParameterType
 import rclpy
-from rclpy.executors import ExternalShutdownException
 from rclpy.node import Node
 from rclpy.qos import DurabilityPolicy
 from rclpy.qos import QoSProfile
@@ -127,20 +127,20 @@ def main(args=None):
     :param args: command-line arguments for rclpy (default ``sys.argv``).
     :returns: 0 on a clean shutdown, 1 on a bad parameter (one-line error).
     """
-    rclpy.init(args=args)
+    shutdown.init(args)
+    node = None
     try:
         node = JointStatePublisher()
+        shutdown.spin(node)
     except ValueError as exc:
+        if node is not None:
+            raise
         rclpy.logging.get_logger('joint_state_publisher').error(str(exc))
-        rclpy.try_shutdown()
         return 1
-    try:
-        rclpy.spin(node)
-    except (KeyboardInterrupt, ExternalShutdownException):
+    except KeyboardInterrupt:
         pass
     finally:
-        node.destroy_node()
-        rclpy.try_shutdown()
+        shutdown.shutdown(node)
     return 0
 
 

@@ -40,12 +40,11 @@ import queue
 import threading
 import time
 
+from amr_description.nodes import shutdown
 from amr_description.sim.urdf_to_mjcf import resolve_uri
 from amr_description.sim.urdf_to_mjcf import urdf_to_spec
 from amr_description.sim.world import World
 from nav_msgs.msg import Odometry
-import rclpy
-from rclpy.executors import ExternalShutdownException
 from rclpy.executors import SingleThreadedExecutor
 from rclpy.node import Node
 from rclpy.time import Time
@@ -642,13 +641,15 @@ class MujocoSim(Node):
         self._thread.join(timeout=5.0)
         self._outbox_ready.set()
         self._publisher.join(timeout=5.0)
-        if self.controller_manager is not None:
-            shutdown = getattr(self.controller_manager, 'shutdown', None)
+        cm, self.controller_manager = self.controller_manager, None
+        if cm is not None:
             try:
-                if shutdown is not None:
-                    shutdown()
-                else:
-                    self.controller_manager.destroy_node()
+                cm.shutdown()  # deactivates the controllers and destroys their nodes
+            except Exception as exc:  # noqa: B902 - best effort at exit
+                self.get_logger().warning(f'controller manager shutdown: {exc!r}')
+            try:
+                self._executor.remove_node(cm)
+                cm.destroy_node()
             except Exception:  # noqa: B902 - best effort at exit
                 pass
         if self._viewer is not None:
@@ -656,23 +657,31 @@ class MujocoSim(Node):
 
 
 def main(args=None):
-    """Run the simulator until Ctrl-C (or a SetSimulationState QUITTING request)."""
-    rclpy.init(args=args)
-    executor = SingleThreadedExecutor()
+    """
+    Run the simulator until Ctrl-C/SIGTERM (or a SetSimulationState QUITTING request).
+
+    Shutdown order (:mod:`amr_description.nodes.shutdown`): the simulation and publisher
+    threads are stopped and joined, then the controllers are deactivated and their nodes,
+    the controller manager and this node destroyed, and rclpy is shut down last, so no
+    update or publication meets a dead context.
+
+    :returns: 0.
+    """
+    shutdown.init(args)
+    executor = None
     node = None
     try:
+        executor = SingleThreadedExecutor()
         node = MujocoSim(executor)
         executor.add_node(node)
-        while rclpy.ok() and not node.quit_requested.is_set():
-            executor.spin_once(timeout_sec=0.1)
-    except (KeyboardInterrupt, ExternalShutdownException):
+        shutdown.spin(executor, until=node.quit_requested.is_set)
+    except KeyboardInterrupt:
         pass
     finally:
+        shutdown.ignore_signals()
         if node is not None:
             node.stop()
-            node.destroy_node()
-        executor.shutdown()
-        rclpy.try_shutdown()
+        shutdown.shutdown(node, executor=executor)
     return 0
 
 

@@ -32,6 +32,7 @@ import sys
 from amr_description.core.kinematics import joint_transform
 from amr_description.core.kinematics import matrix_to_translation_quaternion
 from amr_description.core.urdf_model import parse_urdf
+from amr_description.nodes import shutdown
 from geometry_msgs.msg import TransformStamped
 from rcl_interfaces.msg import FloatingPointRange
 from rcl_interfaces.msg import ParameterDescriptor
@@ -39,7 +40,6 @@ from rcl_interfaces.msg import SetParametersResult
 import rclpy
 from rclpy.exceptions import InvalidParameterTypeException
 from rclpy.exceptions import InvalidParameterValueException
-from rclpy.executors import ExternalShutdownException
 from rclpy.node import Node
 from rclpy.qos import DurabilityPolicy
 from rclpy.qos import qos_profile_sensor_data
@@ -186,20 +186,20 @@ def main(args=None):
     :returns: 0 on a clean shutdown, 1 when ``robot_description`` is empty or invalid or a
         parameter is out of range (one-line error, no traceback).
     """
-    rclpy.init(args=args)
+    shutdown.init(args)
+    node = None
     try:
         node = RobotStatePublisher()
+        shutdown.spin(node)
     except (ValueError, InvalidParameterValueException, InvalidParameterTypeException) as exc:
+        if node is not None:
+            raise
         rclpy.logging.get_logger('robot_state_publisher').error(' '.join(str(exc).split()))
-        rclpy.try_shutdown()
         return 1
-    try:
-        rclpy.spin(node)
-    except (KeyboardInterrupt, ExternalShutdownException):
+    except KeyboardInterrupt:
         pass
     finally:
-        node.destroy_node()
-        rclpy.try_shutdown()
+        shutdown.shutdown(node)
     return 0
 
 
