@@ -169,7 +169,7 @@ def main(args=None):
         else:
             print(f'create: {exc}', file=sys.stderr)
     except (KeyboardInterrupt, ExternalShutdownException):
-        pass
+        code = 0  # Ctrl-C while waiting: a normal stop, not a failure (as the spawner)
     finally:
         if node is not None:
             node.destroy_node()
