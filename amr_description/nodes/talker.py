@@ -8,9 +8,7 @@ Publishes ``std_msgs/msg/String`` ``'Hello World: N'`` (N from 0) on ``topic`` e
 and logs ``Publishing: "Hello World: N"``, like the tutorial's ``minimal_publisher``.
 """
 
-import rclpy
-from rclpy._rclpy_pybind11 import RCLError
-from rclpy.executors import ExternalShutdownException
+from amr_description.nodes import shutdown
 from rclpy.node import Node
 from std_msgs.msg import String
 
@@ -42,20 +40,15 @@ def main(args=None):
 
     :param args: command-line arguments for rclpy (default ``sys.argv``).
     """
-    rclpy.init(args=args)
-    node = MinimalPublisher()
+    shutdown.init(args)
+    node = None
     try:
-        rclpy.spin(node)
-    except (KeyboardInterrupt, ExternalShutdownException):
+        node = MinimalPublisher()
+        shutdown.spin(node)
+    except KeyboardInterrupt:
         pass
-    except RCLError:
-        # Ctrl-C can shut the context down while the executor builds its wait set (an
-        # rclpy race); that is a normal shutdown, anything else is a real error
-        if rclpy.ok():
-            raise
     finally:
-        node.destroy_node()
-        rclpy.try_shutdown()
+        shutdown.shutdown(node)
 
 
 if __name__ == '__main__':
