@@ -29,14 +29,14 @@ Simulation loop (docs/architecture.md): one thread steps MuJoCo in ``mj_step`` b
 the next control instant (every ``1/update_rate`` s of sim time), then runs
 ``cm.update(t, period)`` (read -> controllers -> write) and publishes ``/clock``, paced to
 ``real_time_factor``. The rclpy executor runs in the main thread; requests that touch the
-model (spawn, reset, step) are queued to the simulation thread. A publisher thread publishes
-/clock and the ground truth while the next physics batch runs.
+model (spawn, reset, step) are queued to the simulation thread. The simulation thread also
+publishes /clock and the ground truth itself, in order (no publisher thread: on a 2-core machine
+waking another thread for every update costs more than the publishing).
 """
 
 import collections
 import math
 import os
-import queue
 import threading
 import time
 
@@ -155,7 +155,7 @@ class MujocoSim(Node):
         self._step_count = 0
         self._pending_steps = 0
         self._step_waiters = []
-        self._requests = queue.Queue()
+        self._requests = collections.deque()  # _Request; appended by services, run by _run
         self._wake = threading.Event()
         self._running = True
         self.quit_requested = threading.Event()
@@ -184,11 +184,6 @@ class MujocoSim(Node):
             self._open_viewer()
         # import the heavy modules a spawn needs (yourdfpy pulls trimesh) while waiting for it
         threading.Thread(target=_prewarm_imports, name='prewarm', daemon=True).start()
-        self._outbox = collections.deque()
-        self._outbox_ready = threading.Event()
-        self._publisher = threading.Thread(target=self._publish_loop, name='publisher',
-                                           daemon=True)
-        self._publisher.start()
         self._thread = threading.Thread(target=self._run, name='mujoco_sim', daemon=True)
         self._thread.start()
         self.get_logger().info(
@@ -204,7 +199,7 @@ class MujocoSim(Node):
         :raises TimeoutError: when the simulation thread does not answer in ``timeout`` s.
         """
         request = _Request(function)
-        self._requests.put(request)
+        self._requests.append(request)
         self._wake.set()
         if not request.done.wait(timeout):
             raise TimeoutError('the simulation thread did not answer')
@@ -214,11 +209,9 @@ class MujocoSim(Node):
 
     def _process_requests(self):
         """Run the queued requests (simulation thread)."""
-        while True:
-            try:
-                request = self._requests.get_nowait()
-            except queue.Empty:
-                return
+        requests = self._requests
+        while requests:
+            request = requests.popleft()
             try:
                 request.result = request.function()
             except Exception as exc:  # noqa: B902 - reported to the caller, loop goes on
@@ -458,20 +451,25 @@ class MujocoSim(Node):
         last_viewer_sync = 0.0
         physics_step = self.world.physics_step
         last_paused_clock = 0.0
+        requests = self._requests
+        rate_of = None  # the controller manager per_update was computed for
+        per_update = self._control_steps()
         try:
             while self._running:
-                self._process_requests()
+                if requests:
+                    self._process_requests()
                 if self.paused and self._pending_steps == 0:
                     # paused: /clock keeps being published (same time, ~10 Hz wall), as gz does
                     if time.monotonic() - last_paused_clock > PAUSED_CLOCK_PERIOD:
                         last_paused_clock = time.monotonic()
-                        self._outbox.append((int(round(self._step_count * physics_step * 1e9)),
-                                             None))
-                        self._outbox_ready.set()
+                        self._publish(self._step_count * physics_step, clock_only=True)
                     self._wake.wait(0.05)
                     self._wake.clear()
                     continue
-                per_update = self._control_steps()
+                cm = self.controller_manager
+                if cm is not rate_of:  # update_rate is fixed when a controller manager starts
+                    rate_of = cm
+                    per_update = self._control_steps()
                 count = per_update - self._step_count % per_update
                 if self.paused:
                     count = min(count, self._pending_steps)
@@ -479,7 +477,7 @@ class MujocoSim(Node):
                 self.world.step(count)
                 self._step_count += count
                 t = self._step_count * physics_step
-                if self._step_count % per_update == 0 and self.controller_manager is not None:
+                if cm is not None and self._step_count % per_update == 0:
                     self._drive_node_clocks(t)
                     self._update_controllers(t, per_update * physics_step)
                 self._publish(t)
@@ -496,8 +494,9 @@ class MujocoSim(Node):
                     else:
                         self._anchor = None
         except Exception as exc:  # noqa: B902 - log instead of a silent thread death
-            self.get_logger().fatal(f'simulation thread stopped: {exc!r}')
-            self.quit_requested.set()
+            if self._running:  # e.g. not publishing after the context shut down
+                self.get_logger().fatal(f'simulation thread stopped: {exc!r}')
+                self.quit_requested.set()
 
     def _update_controllers(self, t, period):
         """Run one controller-manager update; errors are logged (throttled), never raised."""
@@ -556,42 +555,26 @@ class MujocoSim(Node):
                 for clock in source._associated_clocks:
                     clock.set_ros_time_override(now)
 
-    def _publish(self, t, force_gt=False):
+    def _publish(self, t, force_gt=False, clock_only=False):
         """
-        Queue /clock (and the ground truth when due) at sim time ``t`` (s) for publishing.
+        Publish /clock at sim time ``t`` (s), then the ground truth when due (sim thread).
 
-        The ground truth is read here, from the state at ``t``; the messages are filled and
-        published by the publisher thread, while the simulation thread runs the next
-        ``mj_step`` batch (which releases the GIL).
+        Also sets this node's own clock to ``t``.
+
+        :param force_gt: publish the ground truth even when it is not due (after a reset).
+        :param clock_only: publish /clock only (paused).
         """
-        ground_truth = None
-        if self.publish_ground_truth and self._gt_robot is not None and self._gt_steps and \
-                (force_gt or self._step_count % self._gt_steps == 0):
-            ground_truth = (self.world.robots[self._gt_robot].root,
-                            self.world.ground_truth(self._gt_robot))
-        self._outbox.append((int(round(t * 1e9)), ground_truth))
-        self._outbox_ready.set()
-
-    def _publish_loop(self):
-        """Publish the queued /clock and ground-truth messages in order (publisher thread)."""
-        outbox = self._outbox
-        clock_msg = self._clock_msg
-        try:
-            while self._running or outbox:
-                if not outbox:
-                    self._outbox_ready.wait(0.1)
-                    self._outbox_ready.clear()
-                    continue
-                nanoseconds, ground_truth = outbox.popleft()
-                stamp = clock_msg.clock
-                stamp.sec, stamp.nanosec = divmod(nanoseconds, 1_000_000_000)
-                self._clock_pub.publish(clock_msg)
-                self.get_clock().set_ros_time_override(Time(nanoseconds=nanoseconds))
-                if ground_truth is not None:
-                    self._publish_ground_truth(stamp, *ground_truth)
-        except Exception as exc:  # noqa: B902 - e.g. publishing after the context shut down
-            if self._running:
-                self.get_logger().error(f'publisher thread stopped: {exc!r}')
+        nanoseconds = int(round(t * 1e9))
+        msg = self._clock_msg
+        stamp = msg.clock
+        stamp.sec, stamp.nanosec = divmod(nanoseconds, 1_000_000_000)
+        self._clock_pub.publish(msg)
+        self.get_clock().set_ros_time_override(Time(nanoseconds=nanoseconds))
+        if clock_only or not self.publish_ground_truth or self._gt_robot is None or \
+                not self._gt_steps or not (force_gt or self._step_count % self._gt_steps == 0):
+            return
+        self._publish_ground_truth(stamp, self.world.robots[self._gt_robot].root,
+                                   self.world.ground_truth(self._gt_robot))
 
     def _publish_ground_truth(self, stamp, root, state):
         position, quat, linear, angular = state
@@ -639,8 +622,6 @@ class MujocoSim(Node):
         self._running = False
         self._wake.set()
         self._thread.join(timeout=5.0)
-        self._outbox_ready.set()
-        self._publisher.join(timeout=5.0)
         cm, self.controller_manager = self.controller_manager, None
         if cm is not None:
             try:
@@ -660,8 +641,8 @@ def main(args=None):
     """
     Run the simulator until Ctrl-C/SIGTERM (or a SetSimulationState QUITTING request).
 
-    Shutdown order (:mod:`amr_description.nodes.shutdown`): the simulation and publisher
-    threads are stopped and joined, then the controllers are deactivated and their nodes,
+    Shutdown order (:mod:`amr_description.nodes.shutdown`): the simulation thread is stopped
+    and joined, then the controllers are deactivated and their nodes,
     the controller manager and this node destroyed, and rclpy is shut down last, so no
     update or publication meets a dead context.
 
