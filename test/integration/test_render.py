@@ -75,3 +75,7 @@ def test_render_pure(frames):
     with open(URDF_PATH) as f:
         image = render_urdf(f.read(), 160, 120, frames)
     assert image.shape == (120, 160, 3) and image.dtype == np.uint8
+    r, g, b = (image[..., i].astype(int) for i in range(3))
+    assert ((b > 90) & (r < 50) & (g < 50)).mean() > 0.02  # the blue chassis is in view
+    red = ((r > 128) & (g < 50) & (b < 50)).sum()  # x axes of the body frames
+    assert (red > 5) if frames else (red == 0), red
