@@ -11,8 +11,12 @@ Runs, in one invocation, each against fresh processes on a private ROS domain (l
     ``cmd_vel``; the real-time factor held (sim seconds / wall seconds, from /clock received
     by an observer) and the rates of /clock, /joint_states, /odom and /tf. Target >= 0.99.
 (b) as fast as possible (``real_time_factor`` 0): sim speed as a multiple of real time, and
-    as a fraction of raw ``mj_step`` throughput of the same model measured in this process
-    (targets >= 30x and >= 40 %).
+    as a fraction of raw ``mj_step`` throughput of the same model in the same motion, measured
+    in this process (targets >= 30x and >= 40 %). Both drive the robot straight at
+    ``FAST_LINEAR`` (cmd_vel in the simulator, the same wheel speed as ``ctrl`` in the raw
+    loop): a turning skid-steer robot makes ``mj_step`` about twice as dear (wheels slide), so
+    comparing a turning simulation with a straight raw loop would measure the physics, not the
+    simulator. For reference the simulator is also run driven in a circle (``TURN_TWIST``).
 (c) wall time from starting ``mujoco_sim`` to both controllers active (``create`` and the
     spawners started together with it, as a launch file does). Target < 3 s.
 
@@ -34,6 +38,9 @@ from amr_description.sim.world import World
 import mujoco
 
 CONTROLLERS = ('joint_state_broadcaster', 'diff_drive_controller')
+WHEEL_RADIUS = 0.1  # m, config/controllers.yaml
+FAST_LINEAR = 0.2  # m/s, straight drive of (b): wheels at FAST_LINEAR / WHEEL_RADIUS rad/s
+TURN_TWIST = (0.3, 0.5)  # m/s, rad/s: drive of (a) and of the (b) reference run
 
 
 def _repo_root():
@@ -45,19 +52,21 @@ def _exe(name):
     return os.path.join(get_package_prefix('amr_description'), 'lib', 'amr_description', name)
 
 
-def raw_step_rate(urdf_xml, seconds=3.0, physics_step=0.001):
+def raw_step_rate(urdf_xml, seconds=3.0, physics_step=0.001,
+                  wheel_speed=FAST_LINEAR / WHEEL_RADIUS):
     """
-    Measure raw ``mj_step`` throughput of the robot resting in the empty world.
+    Measure raw ``mj_step`` throughput of the robot driving straight in the empty world.
 
     :param urdf_xml: the robot URDF (str).
     :param seconds: measuring time (wall s).
     :param physics_step: physics step (s).
+    :param wheel_speed: velocity command of every wheel (rad/s).
     :returns: physics steps per wall second (float).
     """
     world = World(physics_step)
     world.spawn(urdf_to_spec(urdf_xml, pose=(0, 0, 0.0, 0, 0, 0)), 'amr')
     world.step(500)
-    world.data.ctrl[:] = 2.0  # wheels turning: contacts and actuators active
+    world.data.ctrl[:] = wheel_speed  # driving straight: contacts and actuators active
     steps = 0
     start = time.perf_counter()
     while time.perf_counter() - start < seconds:
@@ -165,8 +174,7 @@ class _Observer:
         self.cmd_pub = self.node.create_publisher(
             TwistStamped, '/diff_drive_controller/cmd_vel', 10)
         self.twist = TwistStamped()
-        self.twist.twist.linear.x = 0.3
-        self.twist.twist.angular.z = 0.5
+        self.twist.twist.linear.x, self.twist.twist.angular.z = TURN_TWIST
         self.list_client = self.node.create_client(
             ListControllers, '/controller_manager/list_controllers')
         self.list_request = ListControllers.Request()
@@ -175,11 +183,15 @@ class _Observer:
         """Spin ``seconds`` wall seconds, publishing cmd_vel (zero stamp = now) at cmd_rate."""
         end = time.monotonic() + seconds
         next_cmd = 0.0
-        while time.monotonic() < end:
-            if time.monotonic() >= next_cmd:
+        while True:
+            now = time.monotonic()
+            if now >= end:
+                break
+            if now >= next_cmd:
                 self.cmd_pub.publish(self.twist)
-                next_cmd = time.monotonic() + 1.0 / cmd_rate
-            self.executor.spin_once(timeout_sec=0.005)
+                next_cmd = now + 1.0 / cmd_rate
+            # sleep in the wait until the next command (callbacks wake it up)
+            self.executor.spin_once(timeout_sec=max(0.0, min(next_cmd, end) - now))
 
     def active_controllers(self):
         """Return the names of active controllers (empty while the manager is absent)."""
@@ -212,8 +224,9 @@ class _Observer:
         self.node.destroy_subscription(sub)
         return sample[0] if sample else None
 
-    def measure_fast(self, seconds):
-        """Return the sim/wall speed over ``seconds`` from two /clock samples."""
+    def measure_fast(self, seconds, twist=(FAST_LINEAR, 0.0)):
+        """Return the sim/wall speed over ``seconds`` driven by ``twist`` (m/s, rad/s)."""
+        self.twist.twist.linear.x, self.twist.twist.angular.z = twist
         self.node.destroy_subscription(self._clock_sub)
         for sub in self._other_subs:
             self.node.destroy_subscription(sub)
@@ -242,7 +255,8 @@ class _Observer:
         self.rclpy.try_shutdown(context=self.context)
 
 
-def _run_stack(domain_id, real_time_factor, urdf_path, duration, log):
+def _run_stack(domain_id, real_time_factor, urdf_path, duration, log,
+               twist=(FAST_LINEAR, 0.0)):
     """Start a stack, wait for the controllers, measure; return a result dict."""
     observer = _Observer(domain_id)
     stack = _Stack(domain_id, real_time_factor, urdf_path)
@@ -268,7 +282,7 @@ def _run_stack(domain_id, real_time_factor, urdf_path, duration, log):
         elif real_time_factor > 0:
             result['rtf'], result['rates'] = observer.measure(duration)
         else:
-            result['rtf'] = observer.measure_fast(duration)
+            result['rtf'] = observer.measure_fast(duration, twist)
     finally:
         stack.close()
         observer.close()
@@ -288,13 +302,15 @@ def run(duration=10.0, urdf_path=None, log=print):
     log('raw mj_step throughput ...')
     raw = raw_step_rate(urdf, seconds=min(5.0, duration))
     raw_rtf = raw * 0.001
+    log(f'(b) for reference, driven in a circle, {duration:g} s ...')
+    turning = _run_stack(base + 3, 0.0, urdf_path, duration, log, twist=TURN_TWIST)
     log('(c) start-up, one more run ...')
     extra = _run_stack(base + 2, 1.0, urdf_path, 0.0, log)
     startups = [s for s in (realtime['startup'], afap['startup'], extra['startup'])
                 if s is not None]
     return {
         'rtf_realtime': realtime['rtf'], 'rates_realtime': realtime['rates'],
-        'rtf_afap': afap['rtf'], 'rates_afap': afap['rates'],
+        'rtf_afap': afap['rtf'], 'rates_afap': afap['rates'], 'rtf_afap_turning': turning['rtf'],
         'raw_steps_per_s': raw, 'raw_rtf': raw_rtf,
         'afap_fraction_of_raw': afap['rtf'] / raw_rtf if raw_rtf else 0.0,
         'startup_s': sorted(startups)[len(startups) // 2] if startups else None,
@@ -320,10 +336,12 @@ def report(results, duration):
         f'{mark(r["rtf_realtime"] >= 0.99)} |',
         f'| (b) as fast as possible: x real time | {r["rtf_afap"]:.1f}x | >= 30x | '
         f'{mark(r["rtf_afap"] >= 30)} |',
-        f'| (b) raw mj_step, same model | {r["raw_steps_per_s"]:.0f} steps/s = '
-        f'{r["raw_rtf"]:.1f}x | | |',
+        f'| (b) raw mj_step, same model, same straight drive | '
+        f'{r["raw_steps_per_s"]:.0f} steps/s = {r["raw_rtf"]:.1f}x | | |',
         f'| (b) fraction of raw throughput | {100 * r["afap_fraction_of_raw"]:.1f} % | '
         f'>= 40 % | {mark(r["afap_fraction_of_raw"] >= 0.40)} |',
+        f'| (b) for reference: driven in a circle (0.3 m/s, 0.5 rad/s; wheels skid) | '
+        f'{r["rtf_afap_turning"]:.1f}x | | |',
         '| (c) mujoco_sim start -> both controllers active (median of 3) | ' +
         (f'{startup:.2f} s | < 3 s | {mark(startup < 3.0)} |' if startup is not None
          else 'not reached | < 3 s | FAIL |'), '',
@@ -331,7 +349,12 @@ def report(results, duration):
         ', '.join(f'{k} {v:.1f}' for k, v in rates.items()) + '.', '',
         'In fast-forward mode the observer samples /clock only at the start and the end '
         '(subscribing to every topic at ~30x would load the shared cores with its own '
-        'callbacks).', '',
+        'callbacks) and drives the robot straight at 0.2 m/s with cmd_vel at 20 Hz (wall); '
+        'the raw loop commands the same wheel speed (2 rad/s). Same motion, same physics '
+        'cost: a skid-steer robot turning makes mj_step about twice as dear (raw, same '
+        'model: ~108x at rest or straight, ~57x turning with 6.15/-0.15 rad/s wheels), so '
+        'a turning simulation compared with a straight raw loop measures the physics, not '
+        'the simulator. Until 2026-11-21 (b) drove the robot in a circle as (a) does.', '',
         f'Start-up runs (s): {", ".join(f"{s:.2f}" for s in r["startup_runs_s"])} '
         '(the median is reported; each run starts mujoco_sim, create and the two spawners '
         'together, as a launch file does; the end is the later of the two spawners\u2019 '
