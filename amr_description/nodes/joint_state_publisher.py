@@ -28,8 +28,6 @@ from rclpy.qos import QoSProfile
 from sensor_msgs.msg import JointState
 from std_msgs.msg import String
 
-MOVABLE = ('revolute', 'continuous', 'prismatic')
-
 
 class JointStatePublisher(Node):
     """Node ``joint_state_publisher`` (see the module docstring)."""
@@ -78,8 +76,8 @@ class JointStatePublisher(Node):
             return
         self._joints = []
         self._positions = {}
-        for joint in model.joints.values():
-            if joint.type not in MOVABLE or joint.mimic is not None:
+        for joint in model.moving_joints():
+            if joint.mimic is not None:
                 continue
             self._joints.append(joint.name)
             self._positions[joint.name] = self._initial(joint)

@@ -31,6 +31,7 @@ import sys
 
 from amr_description.core.kinematics import joint_transform
 from amr_description.core.kinematics import matrix_to_translation_quaternion
+from amr_description.core.kinematics import MOVING_JOINT_TYPES
 from amr_description.core.urdf_model import parse_urdf
 from amr_description.nodes import shutdown
 from geometry_msgs.msg import TransformStamped
@@ -156,7 +157,7 @@ class RobotStatePublisher(Node):
         positions = {}
         for name, position in zip(msg.name, msg.position):
             joint = model.joints.get(name)
-            if joint is not None and joint.type in ('revolute', 'continuous', 'prismatic'):
+            if joint is not None and joint.type in MOVING_JOINT_TYPES:
                 positions[name] = float(position)
         if not positions:
             return
@@ -167,7 +168,7 @@ class RobotStatePublisher(Node):
         transforms = []
         for name, position in resolved.items():
             joint = model.joints[name]
-            if joint.type in ('revolute', 'continuous', 'prismatic'):
+            if joint.type in MOVING_JOINT_TYPES:
                 transforms.append(self._transform(joint, position, msg.header.stamp))
         for name in positions:
             self._last_publish[name] = stamp_ns
