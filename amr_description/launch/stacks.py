@@ -80,6 +80,13 @@ SIM_ARGUMENTS = [
 ]
 
 
+def _with_defaults(declared, args):
+    """Return ``args`` completed with the default values of the ``declared`` arguments."""
+    values = {d.name: d.default_value for d in declared}
+    values.update(args)
+    return values
+
+
 def display(args):
     """
     Describe the ``display`` stack (the tutorial's display.launch.py without RViz).
@@ -87,11 +94,13 @@ def display(args):
     robot_state_publisher with ``robot_description`` = the installed URDF, and
     joint_state_publisher.
 
-    :param args: dict of launch-argument values (see ``DISPLAY_ARGUMENTS``).
+    :param args: dict of launch-argument values (see ``DISPLAY_ARGUMENTS``; missing ones take
+        their declared defaults).
     :returns: list of actions.
     :raises LaunchError: on a bad argument value or an unreadable URDF.
     """
-    use_sim_time = parse_bool(args.get('use_sim_time', 'false'), 'use_sim_time')
+    args = _with_defaults(DISPLAY_ARGUMENTS, args)
+    use_sim_time = parse_bool(args['use_sim_time'], 'use_sim_time')
     description = read_urdf()
     return [
         Node(PACKAGE, 'robot_state_publisher', output='screen',
@@ -111,18 +120,19 @@ def sim(args):
     ``spawner joint_state_broadcaster``, and when that exits ``spawner diff_drive_controller``
     (the tutorial's ``OnProcessExit`` chain).
 
-    :param args: dict of launch-argument values (see ``SIM_ARGUMENTS``).
+    :param args: dict of launch-argument values (see ``SIM_ARGUMENTS``; missing ones take
+        their declared defaults).
     :returns: list of actions.
     :raises LaunchError: on a bad argument value or an unreadable URDF.
     """
-    use_sim_time = parse_bool(args.get('use_sim_time', 'true'), 'use_sim_time')
-    rtf = parse_float(args.get('rtf', '1.0'), 'rtf')
+    args = _with_defaults(SIM_ARGUMENTS, args)
+    use_sim_time = parse_bool(args['use_sim_time'], 'use_sim_time')
+    rtf = parse_float(args['rtf'], 'rtf')
     if rtf < 0:
         raise LaunchError(f"launch argument 'rtf': expected a number >= 0, got '{args['rtf']}'")
-    headless = parse_bool(args.get('headless', 'true'), 'headless')
-    robot = args.get('robot', 'amr') or 'amr'
-    pose = {k: parse_float(args.get(k, d), k)
-            for k, d in (('x', '0.0'), ('y', '0.0'), ('z', '0.2'), ('yaw', '0.0'))}
+    headless = parse_bool(args['headless'], 'headless')
+    robot = args['robot'] or 'amr'
+    pose = {k: parse_float(args[k], k) for k in ('x', 'y', 'z', 'yaw')}
     description = read_urdf()
 
     mujoco_sim = Node(
