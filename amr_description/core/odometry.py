@@ -6,9 +6,9 @@ Planar differential-drive odometry, as diff_drive_controller's ``Odometry`` clas
 Pose ``(x, y, heading)`` of the base frame in the odometry frame (REP 105: metres, radians,
 counter-clockwise positive); twist ``(linear, angular)`` in the base frame (m/s, rad/s).
 Reproduced behaviour (ros2_controllers jazzy, diff_drive_controller odometry): exact arc
-integration, second-order Runge-Kutta when ``|angular| < 1e-6`` rad; updates closer than
-1e-4 s to the previous one are skipped; the reported twist is the rolling mean over the last
-``velocity_rolling_window_size`` velocity estimates.
+integration, second-order Runge-Kutta when a step turns by less than 1e-6 rad; updates
+closer than 1e-4 s to the previous one are skipped; the reported twist is the rolling mean
+over the last ``velocity_rolling_window_size`` velocity estimates.
 """
 
 from collections import deque

@@ -8,11 +8,12 @@ Reproduced behaviour: diff_drive_controller (ros2_controllers jazzy) limits ``li
 Parameters follow the diff_drive_controller names (units of the channel: m/s or rad/s):
 
 - ``max_velocity`` >= 0, ``min_velocity`` <= 0 (NaN min: ``-max_velocity``);
-- ``max_acceleration`` >= 0 (speeding up forwards), ``max_deceleration`` <= 0 (slowing down
-  forwards; NaN: ``-max_acceleration``), ``max_acceleration_reverse`` <= 0 (speeding up
-  backwards; NaN: ``-max_acceleration``), ``max_deceleration_reverse`` >= 0 (slowing down
-  backwards; NaN: ``max_acceleration``); acceleration limits are active when
-  ``max_acceleration`` is set;
+- ``max_acceleration`` >= 0 (speeding up forwards), ``max_acceleration_reverse`` <= 0
+  (speeding up backwards; NaN: ``-max_acceleration``), ``max_deceleration`` <= 0 (slowing
+  down forwards; NaN: ``max_acceleration_reverse``), ``max_deceleration_reverse`` >= 0
+  (slowing down backwards; NaN: ``max_acceleration``), i.e. symmetric limits as
+  control_toolbox's rate limiter; acceleration limits are active when ``max_acceleration``
+  is set;
 - ``max_jerk`` >= 0, ``min_jerk`` <= 0 (NaN min: ``-max_jerk``).
 """
 
