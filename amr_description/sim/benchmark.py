@@ -361,17 +361,27 @@ def report(results, duration):
         '"Configured and activated" log stamps, confirmed by list_controllers).', '',
     ]
     lines += [
-        'Where fast-forward time goes (py-spy of mujoco_sim and a cm.update micro-benchmark '
-        'over the MuJoCo model, 2026-11-21): cm.update went from ~55 us to ~26 us per update '
-        '(in isolation) by reusing the JointState/Odometry/TF messages and writing only their '
-        'changing fields, caching the controller configuration and the MjData views; what '
-        'remains is mostly rclpy message conversion inside publish (~12 us JointState every '
-        'update, ~10 us Odometry + ~7 us TF at 50 Hz). Per 10 ms of sim time mj_step now '
-        'takes most of the simulation thread (10 steps, 100-200 us in the process on the '
-        'shared cores, vs ~100 us raw). Before these changes, in the same conditions: '
-        '20-25x and 19-22 % of raw. Targets still missed: the rest is mj_step slowed by the '
-        'other threads/processes on 2 cores; next steps would be publishing pre-serialized '
-        'messages (publish of bytes costs 2-4 us) and fewer thread wake-ups per update.', '',
+        'Where fast-forward time goes (py-spy, per-thread CPU from /proc and timers around '
+        'mj_step in mujoco_sim, 2026-11-21). (1) cm.update went from ~55 us to ~26 us per '
+        'update (in isolation) by reusing the JointState/Odometry/TF messages, caching the '
+        'controller configuration and the MjData views. (2) /clock and the ground truth were '
+        'published by a separate thread woken by an Event at every update: the simulation '
+        'thread was preempted ~4500 times/s (involuntary context switches) and ran at ~75 % '
+        'of a core; publishing inline in the simulation thread (plus a request deque instead '
+        'of a queue.get_nowait exception per update) leaves it at ~93 % of a core with ~350 '
+        'switches/s. A/B runs of the old and new mujoco_sim interleaved under the same load '
+        '(3 pairs each, 5 s, medians): straight drive 42.0x -> 51.8x (37 % -> 46 % of raw), '
+        'circle drive 27.7x -> 32.4x. sys.setswitchinterval(0.02) was tried and dropped (no '
+        'gain: only the simulation thread and the executor, which blocks in its wait, run '
+        'Python). (3) The raw loop drove straight while the simulator turned: (b) now drives '
+        'both straight. Per update (10 ms of sim time, straight) the simulation thread now '
+        'spends ~110 us in mj_step (vs ~90 us raw: cache and the shared cores) and ~85 us in '
+        'Python, about half of it in rclpy publish (message conversion: Clock ~4 us, '
+        'JointState ~12 us every update; Odometry ~10 us, TF ~7 us, ground truth ~10 us at '
+        '50 Hz). Left: publishing pre-serialized messages (Publisher.publish accepts CDR '
+        'bytes in jazzy, ~2 us for Clock vs ~4 us) would need hand-written serializers for '
+        'little gain; turning a skid-steer robot stays about half as fast as driving '
+        'straight, which is MuJoCo contact cost, not the simulator.', '',
     ]
     return '\n'.join(lines)
 
