@@ -78,20 +78,32 @@ def _start_teleop(procs, exe, ros_env, extra=()):
     return proc, master
 
 
-def _wait_matched(receiver, proc, timeout=8.0):
+def _wait_matched(receiver, proc, master, timeout=8.0):
+    """
+    Wait until the teleop's messages reach ``receiver``, then forget what was received.
+
+    Discovery is not symmetric in time: the receiver may see the publisher before the
+    publisher sees the receiver, and a message sent then is lost (volatile QoS). So type
+    ``k`` (a zero twist, the teleop's initial state) until one arrives, wait out any
+    ``key_timeout`` zero it triggers, and clear the received list.
+    """
     deadline = time.monotonic() + timeout
-    while time.monotonic() < deadline and not receiver.matched():
+    while time.monotonic() < deadline and not receiver.messages:
         assert proc.popen.poll() is None, proc.output
-        time.sleep(0.05)
-    assert receiver.matched(), proc.output
-    time.sleep(0.3)  # let the publisher side discover the subscription too
+        if receiver.matched():
+            os.write(master, b'k')
+        time.sleep(0.2)
+    assert receiver.messages, proc.output
+    time.sleep(0.8)
+    with receiver._lock:
+        receiver.messages.clear()
 
 
 def test_keys_to_twist_stamped_and_zero_on_exit(procs, exe, ros_env, receiver):
     proc, master = _start_teleop(procs, exe, ros_env)
     try:
         assert proc.wait_for_output('currently:\tspeed 0.5\tturn 1.0', timeout=10), proc.output
-        _wait_matched(receiver, proc)
+        _wait_matched(receiver, proc, master)
         os.write(master, b'i')
         msgs = receiver.wait_count(1)
         assert [_values(m) for m in msgs] == [(0.5, 0.0, 0.0, 0.0)]
@@ -118,7 +130,7 @@ def test_key_timeout_publishes_zero(procs, exe, ros_env, receiver):
     proc, master = _start_teleop(procs, exe, ros_env, ('-p', 'key_timeout:=0.3'))
     try:
         assert proc.wait_for_output('currently:', timeout=10), proc.output
-        _wait_matched(receiver, proc)
+        _wait_matched(receiver, proc, master)
         os.write(master, b'l')
         msgs = receiver.wait_count(2, timeout=5)
         assert [_values(m) for m in msgs] == [(0.0, 0.0, 0.0, -1.0), (0.0, 0.0, 0.0, 0.0)]
