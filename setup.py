@@ -40,6 +40,8 @@ setup(
             'listener = amr_description.nodes.listener:main',
             'robot_state_publisher = amr_description.nodes.robot_state_publisher:main',
             'joint_state_publisher = amr_description.nodes.joint_state_publisher:main',
+            'joint_state_publisher_gui = amr_description.nodes.joint_state_publisher_gui:main',
+            'viewer = amr_description.nodes.viewer:main',
             'check_model = amr_description.core.model_check:main',
             'render = amr_description.nodes.render:main',
             'mujoco_sim = amr_description.nodes.mujoco_sim:main',
@@ -48,6 +50,7 @@ setup(
             'teleop_twist_keyboard = amr_description.nodes.teleop_twist_keyboard:main',
             'bringup = amr_description.launch.bringup:main',
             'drive_square = amr_description.nodes.drive_square:main',
+            'physics_report = amr_description.sim.physics_report:main',
             'ros2 = amr_description.cli.main:main',
         ],
         'amr_description.controllers': [

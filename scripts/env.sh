@@ -3,8 +3,9 @@
 #
 # Source me (bash or zsh), from any directory:  source scripts/env.sh
 # Activates .venv, sources the colcon install, adds the venv prefix to AMENT_PREFIX_PATH, sets
-# ROS_AUTOMATIC_DISCOVERY_RANGE=LOCALHOST unless already set, and provides `ros2` (our CLI
-# subset) only when no upstream ros2cli is installed. Run ./scripts/setup first.
+# ROS_AUTOMATIC_DISCOVERY_RANGE=LOCALHOST unless already set, ROS_DISTRO=jazzy, ROS_VERSION=2
+# and ROS_PYTHON_VERSION=3 unless set (as a ROS install's setup script does), and provides
+# `ros2` (our CLI subset) only when no upstream ros2cli is installed. Run ./scripts/setup first.
 
 if [ -n "${BASH_SOURCE:-}" ]; then
   _amr_root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -46,6 +47,9 @@ else
   fi
   [ -n "$_amr_nounset" ] && set -u
   export ROS_AUTOMATIC_DISCOVERY_RANGE="${ROS_AUTOMATIC_DISCOVERY_RANGE:-LOCALHOST}"
+  export ROS_DISTRO="${ROS_DISTRO:-jazzy}"
+  export ROS_VERSION="${ROS_VERSION:-2}"
+  export ROS_PYTHON_VERSION="${ROS_PYTHON_VERSION:-3}"
 
   # `ros2` from amr_description only when no upstream ros2cli exists: a directory holding just
   # a `ros2` link to our entry point (not all of lib/amr_description) goes on PATH.

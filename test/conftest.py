@@ -9,6 +9,7 @@ limited to localhost) and ``procs`` (starts processes in their own process group
 output, and kills the whole group when the test ends, so no test leaves a ROS process behind).
 """
 
+import fcntl
 import itertools
 import os
 import signal
@@ -18,16 +19,49 @@ import time
 
 import pytest
 
-_DOMAIN_IDS = itertools.count((os.getpid() * 7) % 200 + 1)
+# Domain IDs 1..199 are handed out to tests; 200..232 stay free for hand-started stacks.
+_FIRST_DOMAIN, _LAST_DOMAIN = 1, 199
+_DOMAIN_IDS = itertools.count((os.getpid() * 7) % _LAST_DOMAIN)
+_DOMAIN_LOCKS = []
+_LOCK_DIR = os.path.join(tempfile.gettempdir(), 'amr_description_domains')
 
 
 def next_domain_id():
     """
-    Return a ROS domain ID not yet used by this test process (1..230).
+    Return a ROS domain ID that no other test process on this machine holds (1..199).
+
+    Each ID is claimed with an exclusive ``flock`` on a file under the temporary directory and
+    held until this test process exits, so concurrent test runs (two checkouts, a CI job next
+    to a developer's run) never share a domain.
 
     :returns: the domain ID, an int.
+    :raises RuntimeError: when every ID in the range is held by other processes.
     """
-    return (next(_DOMAIN_IDS) - 1) % 230 + 1
+    os.makedirs(_LOCK_DIR, exist_ok=True)
+    span = _LAST_DOMAIN - _FIRST_DOMAIN + 1
+    for _ in range(span):
+        domain = next(_DOMAIN_IDS) % span + _FIRST_DOMAIN
+        fd = os.open(os.path.join(_LOCK_DIR, f'{domain}.lock'), os.O_CREAT | os.O_RDWR, 0o666)
+        try:
+            fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        except OSError:
+            os.close(fd)
+            continue
+        _DOMAIN_LOCKS.append((domain, fd))
+        return domain
+    raise RuntimeError(f'every ROS domain ID {_FIRST_DOMAIN}..{_LAST_DOMAIN} is in use')
+
+
+def release_domain_id(domain):
+    """
+    Give back a domain ID claimed by :func:`next_domain_id` (no-op when not held).
+
+    :param domain: the domain ID, an int.
+    """
+    for entry in list(_DOMAIN_LOCKS):
+        if entry[0] == domain:
+            _DOMAIN_LOCKS.remove(entry)
+            os.close(entry[1])
 
 
 def package_exe(name):
@@ -56,14 +90,18 @@ def ros_env():
     """
     Environment for child processes: a fresh ``ROS_DOMAIN_ID`` and localhost-only DDS.
 
+    The domain is held (see :func:`next_domain_id`) until the test's processes are gone.
+
     :returns: a dict to pass as ``env=`` to subprocesses; the test process itself is not changed.
     """
+    domain = next_domain_id()
     env = dict(os.environ)
-    env['ROS_DOMAIN_ID'] = str(next_domain_id())
+    env['ROS_DOMAIN_ID'] = str(domain)
     env['ROS_AUTOMATIC_DISCOVERY_RANGE'] = 'LOCALHOST'
     env['PYTHONUNBUFFERED'] = '1'
     env.pop('ROS_LOCALHOST_ONLY', None)
-    return env
+    yield env
+    release_domain_id(domain)
 
 
 class Proc:
@@ -134,7 +172,7 @@ class Proc:
 
 
 @pytest.fixture
-def procs():
+def procs(ros_env):
     """
     Start processes with ``procs.start(argv, env)``; all are killed when the test ends.
 

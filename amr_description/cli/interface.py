@@ -2,7 +2,7 @@
 # Licensed under the Apache License, Version 2.0
 
 """
-``ros2 interface show TYPE`` and ``ros2 interface list`` (output of ros2interface, jazzy).
+``ros2 interface show|list|packages|package`` (output of ros2interface, jazzy).
 
 ``show`` prints the ``.msg``/``.srv``/``.action`` file found under ``share/PKG/<kind>/`` of
 the ament index. Every field of a non-primitive type is followed by that type's definition,
@@ -124,6 +124,58 @@ def _list(args):
     return 0
 
 
+def interface_packages():
+    """
+    Return the packages registering interfaces in the ament index (``rosidl_interfaces``).
+
+    :returns: dict package name -> install prefix.
+    """
+    from ament_index_python import get_resources
+    return get_resources('rosidl_interfaces')
+
+
+def package_interfaces(package):
+    """
+    Return the interfaces of ``package`` as ``pkg/kind/Type``, sorted (ros2interface).
+
+    :param package: package name.
+    :returns: list of str.
+    :raises LookupError: ``Unknown package 'p'`` when it registers no interfaces.
+    """
+    from ament_index_python import get_resource
+    try:
+        content, _ = get_resource('rosidl_interfaces', package)
+    except LookupError:
+        raise LookupError(f"Unknown package '{package}'") from None
+    names = set()
+    for line in content.splitlines():
+        kind, _, filename = line.strip().partition('/')
+        base, _, ext = filename.rpartition('.')
+        if kind in INTERFACE_KINDS and ext == 'idl' and base:
+            names.add(f'{package}/{kind}/{base}')
+    return sorted(names)
+
+
+def _packages(args):
+    kinds = [k for k, flag in (('msg', args.only_msgs), ('srv', args.only_srvs),
+                               ('action', args.only_actions)) if flag]
+    for name in sorted(interface_packages()):
+        if kinds and not any(i.split('/')[1] in kinds for i in package_interfaces(name)):
+            continue
+        print(name)
+    return 0
+
+
+def _package(args):
+    try:
+        names = package_interfaces(args.package_name)
+    except LookupError as exc:
+        return fail(str(exc))
+    for name in names:
+        print(name)
+    return 0
+
+
 def add_command(subparsers):
     """
     Add the ``interface`` command and its verbs to the ``ros2`` parser.
@@ -149,3 +201,15 @@ def add_command(subparsers):
     p.add_argument('-a', '--only-actions', dest='only_action', action='store_true',
                    help='Print out only the action types')
     p.set_defaults(main=_list)
+    p = verbs.add_parser('packages', help='Output a list of packages that provide interfaces')
+    p.add_argument('-m', '--only-msgs', action='store_true',
+                   help='Only list packages that generate messages')
+    p.add_argument('-s', '--only-srvs', action='store_true',
+                   help='Only list packages that generate services')
+    p.add_argument('-a', '--only-actions', action='store_true',
+                   help='Only list packages that generate actions')
+    p.set_defaults(main=_packages)
+    p = verbs.add_parser('package', help='Output a list of available interface types within '
+                         'one package')
+    p.add_argument('package_name', help="Name of the ROS package (e.g. 'example_interfaces')")
+    p.set_defaults(main=_package)

@@ -16,7 +16,8 @@ import importlib
 import os
 import sys
 
-COMMANDS = ('control', 'interface', 'launch', 'node', 'pkg', 'run', 'service', 'topic')
+COMMANDS = ('bag', 'control', 'doctor', 'interface', 'launch', 'node', 'param', 'pkg', 'run',
+            'service', 'topic')
 
 
 def build_parser():

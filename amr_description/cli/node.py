@@ -1,11 +1,24 @@
 # Copyright 2026 The amr_description Authors
 # Licensed under the Apache License, Version 2.0
 
-"""``ros2 node list``: fully qualified node names, sorted (as ros2node)."""
+r"""
+``ros2 node list|info``, formats of ros2node (jazzy).
+
+``list``: fully qualified node names, sorted. ``info NODE``: the node name, then the sections
+``  Subscribers:``, ``  Publishers:``, ``  Service Servers:``, ``  Service Clients:``,
+``  Action Servers:``, ``  Action Clients:``, each followed by ``    /name: type[, type]``
+lines (an empty line when the section is empty, as upstream's ``print(*[], sep='\n')``);
+hidden topics and services are left out unless ``--include-hidden``; a missing node gives
+``Unable to find node '/x'`` and exit 1.
+"""
+
+import sys
 
 from amr_description.cli.common import add_spin_time_argument
 from amr_description.cli.common import cli_node
+from amr_description.cli.common import CliError
 from amr_description.cli.common import default_node_name
+from amr_description.cli.common import is_hidden_name
 from amr_description.cli.common import wait_for_graph
 
 
@@ -37,6 +50,63 @@ def _list(args):
     return 0
 
 
+def format_section(title, names_and_types):
+    r"""
+    Return one section of ``ros2 node info``.
+
+    :param title: e.g. ``'Publishers'``.
+    :param names_and_types: ``[(name, [type, ...]), ...]``.
+    :returns: ``'  Title:\n'`` followed by ``'    name: types'`` lines, or by one empty line.
+    """
+    lines = [f'    {name}: {", ".join(types)}' for name, types in names_and_types]
+    return f'  {title}:\n' + '\n'.join(lines) + '\n'
+
+
+def _split_ns(full_name):
+    namespace, _, name = full_name.rpartition('/')
+    return name, namespace or '/'
+
+
+def _info(args):
+    from rclpy.action import get_action_client_names_and_types_by_node
+    from rclpy.action import get_action_server_names_and_types_by_node
+    target = args.node_name if args.node_name.startswith('/') else '/' + args.node_name
+    with cli_node(default_node_name()) as node:
+        def matches(n):
+            return [fully_qualified(*pair)
+                    for pair in n.get_node_names_and_namespaces()].count(target)
+        count = wait_for_graph(node, matches, settle=0.5, minimum=0.0,
+                               maximum=args.spin_time, ready=bool)
+        if not count:
+            raise CliError(f"Unable to find node '{args.node_name}'")
+        if count > 1:
+            print(f'There are {count} nodes in the graph with the exact name "{target}". '
+                  'You are seeing information about only one of them.', file=sys.stderr)
+        name, namespace = _split_ns(target)
+        # the node's own endpoints are announced a little after the node itself
+        wait_for_graph(node, lambda n: (
+            n.get_publisher_names_and_types_by_node(name, namespace),
+            n.get_service_names_and_types_by_node(name, namespace)), settle=0.5,
+            minimum=0.0, maximum=args.spin_time)
+
+        def visible(items):
+            return [(n, t) for n, t in items if args.include_hidden or not is_hidden_name(n)]
+        sections = [
+            ('Subscribers', node.get_subscriber_names_and_types_by_node(name, namespace)),
+            ('Publishers', node.get_publisher_names_and_types_by_node(name, namespace)),
+            ('Service Servers', node.get_service_names_and_types_by_node(name, namespace)),
+            ('Service Clients', node.get_client_names_and_types_by_node(name, namespace)),
+            ('Action Servers',
+             get_action_server_names_and_types_by_node(node, name, namespace)),
+            ('Action Clients',
+             get_action_client_names_and_types_by_node(node, name, namespace)),
+        ]
+    print(target)
+    for title, items in sections:
+        sys.stdout.write(format_section(title, visible(items)))
+    return 0
+
+
 def add_command(subparsers):
     """
     Add the ``node`` command and its verbs to the ``ros2`` parser.
@@ -53,3 +123,9 @@ def add_command(subparsers):
                    help='Only display the number of nodes discovered')
     add_spin_time_argument(p)
     p.set_defaults(main=_list)
+    p = verbs.add_parser('info', help='Output information about a node')
+    p.add_argument('node_name', help='Node name to request information')
+    p.add_argument('--include-hidden', action='store_true', help='Display hidden topics, '
+                   'services, and actions as well')
+    add_spin_time_argument(p, default=10.0)  # the longest wait: it ends when the node is seen
+    p.set_defaults(main=_info)

@@ -2,7 +2,7 @@
 # Licensed under the Apache License, Version 2.0
 
 """
-``ros2 pkg list|prefix|executables``: packages of the ament index (formats of ros2pkg).
+``ros2 pkg list|prefix|executables|xml``: packages of the ament index (formats of ros2pkg).
 
 The index is the one ament_index_python reads: every prefix of ``AMENT_PREFIX_PATH``.
 """
@@ -74,6 +74,29 @@ def _executables(args):
     return 0
 
 
+def _xml(args):
+    import xml.etree.ElementTree as ElementTree
+    prefix = package_prefixes().get(args.package_name)
+    if prefix is None:
+        return fail('Package not found')
+    path = os.path.join(prefix, 'share', args.package_name, 'package.xml')
+    try:
+        with open(path, 'r') as f:
+            text = f.read()
+    except OSError as exc:
+        return fail(f'{path}: {exc.strerror}')
+    if args.tag is None:
+        print(text, end='' if text.endswith('\n') else '\n')
+        return 0
+    try:
+        root = ElementTree.fromstring(text)
+    except ElementTree.ParseError as exc:
+        return fail(f'{path}: {exc}')
+    for element in root.findall(args.tag):
+        print((element.text or '').strip())
+    return 0
+
+
 def add_command(subparsers):
     """
     Add the ``pkg`` command and its verbs to the ``ros2`` parser.
@@ -95,3 +118,7 @@ def add_command(subparsers):
     p.add_argument('--full-path', action='store_true',
                    help='Show the full path of each executable')
     p.set_defaults(main=_executables)
+    p = verbs.add_parser('xml', help='Output the XML of the package manifest or a specific tag')
+    p.add_argument('package_name', help='The package name')
+    p.add_argument('-t', '--tag', help='The XML tag to output (e.g. version)')
+    p.set_defaults(main=_xml)

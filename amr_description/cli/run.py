@@ -5,9 +5,12 @@
 ``ros2 run PKG EXE [args] [--ros-args ...]``: run a package executable (as ros2run).
 
 The executable is ``<prefix>/lib/PKG/EXE`` of the package's prefix in the ament index. It
-runs as a child in the same process group, so a terminal Ctrl-C reaches it directly; SIGTERM
-to ``ros2`` is passed on. The exit code is the child's; a failure or a signal is reported as
-``[ros2run] ...`` like upstream.
+runs as a child in the same process group, so a terminal Ctrl-C reaches it directly (and is
+not sent twice). A SIGINT, SIGTERM or SIGHUP sent to ``ros2`` alone (``kill PID``, a
+supervisor) is passed on to the child, and the child is tied to ``ros2``'s life with
+``prctl(PR_SET_PDEATHSIG, SIGKILL)`` (as the orchestrator in ``launch/`` does), so no signal
+reaching ``ros2 run`` alone leaves an orphan; upstream ros2run does neither. The exit code is
+the child's; a failure or a signal is reported as ``[ros2run] ...`` like upstream.
 """
 
 import argparse
@@ -18,6 +21,7 @@ import subprocess
 from amr_description.cli.common import fail
 from amr_description.cli.pkg import executable_paths
 from amr_description.cli.pkg import package_prefixes
+from amr_description.launch.child_process import tie_to_parent
 
 
 def find_executable(package, executable):
@@ -38,6 +42,40 @@ def find_executable(package, executable):
     return paths[0] if paths else None
 
 
+_FORWARDED = (signal.SIGINT, signal.SIGTERM, signal.SIGHUP)
+_SI_KERNEL = 0x80
+"""``siginfo.si_code`` of a signal the kernel raised itself (a terminal's Ctrl-C)."""
+
+
+def run_child(cmd):
+    """
+    Run ``cmd`` as a child, forwarding the signals ``ros2 run`` receives alone.
+
+    SIGINT, SIGTERM and SIGHUP are blocked and taken with ``sigtimedwait`` so their origin is
+    known: one the kernel raised for the terminal (``si_code == SI_KERNEL``, e.g. Ctrl-C)
+    already reached the child through the process group and is not sent again; any other
+    (``kill``) is forwarded to the child.
+
+    :param cmd: the command line, a list of str.
+    :returns: the child's return code (negative: killed by that signal).
+    :raises OSError: when the executable cannot be started.
+    """
+    signal.pthread_sigmask(signal.SIG_BLOCK, _FORWARDED)
+    try:
+        child = subprocess.Popen(cmd, preexec_fn=tie_to_parent(os.getpid(), _FORWARDED))
+    except BaseException:
+        signal.pthread_sigmask(signal.SIG_UNBLOCK, _FORWARDED)
+        raise
+    while child.poll() is None:
+        info = signal.sigtimedwait(_FORWARDED, 0.1)
+        if info is not None and info.si_code != _SI_KERNEL:
+            try:
+                child.send_signal(info.si_signo)
+            except ProcessLookupError:
+                pass
+    return child.returncode
+
+
 def _main(args):
     try:
         path = find_executable(args.package_name, args.executable_name)
@@ -46,16 +84,10 @@ def _main(args):
     if path is None:
         return fail('No executable found')
     cmd = ([*args.prefix.split()] if args.prefix else []) + [path, *args.argv]
-    child = subprocess.Popen(cmd)
-    signal.signal(signal.SIGTERM, lambda signum, frame: child.send_signal(signal.SIGTERM))
-    while True:
-        try:
-            child.wait()
-            break
-        except KeyboardInterrupt:
-            # the child got the same Ctrl-C (same process group): wait for it to finish
-            continue
-    code = child.returncode
+    try:
+        code = run_child(cmd)
+    except OSError as exc:
+        return fail(f'[ros2run] {exc}')
     if code < 0:
         print('[ros2run]', signal.strsignal(-code))
     elif code != 0:

@@ -2,7 +2,7 @@
 # Licensed under the Apache License, Version 2.0
 
 """
-``ros2 service list|type|call`` with the output formats of ros2service (jazzy).
+``ros2 service list|find|type|call`` with the output formats of ros2service (jazzy).
 
 ``call`` prints ``requester: making request: <repr>`` then ``response:`` and the response
 repr, each followed by a blank line, as upstream.
@@ -43,6 +43,21 @@ def _list(args):
         return 0
     for name, types in services:
         print(f'{name} [{", ".join(types)}]' if args.show_types else name)
+    return 0
+
+
+def _find(args):
+    with cli_node(default_node_name()) as node:
+        services = wait_for_graph(node, lambda n: n.get_service_names_and_types(),
+                                  settle=args.spin_time, minimum=args.spin_time,
+                                  maximum=args.spin_time)
+    found = [name for name, types in services if args.service_type in types
+             and (args.include_hidden_services or not is_hidden_name(name))]
+    if args.count_services:
+        print(len(found))
+        return 0
+    for name in found:
+        print(name)
     return 0
 
 
@@ -119,6 +134,16 @@ def add_command(subparsers):
                    help='Consider hidden services as well')
     add_spin_time_argument(p)
     p.set_defaults(main=_list)
+    p = verbs.add_parser('find', help='Output a list of available services of a given type')
+    p.add_argument('service_type',
+                   help="Name of the ROS service type to filter for (e.g. 'rcl_interfaces/srv/"
+                        "ListParameters')")
+    p.add_argument('-c', '--count-services', action='store_true',
+                   help='Only display the number of services discovered')
+    p.add_argument('--include-hidden-services', action='store_true',
+                   help='Consider hidden services as well')
+    add_spin_time_argument(p)
+    p.set_defaults(main=_find)
     p = verbs.add_parser('type', help="Output a service's type")
     p.add_argument('service_name', help="Name of the ROS service (e.g. '/add_two_ints')")
     add_spin_time_argument(p)

@@ -67,8 +67,10 @@ class ControllerInterface(LifecycleNode):
     :param parameter_overrides: list of :class:`rclpy.parameter.Parameter` from the YAML.
     :param robot_description: URDF XML of the robot (str), available as
         ``self.robot_description`` in :meth:`on_init` and later.
-    :param update_rate: controller-manager update rate (Hz), reported in list_controllers.
-    :param node_kwargs: further keyword arguments of :class:`rclpy.node.Node` (``context``).
+    :param update_rate: controller-manager update rate (Hz): the default of the controller's
+        ``update_rate`` parameter (reported in list_controllers, as ``is_async``).
+    :param node_kwargs: further keyword arguments of :class:`rclpy.node.Node` (``context``,
+        ``cli_args``, ``use_global_arguments``).
     :raises RuntimeError: when :meth:`on_init` returns False (message names the controller).
     """
 
@@ -81,7 +83,14 @@ class ControllerInterface(LifecycleNode):
             automatically_declare_parameters_from_overrides=True,
             enable_communication_interface=False, **node_kwargs)
         self.robot_description = robot_description or ''
-        self.update_rate = int(update_rate)
+        # as upstream's ControllerInterfaceBase::init: the controller's own update rate
+        # (default: the manager's), whether it runs asynchronously, and its thread priority
+        self.update_rate = int(self.auto_declare(
+            'update_rate', int(update_rate), 'Update rate of the controller (Hz)'))
+        self.is_async = bool(self.auto_declare(
+            'is_async', False, 'Whether the controller updates in its own thread'))
+        self.auto_declare('thread_priority', 50,
+                          'Priority of the thread of an asynchronous controller')
         self.command_interfaces = {}
         self.state_interfaces = {}
         self.last_update_time = None
@@ -89,19 +98,26 @@ class ControllerInterface(LifecycleNode):
             raise RuntimeError(f"Could not initialize the controller named '{name}'")
 
     # ----------------------------------------------------------------- parameters
-    def auto_declare(self, name, default):
+    def auto_declare(self, name, default, description='', read_only=False):
         """
         Declare parameter ``name`` with ``default`` unless given, and return its value.
 
         Overrides from the YAML win; an override of another numeric type than the default is
-        converted (``1`` for a double parameter gives ``1.0``).
+        converted (``1`` for a double parameter gives ``1.0``). As upstream (parameters
+        declared by generate_parameter_library), a parameter declared here carries
+        ``description`` and ``read_only`` in its descriptor (``ros2 param describe``); one
+        already declared from the YAML keeps a plain descriptor.
 
         :param name: parameter name, e.g. ``'linear.x.max_velocity'``.
         :param default: default value (its type decides the conversion).
+        :param description: text of the parameter descriptor.
+        :param read_only: whether the parameter can not be changed after declaration.
         :returns: the parameter value.
         """
         if not self.has_parameter(name):
-            self.declare_parameter(name, default)
+            from rcl_interfaces.msg import ParameterDescriptor
+            self.declare_parameter(name, default, ParameterDescriptor(
+                description=description, read_only=read_only))
         return self.param(name, default)
 
     def param(self, name, default=None):
@@ -180,6 +196,21 @@ class ControllerInterface(LifecycleNode):
         if self.last_update_time is not None:
             return self.last_update_time
         return self.get_clock().now().nanoseconds * 1e-9
+
+    def destroy(self):
+        """
+        Destroy the node and every entity it created, leaving nothing in the ROS graph.
+
+        The lifecycle state machine holds the node handle, so it is destroyed first; then
+        the node (its publishers, subscriptions, timers, services and parameter services).
+        """
+        machine = getattr(self, '_state_machine', None)
+        if machine is not None:
+            try:
+                machine.destroy_when_not_in_use()
+            except Exception:  # noqa: B902 - already destroyed
+                pass
+        self.destroy_node()
 
     @property
     def lifecycle_state(self):

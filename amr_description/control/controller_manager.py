@@ -4,21 +4,31 @@
 Controller manager: loads controllers and runs read -> update -> write.
 
 As ros2_control's ``controller_manager`` (jazzy): an rclpy node ``controller_manager`` whose
-parameters come from the controllers YAML (same format; ``update_rate`` default 100 Hz,
-``<controller>.type``, ``<controller>.params_file`` — the upstream spawner sets the last two
-through the parameter services) and which serves, under ``~/``, ``list_controllers``,
+parameters come from the controllers YAML (same format; ``update_rate`` default 100 Hz and
+read-only, ``<controller>.type``, ``<controller>.params_file`` and
+``<controller>.node_options_args`` — the upstream spawner sets the last three through the
+parameter services) and which serves, under ``~/``, ``list_controllers``,
 ``list_controller_types``, ``load_controller``, ``configure_controller``,
 ``cleanup_controller``, ``switch_controller``, ``unload_controller``,
-``list_hardware_interfaces`` and ``list_hardware_components`` (controller_manager_msgs).
+``reload_controller_libraries``, ``list_hardware_interfaces``, ``list_hardware_components``
+and ``set_hardware_component_state`` (controller_manager_msgs), and publishes
+``~/activity`` (``ControllerManagerActivity``, reliable, transient local, depth 1) whenever a
+controller or hardware component changes lifecycle state.
 
 Controllers are found by their ``type`` in the entry-point group
 ``amr_description.controllers``; each is a lifecycle node named after it, with its parameters
-from the YAML (and ``use_sim_time``). ``update(time, period)`` (seconds) is called by the
-owner's control thread (the simulator, or :func:`main`'s wall-clock loop); it applies pending
-switches, reads the hardware, updates active controllers in load order, then writes. A
-controller whose update fails (returns False, raises, or sees NaN feedback) is deactivated
-with an error log. Switches requested through the service happen at the next update; the
-service waits for it up to the request's timeout (0: 1 s), as upstream.
+from the YAML (and ``use_sim_time``), the node arguments of ``<name>.node_options_args`` (e.g.
+``['-r', '~/cmd_vel:=/x']``), which win over the process' global arguments. The
+owner's control thread (the simulator, or :func:`main`'s wall-clock loop) calls, each cycle,
+:meth:`ControllerManager.read`, :meth:`ControllerManager.update` and
+:meth:`ControllerManager.write` with ``(time, period)`` in seconds: ``update`` applies pending
+switches and updates the active controllers in load order (each at its own ``update_rate``
+parameter, default the manager's). A controller whose update fails (returns False, raises,
+or sees NaN feedback) is deactivated with an error log. Switches requested through the
+service happen at the next update; the service waits for it up to the request's timeout (0:
+1 s), as upstream. :meth:`ControllerManager.shutdown` destroys every controller node and
+:meth:`ControllerManager.destroy_node` everything of the manager, leaving nothing in the ROS
+graph.
 
 Run standalone (ros2_control_node equivalent)::
 
@@ -33,6 +43,7 @@ import sys
 import threading
 import time as _time
 
+from amr_description.control import hardware_interface as hi
 from amr_description.control.controller_interface import parameters_from_dict
 from amr_description.control.resource_manager import ResourceManager
 from amr_description.core import ros_param_file
@@ -44,13 +55,35 @@ CONTROLLER_GROUP = 'amr_description.controllers'
 BASE_CLASSES = ['controller_interface::ControllerInterface',
                 'controller_interface::ChainableControllerInterface']
 DEFAULT_SWITCH_TIMEOUT = 1.0
+BEST_EFFORT, STRICT = 1, 2
 
 _STATE_IDS = {'unknown': 0, 'unconfigured': 1, 'inactive': 2, 'active': 3, 'finalized': 4}
+_STATE_LABELS = {v: k for k, v in _STATE_IDS.items()}
+
+UPDATE_RATE_DESCRIPTION = (
+    "The frequency of controller manager's real-time update loop. This loop reads states "
+    'from hardware, updates controllers and writes commands to hardware.')
+_CONTROLLER_KEYS = {
+    'type': 'The type of the controller, e.g. diff_drive_controller/DiffDriveController.',
+    'params_file': 'The parameter files of the controller (string or string array).',
+    'node_options_args': 'The node arguments of the controller node, e.g. '
+                         "['-r', '~/cmd_vel:=/cmd_vel_remapped'].",
+    'fallback_controllers': 'The controllers activated when this one fails.',
+}
 
 
 def controller_types():
     """Return the registered controller types, dict type string -> entry point."""
     return {ep.name: ep for ep in entry_points(group=CONTROLLER_GROUP)}
+
+
+def _list_value(value):
+    """Return a str or string-array parameter value as a list of str ([] when unset)."""
+    if value is None:
+        return []
+    if isinstance(value, str):
+        return value.split()
+    return [str(v) for v in value]
 
 
 class _Switch:
@@ -81,6 +114,7 @@ class ControllerManager(Node):
     def __init__(self, urdf_xml, executor, hardware_factory=None, parameters_file=None,
                  namespace='', use_sim_time=True):
         """Create the node, the hardware and the services (see the class docstring)."""
+        from rcl_interfaces.msg import ParameterDescriptor
         self._yaml_files = []
         own = {}
         if parameters_file:
@@ -93,13 +127,20 @@ class ControllerManager(Node):
         super().__init__(
             'controller_manager', namespace=namespace, context=executor.context,
             parameter_overrides=overrides, allow_undeclared_parameters=True,
-            automatically_declare_parameters_from_overrides=True)
+            automatically_declare_parameters_from_overrides=False)
         for name in skipped:
             self.get_logger().warn(f"Parameter '{name}' has an unsupported value: ignored")
-        if not self.has_parameter('update_rate'):
-            self.declare_parameter('update_rate', 100)
+        # update_rate is read-only, as upstream (generate_parameter_library read_only: true)
+        self.declare_parameter('update_rate', 100, ParameterDescriptor(
+            description=UPDATE_RATE_DESCRIPTION, read_only=True))
+        for param in overrides:
+            if param.name in ('update_rate', 'use_sim_time') or self.has_parameter(param.name):
+                continue
+            key = param.name.rpartition('.')[2]
+            self.declare_parameter(param.name, param.value, ParameterDescriptor(
+                description=_CONTROLLER_KEYS.get(key, ''), dynamic_typing=True))
         rate = self.get_parameter('update_rate').value
-        if not isinstance(rate, int) or rate <= 0:
+        if not isinstance(rate, int) or isinstance(rate, bool) or rate <= 0:
             raise ValueError(f"controller_manager: parameter 'update_rate' must be a positive "
                              f'integer (Hz), got {rate!r}')
         self.update_rate = rate
@@ -108,7 +149,9 @@ class ControllerManager(Node):
         self._executor = executor
         self._lock = threading.RLock()
         self._pending = None
+        self._destroyed = False
         self.controllers = {}  # name -> controller node, in load order
+        self._last_update = {}  # controller name -> time of its last update (s)
         self.resource_manager = ResourceManager(urdf_xml, hardware_factory)
         self.get_logger().info(
             f'Resource manager: {len(self.resource_manager.components)} hardware component(s) '
@@ -116,11 +159,17 @@ class ControllerManager(Node):
             f'{len(self.resource_manager.state_interfaces)} state interfaces')
         self._create_services()
         executor.add_node(self)
+        self._publish_activity()
 
     # ----------------------------------------------------------------- services
     def _create_services(self):
+        from controller_manager_msgs import msg
         from controller_manager_msgs import srv
+        from rclpy.qos import DurabilityPolicy
+        from rclpy.qos import QoSProfile
+        from rclpy.qos import ReliabilityPolicy
         self._srv = srv
+        self._cm_services = []
         for name, kind, callback in (
                 ('list_controllers', srv.ListControllers, self._srv_list_controllers),
                 ('list_controller_types', srv.ListControllerTypes, self._srv_list_types),
@@ -129,10 +178,42 @@ class ControllerManager(Node):
                 ('cleanup_controller', srv.CleanupController, self._srv_cleanup),
                 ('switch_controller', srv.SwitchController, self._srv_switch),
                 ('unload_controller', srv.UnloadController, self._srv_unload),
+                ('reload_controller_libraries', srv.ReloadControllerLibraries,
+                 self._srv_reload_libraries),
                 ('list_hardware_interfaces', srv.ListHardwareInterfaces, self._srv_hw_ifaces),
                 ('list_hardware_components', srv.ListHardwareComponents,
-                 self._srv_hw_components)):
-            self.create_service(kind, f'~/{name}', callback)
+                 self._srv_hw_components),
+                ('set_hardware_component_state', srv.SetHardwareComponentState,
+                 self._srv_set_hw_state)):
+            self._cm_services.append(self.create_service(kind, f'~/{name}', callback))
+        self._activity_pub = self.create_publisher(
+            msg.ControllerManagerActivity, '~/activity',
+            QoSProfile(depth=1, reliability=ReliabilityPolicy.RELIABLE,
+                       durability=DurabilityPolicy.TRANSIENT_LOCAL))
+
+    def _publish_activity(self):
+        """Publish ``~/activity``: the lifecycle state of every controller and component."""
+        from controller_manager_msgs.msg import ControllerManagerActivity
+        from controller_manager_msgs.msg import NamedLifecycleState
+        if self._destroyed or not self.context.ok():
+            return
+        msg = ControllerManagerActivity()
+        msg.header.stamp = self.get_clock().now().to_msg()
+        with self._lock:
+            for name, ctrl in self.controllers.items():
+                item = NamedLifecycleState(name=name)
+                item.state.label = ctrl.lifecycle_state
+                item.state.id = _STATE_IDS.get(item.state.label, 0)
+                msg.controllers.append(item)
+            for component in self.resource_manager.components:
+                item = NamedLifecycleState(name=component.name)
+                item.state.label = component.lifecycle_state
+                item.state.id = _STATE_IDS.get(item.state.label, 0)
+                msg.hardware_components.append(item)
+        try:
+            self._activity_pub.publish(msg)
+        except Exception:  # noqa: B902 - context shutting down: nothing to tell
+            pass
 
     def _srv_list_controllers(self, request, response):
         from controller_manager_msgs.msg import ControllerState
@@ -142,8 +223,8 @@ class ControllerManager(Node):
                 state.name = name
                 state.state = ctrl.lifecycle_state
                 state.type = ctrl.controller_type
-                state.is_async = False
-                state.update_rate = self.update_rate
+                state.is_async = ctrl.is_async
+                state.update_rate = ctrl.update_rate
                 state.claimed_interfaces = self.resource_manager.claimed_by(name)
                 cmd = ctrl.command_interface_configuration() or []
                 st = ctrl.state_interface_configuration()
@@ -151,6 +232,8 @@ class ControllerManager(Node):
                     st = list(self.resource_manager.state_interfaces)
                 state.required_command_interfaces = list(cmd)
                 state.required_state_interfaces = list(st)
+                state.is_chainable = False
+                state.is_chained = False
                 response.controller.append(state)
         return response
 
@@ -176,14 +259,17 @@ class ControllerManager(Node):
         response.ok = self.unload_controller(request.name)
         return response
 
+    def _srv_reload_libraries(self, request, response):
+        response.ok = self.reload_controller_libraries(request.force_kill)
+        return response
+
     def _srv_switch(self, request, response):
         timeout = request.timeout.sec + request.timeout.nanosec * 1e-9
         ok, message = self.switch_controller(
             list(request.activate_controllers), list(request.deactivate_controllers),
             request.strictness, timeout)
         response.ok = ok
-        if hasattr(response, 'message'):
-            response.message = message
+        response.message = message
         return response
 
     def _hw_iface(self, name, claimed, available):
@@ -210,8 +296,8 @@ class ControllerManager(Node):
                 msg = HardwareComponentState()
                 msg.name = component.name
                 msg.type = getattr(component.info, 'type', 'system')
-                msg.is_async = False
-                msg.rw_rate = self.update_rate
+                msg.is_async = rm.is_async.get(component.name, False)
+                msg.rw_rate = rm.rw_rates.get(component.name) or self.update_rate
                 msg.plugin_name = getattr(component.info, 'plugin', '')
                 msg.class_type = msg.plugin_name
                 msg.state.id = _STATE_IDS.get(component.lifecycle_state, 0)
@@ -224,6 +310,14 @@ class ControllerManager(Node):
                     self._hw_iface(h.name, False, rm.state_interface_available(h.name))
                     for h in component.export_state_interfaces()]
                 response.component.append(msg)
+        return response
+
+    def _srv_set_hw_state(self, request, response):
+        ok, label = self.set_hardware_component_state(
+            request.name, request.target_state.id, request.target_state.label)
+        response.ok = ok
+        response.state.id = _STATE_IDS.get(label, 0)
+        response.state.label = label
         return response
 
     # ----------------------------------------------------------------- controller API
@@ -241,9 +335,21 @@ class ControllerManager(Node):
         values['use_sim_time'] = self.use_sim_time
         return values
 
+    def _node_options_args(self, name):
+        """Return the rcl arguments of controller ``name`` ('--ros-args' first) or []."""
+        key = f'{name}.node_options_args'
+        args = _list_value(self.get_parameter(key).value) if self.has_parameter(key) else []
+        if args and args[0] != '--ros-args':
+            args = ['--ros-args'] + args
+        return args
+
     def load_controller(self, name):
         """
         Load controller ``name`` by its ``<name>.type`` parameter (state: unconfigured).
+
+        The node gets the arguments of ``<name>.node_options_args`` (which win over the
+        process' global arguments, e.g. a remapping given to the simulator; upstream still
+        honours those too, deprecated).
 
         :param name: controller name.
         :returns: the controller node, or None after logging a one-line error.
@@ -264,14 +370,19 @@ class ControllerManager(Node):
                 log.error(f"Loader for controller '{name}' (type '{type_name}') not found. "
                           f"Available types: {', '.join(sorted(types))}")
                 return None
+            ctrl = None
             try:
                 cls = types[type_name].load()
                 params = self._controller_parameters(name)
                 params.pop('type', None)
                 overrides, skipped = parameters_from_dict(params)
+                cli_args = self._node_options_args(name)
+                if cli_args:
+                    log.info(f"Controller '{name}' node arguments: {' '.join(cli_args)}")
                 ctrl = cls(name, namespace=self.get_namespace(), parameter_overrides=overrides,
                            robot_description=self.robot_description,
-                           update_rate=self.update_rate, context=self.context)
+                           update_rate=self.update_rate, context=self.context,
+                           cli_args=cli_args or None)
             except Exception as exc:  # noqa: B902 - any plugin failure is reported, not raised
                 log.error(f"Could not initialize the controller named '{name}': {exc}")
                 return None
@@ -280,7 +391,8 @@ class ControllerManager(Node):
             ctrl.controller_type = type_name
             self.controllers[name] = ctrl
             self._executor.add_node(ctrl)
-            return ctrl
+        self._publish_activity()
+        return ctrl
 
     def configure_controller(self, name):
         """
@@ -303,22 +415,53 @@ class ControllerManager(Node):
                 ctrl.trigger_cleanup()
             log.info(f"Configuring controller: '{name}'")
             ctrl.trigger_configure()
-            if ctrl.lifecycle_state != 'inactive':
+            ok = ctrl.lifecycle_state == 'inactive'
+            if not ok:
                 log.error(f"After configuring, controller '{name}' is in state "
                           f"'{ctrl.lifecycle_state}' , expected inactive.")
-                return False
-            return True
+        self._publish_activity()
+        return ok
 
     def cleanup_controller(self, name):
-        """Clean up an inactive controller (-> unconfigured); returns True on success."""
+        """
+        Clean up an inactive (or unconfigured) controller -> unconfigured.
+
+        :returns: True on success; False with a one-line error log otherwise.
+        """
+        log = self.get_logger()
         with self._lock:
             ctrl = self.controllers.get(name)
-            if ctrl is None or ctrl.lifecycle_state != 'inactive':
-                self.get_logger().error(f"Controller '{name}' can not be cleaned-up: it is "
-                                        'not loaded and inactive')
+            if ctrl is None:
+                log.error(f"Could not cleanup controller with name '{name}' because no "
+                          'controller with this name exists')
                 return False
+            state = ctrl.lifecycle_state
+            if state == 'unconfigured':
+                log.debug(f"Controller '{name}' is already unconfigured")
+                return True
+            if state != 'inactive':
+                log.error(f"Controller '{name}' can not be cleaned-up from '{state}' state")
+                return False
+            log.info(f"Cleaning-up controller: '{name}'")
             ctrl.trigger_cleanup()
-            return ctrl.lifecycle_state == 'unconfigured'
+            ok = ctrl.lifecycle_state == 'unconfigured'
+            if not ok:
+                log.error(f"After cleaning-up, controller '{name}' is in state "
+                          f"'{ctrl.lifecycle_state}' , expected unconfigured.")
+        self._publish_activity()
+        return ok
+
+    def _destroy_controller(self, ctrl):
+        """Remove ``ctrl`` from the executor and destroy its node and every entity of it."""
+        try:
+            self._executor.remove_node(ctrl)
+        except Exception:  # noqa: B902 - executor already shut down
+            pass
+        destroy = getattr(ctrl, 'destroy', None)
+        if destroy is not None:
+            destroy()
+        else:
+            ctrl.destroy_node()
 
     def unload_controller(self, name):
         """Unload a non-active controller and destroy its node; returns True on success."""
@@ -337,51 +480,150 @@ class ControllerManager(Node):
             if ctrl.lifecycle_state == 'inactive':
                 ctrl.trigger_cleanup()
             del self.controllers[name]
-        self._executor.remove_node(ctrl)
-        ctrl.destroy_node()
+            self._last_update.pop(name, None)
+        self._destroy_controller(ctrl)
+        log.info(f"Successfully unloaded controller '{name}'")
+        self._publish_activity()
         return True
 
-    def switch_controller(self, activate, deactivate, strictness=2, timeout=0.0,
+    def reload_controller_libraries(self, force_kill=False):
+        """
+        Forget and re-read the controller plugins (entry points), as upstream.
+
+        Refused (one error line, False) while a controller is active unless ``force_kill``,
+        which first deactivates and unloads every controller.
+
+        :returns: True on success.
+        """
+        log = self.get_logger()
+        with self._lock:
+            active = [n for n, c in self.controllers.items() if c.lifecycle_state == 'active']
+            loaded = list(self.controllers)
+        if active and not force_kill:
+            log.error('Controller manager: Cannot reload controller libraries because there '
+                      f'are still {len(active)} active controllers')
+            return False
+        if loaded:
+            if active:
+                log.info('Controller manager: Stopping all active controllers')
+                ok, _ = self.switch_controller([], active, BEST_EFFORT, wait=True)
+                if not ok:
+                    log.error('Controller manager: Cannot reload controller libraries because '
+                              'failed to stop active controllers')
+                    return False
+            for name in loaded:
+                if not self.unload_controller(name):
+                    log.error('Controller manager: Cannot reload controller libraries because '
+                              f"failed to unload controller '{name}'")
+                    return False
+        import importlib
+        importlib.invalidate_caches()
+        log.info("Controller manager: reloaded controller libraries for 'controller_interface'")
+        return True
+
+    def set_hardware_component_state(self, name, target_id, target_label=''):
+        """
+        Move hardware component ``name`` to the lifecycle state ``target_id``.
+
+        Controllers that claimed a command interface of a component leaving ``active`` are
+        deactivated first (their interfaces become unavailable).
+
+        :param name: component name (``<ros2_control name=...>``).
+        :param target_id: ``lifecycle_msgs/State`` id (1 unconfigured, 2 inactive, 3 active,
+            4 finalized); 0 takes the state from ``target_label``.
+        :param target_label: the state label, used when ``target_id`` is 0.
+        :returns: (ok, label of the state the component is in afterwards).
+        """
+        log = self.get_logger()
+        rm = self.resource_manager
+        with self._lock:
+            component = rm.component(name)
+            if component is None:
+                log.error(f"hardware component with name '{name}' does not exist")
+                return False, 'unknown'
+            target = _STATE_LABELS.get(int(target_id)) if target_id else target_label
+            if target not in (hi.UNCONFIGURED, hi.INACTIVE, hi.ACTIVE, hi.FINALIZED):
+                log.error(f"hardware component '{name}': unknown target state "
+                          f'{target_id} {target_label!r}')
+                return False, component.lifecycle_state
+            if component.lifecycle_state == hi.FINALIZED and target != hi.FINALIZED:
+                log.error(f"hardware component '{name}' is finalized: it can not be moved "
+                          f"to '{target}'")
+                return False, component.lifecycle_state
+            if target != hi.ACTIVE:
+                own = {h.name for h in component.export_command_interfaces()}
+                for ctrl_name, ctrl in self.controllers.items():
+                    if ctrl.lifecycle_state == 'active' and own & set(
+                            rm.claimed_by(ctrl_name)):
+                        log.warn(f"Deactivating controller '{ctrl_name}': hardware component "
+                                 f"'{name}' goes to '{target}'")
+                        self._deactivate(ctrl_name)
+            log.info(f"Setting hardware component '{name}' to state '{target}'")
+            try:
+                rm.set_component_state(component, target)
+                ok = component.lifecycle_state == target
+            except ValueError as exc:
+                log.error(str(exc))
+                ok = False
+            label = component.lifecycle_state
+        self._publish_activity()
+        return ok, label
+
+    def switch_controller(self, activate, deactivate, strictness=STRICT, timeout=0.0,
                           wait=True):
         """
         Request activation/deactivation; performed by the next :meth:`update`.
 
+        As upstream: strictness 1 BEST_EFFORT (skip what cannot be switched, with a
+        warning), 2 STRICT (switch nothing when anything is wrong); 0 (unset) is treated as
+        BEST_EFFORT with a warning; AUTO (3) and FORCE_AUTO (4) as STRICT (we have no chained
+        controllers to add). A request naming only controllers that cannot be switched fails
+        under either strictness.
+
         :param activate: controller names to activate (must be inactive).
         :param deactivate: controller names to deactivate (must be active).
-        :param strictness: 1 BEST_EFFORT (skip what cannot be switched), else STRICT.
+        :param strictness: see above.
         :param timeout: seconds to wait for the update thread (0: 1 s).
         :param wait: False to return right after queueing (the caller runs update()).
-        :returns: (ok, message).
+        :returns: (ok, message), the message as upstream ("Successfully switched
+            controllers!", or what failed).
         """
         log = self.get_logger()
-        strict = strictness != 1
+        if strictness == 0:
+            log.warn('Controller Manager: to switch controllers you need to specify a '
+                     f'strictness level of STRICT ({STRICT}) or BEST_EFFORT ({BEST_EFFORT}). '
+                     'Defaulting to BEST_EFFORT')
+            strictness = BEST_EFFORT
+        strict = strictness != BEST_EFFORT
         with self._lock:
             act, deact, problems = [], [], []
             for name in deactivate:
                 ctrl = self.controllers.get(name)
                 if ctrl is None:
-                    problems.append(f"Could not deactivate controller '{name}': not loaded")
+                    problems.append(f"Could not deactivate controller with name '{name}' "
+                                    'because no controller with this name exists')
                 elif ctrl.lifecycle_state != 'active':
-                    if ctrl.lifecycle_state != 'inactive':
-                        problems.append(f"Could not deactivate controller '{name}': it is "
-                                        f"'{ctrl.lifecycle_state}'")
+                    problems.append(f"Controller with name '{name}' can not be deactivated "
+                                    f'since it is not active (state: {ctrl.lifecycle_state})')
                 elif name not in deact:
                     deact.append(name)
             claims = {}
             for name in activate:
                 ctrl = self.controllers.get(name)
                 if ctrl is None:
-                    problems.append(f"Could not activate controller '{name}': not loaded")
+                    problems.append(f"Could not activate controller with name '{name}' "
+                                    'because no controller with this name exists')
                     continue
                 if ctrl.lifecycle_state == 'active':
                     if name in deact:
                         act.append(name)  # restart
                     else:
-                        log.warn(f"Controller '{name}' is already active, skipping")
+                        problems.append(f"Controller with name '{name}' is already active.")
                     continue
                 if ctrl.lifecycle_state != 'inactive':
-                    problems.append(f"Could not activate controller '{name}': it is "
-                                    f"'{ctrl.lifecycle_state}' (configure it first)")
+                    problems.append(f"Controller with name '{name}' is not inactive so its "
+                                    f'state can not be changed to active (state: '
+                                    f'{ctrl.lifecycle_state}); configure it first')
                     continue
                 conflict = self._claim_conflict(ctrl, deact, claims)
                 if conflict:
@@ -393,10 +635,23 @@ class ControllerManager(Node):
             for problem in problems:
                 log.error(problem) if strict else log.warn(problem)
             if problems and strict:
-                return False, '; '.join(problems)
+                message = '; '.join(problems) + \
+                    " Aborting, no controller is switched! ('STRICT' switch)"
+                log.error("Aborting, no controller is switched! ('STRICT' switch)")
+                return False, message
             if not act and not deact:
-                return True, 'nothing to switch'
+                if problems:
+                    return False, '; '.join(problems)
+                message = ('After checking the controllers, no controllers need to be '
+                           'activated or deactivated.')
+                log.info(message)
+                return True, message
+            if deact:
+                log.info(f"Deactivating controllers: [ {' '.join(deact)} ]")
+            if act:
+                log.info(f"Activating controllers: [ {' '.join(act)} ]")
             request = _Switch(act, deact)
+            request.problems = problems
             self._pending = request
         if not wait:
             return True, 'queued'
@@ -406,31 +661,33 @@ class ControllerManager(Node):
                 if not request.done.is_set():
                     if self._pending is request:
                         self._pending = None
-                    log.error(f'Switch controller timed out after {timeout} seconds!')
-                    return False, 'timed out waiting for the update loop'
+                    message = f'Switch controller timed out after {timeout} seconds!'
+                    log.error(message)
+                    return False, message
         return request.ok, request.message
 
     def _claim_conflict(self, ctrl, deactivating, claims):
         rm = self.resource_manager
+        name = ctrl.get_name()
         for iface in ctrl.command_interface_configuration() or []:
             if iface not in rm.command_interfaces:
-                return (f"Could not activate controller '{ctrl.get_name()}': command "
-                        f"interface '{iface}' does not exist")
+                return (f"Could not activate controller '{name}': command interface "
+                        f"'{iface}' does not exist")
             if not rm.command_interface_available(iface):
-                return (f"Could not activate controller '{ctrl.get_name()}': command "
-                        f"interface '{iface}' is not available")
+                return (f"Could not activate controller '{name}': command interface "
+                        f"'{iface}' is not available")
             owner = rm.claimed.get(iface)
             if owner is not None and owner not in deactivating:
-                return (f"Could not activate controller '{ctrl.get_name()}': command "
-                        f"interface '{iface}' is already claimed by '{owner}'")
+                return (f"Could not activate controller '{name}': command interface "
+                        f"'{iface}' is already claimed by '{owner}'")
             if iface in claims:
-                return (f"Could not activate controller '{ctrl.get_name()}': command "
-                        f"interface '{iface}' is also requested by '{claims[iface]}'")
+                return (f"Could not activate controller '{name}': command interface "
+                        f"'{iface}' is also requested by '{claims[iface]}'")
         state = ctrl.state_interface_configuration()
         for iface in (state or []):
             if iface not in rm.state_interfaces:
-                return (f"Could not activate controller '{ctrl.get_name()}': state "
-                        f"interface '{iface}' does not exist")
+                return (f"Could not activate controller '{name}': state interface "
+                        f"'{iface}' does not exist")
         return None
 
     # ----------------------------------------------------------------- realtime side
@@ -456,6 +713,7 @@ class ControllerManager(Node):
         state = {n: rm.state_interfaces[n] for n in names if n in rm.state_interfaces}
         ctrl.assign_interfaces(command, state)
         ctrl.last_update_time = None
+        self._last_update.pop(name, None)
         ctrl.trigger_activate()
         if ctrl.lifecycle_state != 'active':
             ctrl.release_interfaces()
@@ -474,38 +732,96 @@ class ControllerManager(Node):
                 errors.append(error)
                 self.get_logger().error(error)
         request.ok = not errors
-        request.message = '; '.join(errors) or 'switched'
+        if errors:
+            request.message = '; '.join(errors)
+        else:
+            self.get_logger().info('Successfully switched controllers!')
+            request.message = 'Successfully switched controllers!'
+            if request.activate:
+                request.message += f" Activated: [ {' '.join(request.activate)} ]"
+            if request.deactivate:
+                request.message += f" Deactivated: [ {' '.join(request.deactivate)} ]"
         request.done.set()
+        return True
+
+    def read(self, time, period):
+        """
+        Read every active hardware component (``ResourceManager.read``).
+
+        Errors are logged once per component.
+
+        :param time: current time in seconds (sim time when simulated).
+        :param period: seconds since the previous read.
+        """
+        if self._destroyed:
+            return
+        with self._lock:
+            for failed in self.resource_manager.read(time, period):
+                self.get_logger().error(f"Error in read of hardware component '{failed}'",
+                                        once=True)
 
     def update(self, time, period):
         """
-        One control cycle: pending switch, read, update active controllers, write.
+        Apply a pending switch, then update the active controllers in load order.
+
+        A controller whose ``update_rate`` parameter is below the manager's is updated only
+        when ``1/update_rate`` seconds have passed since its last update (its ``period`` is
+        then that time), as upstream.
 
         :param time: current time in seconds (sim time when simulated).
         :param period: seconds since the previous update.
         """
-        if not self.context.ok():
+        if self._destroyed or not self.context.ok():
             return
+        switched = False
         with self._lock:
             if self._pending is not None:
                 request, self._pending = self._pending, None
-                self._apply_switch(request)
+                switched = self._apply_switch(request)
             log = self.get_logger()
-            for failed in self.resource_manager.read(time, period):
-                log.error(f"Error in read of hardware component '{failed}'", once=True)
             for name, ctrl in list(self.controllers.items()):
                 if ctrl.lifecycle_state != 'active':
                     continue
+                ctrl_period = period
+                rate = ctrl.update_rate
+                if 0 < rate < self.update_rate:
+                    last = self._last_update.get(name)
+                    if last is not None:
+                        ctrl_period = time - last
+                        if ctrl_period < 1.0 / rate - 0.5 / self.update_rate:
+                            continue
+                self._last_update[name] = time
                 try:
-                    ok = ctrl.update(time, period)
+                    ok = ctrl.update(time, ctrl_period)
                 except Exception as exc:  # noqa: B902 - a faulty controller must not stop us
                     ok = False
                     log.error(f"Exception in update of controller '{name}': {exc}")
                 if not ok:
                     log.error(f"Error in update of controller '{name}': deactivating it")
                     self._deactivate(name)
+                    switched = True
+        if switched:
+            self._publish_activity()
+
+    def write(self, time, period):
+        """
+        Write every active hardware component (``ResourceManager.write``).
+
+        :param time: current time in seconds (sim time when simulated).
+        :param period: seconds since the previous write.
+        """
+        if self._destroyed:
+            return
+        with self._lock:
             for failed in self.resource_manager.write(time, period):
-                log.error(f"Error in write of hardware component '{failed}'", once=True)
+                self.get_logger().error(f"Error in write of hardware component '{failed}'",
+                                        once=True)
+
+    def cycle(self, time, period):
+        """Run :meth:`read`, :meth:`update` and :meth:`write` (one control cycle)."""
+        self.read(time, period)
+        self.update(time, period)
+        self.write(time, period)
 
     def shutdown(self):
         """Deactivate every controller, destroy their nodes and shut the hardware down."""
@@ -522,11 +838,26 @@ class ControllerManager(Node):
                             ctrl.trigger_deactivate()
                         except Exception:  # noqa: B902 - context gone: zero the wheels
                             ctrl.on_deactivate(None)
-                    self._executor.remove_node(ctrl)
-                    ctrl.destroy_node()
+                    self._destroy_controller(ctrl)
                 except Exception:  # noqa: B902 - best effort at shutdown
                     pass
             self.resource_manager.shutdown()
+
+    def destroy(self):
+        """
+        Leave nothing in the ROS graph: :meth:`shutdown`, then destroy this node.
+
+        Removes the manager from its executor first; safe to call twice.
+        """
+        if self._destroyed:
+            return
+        self.shutdown()
+        self._destroyed = True
+        try:
+            self._executor.remove_node(self)
+        except Exception:  # noqa: B902 - executor already shut down
+            pass
+        self.destroy_node()
 
 
 def _mock_factory(info):
@@ -589,7 +920,9 @@ def main(args=None):
                 now = _time.monotonic() - start
                 t = cm.get_clock().now().nanoseconds * 1e-9 if opts.use_sim_time else \
                     _time.time()
+                cm.read(t, now - previous)
                 cm.update(t, now - previous)
+                cm.write(t, now - previous)
                 previous = now
 
         thread = threading.Thread(target=loop, daemon=True)
@@ -603,8 +936,7 @@ def main(args=None):
         if thread is not None:
             thread.join(timeout=2.0)
         if cm is not None:
-            cm.shutdown()
-            cm.destroy_node()
+            cm.destroy()
         executor.shutdown()
         if rclpy.ok():
             rclpy.try_shutdown()

@@ -67,29 +67,36 @@ class DiffDriveController(ControllerInterface):
     def on_init(self):
         """Declare every upstream parameter with its default; returns True."""
         d = self.auto_declare
-        d('left_wheel_names', [''])
-        d('right_wheel_names', [''])
-        d('wheel_separation', 0.0)
-        d('wheel_radius', 0.0)
-        d('wheel_separation_multiplier', 1.0)
-        d('left_wheel_radius_multiplier', 1.0)
-        d('right_wheel_radius_multiplier', 1.0)
-        d('tf_frame_prefix_enable', True)
-        d('tf_frame_prefix', '')
-        d('odom_frame_id', 'odom')
-        d('base_frame_id', 'base_link')
-        d('pose_covariance_diagonal', [0.0] * 6)
-        d('twist_covariance_diagonal', [0.0] * 6)
-        d('open_loop', False)
-        d('position_feedback', True)
-        d('enable_odom_tf', True)
-        d('cmd_vel_timeout', 0.5)
-        d('publish_limited_velocity', False)
-        d('velocity_rolling_window_size', 10)
-        d('publish_rate', 50.0)
+        d('left_wheel_names', [''], 'Names of the joints of the left-side wheels')
+        d('right_wheel_names', [''], 'Names of the joints of the right-side wheels')
+        d('wheel_separation', 0.0, 'Distance between the left and right wheels (m); a wrong '
+          'value makes the robot turn more or less than commanded')
+        d('wheel_radius', 0.0, 'Wheel radius (m), converting linear speed to wheel rotation; '
+          'a wrong value makes the robot faster or slower than commanded')
+        d('wheel_separation_multiplier', 1.0, 'Correction factor of wheel_separation')
+        d('left_wheel_radius_multiplier', 1.0, 'Correction factor of the left wheel radius')
+        d('right_wheel_radius_multiplier', 1.0, 'Correction factor of the right wheel radius')
+        d('tf_frame_prefix_enable', True, 'Prefix the odometry frames with tf_frame_prefix')
+        d('tf_frame_prefix', '', 'Prefix of the odometry frames; empty: the node namespace')
+        d('odom_frame_id', 'odom', 'Frame of the odometry (parent of the published TF)')
+        d('base_frame_id', 'base_link', 'Frame of the robot base (child of the published TF)')
+        d('pose_covariance_diagonal', [0.0] * 6,
+          'Diagonal of the pose covariance of the odometry message (x, y, z, rx, ry, rz)')
+        d('twist_covariance_diagonal', [0.0] * 6,
+          'Diagonal of the twist covariance of the odometry message (x, y, z, rx, ry, rz)')
+        d('open_loop', False, 'Integrate the odometry from the commands, not the wheel states')
+        d('position_feedback', True, 'Compute the odometry from wheel positions (true) or '
+          'velocities (false)')
+        d('enable_odom_tf', True, 'Publish the odometry as a transform on /tf')
+        d('cmd_vel_timeout', 0.5, 'Time (s) after the last command before the robot is '
+          'stopped; 0 disables')
+        d('publish_limited_velocity', False, 'Publish the limited command on ~/cmd_vel_out')
+        d('velocity_rolling_window_size', 10, 'Number of samples of the rolling mean of the '
+          'odometry twist')
+        d('publish_rate', 50.0, 'Rate of the odometry and TF messages (Hz)')
         for channel in ('linear.x', 'angular.z'):
             for limit in LIMIT_NAMES:
-                d(f'{channel}.{limit}', NAN)
+                d(f'{channel}.{limit}', NAN, f'Limit {limit} of {channel}; NaN: no limit')
         self._odom_pub = self._tf_pub = self._limited_pub = self._cmd_sub = None
         self._last_cmd = None
         self._subscriber_active = False

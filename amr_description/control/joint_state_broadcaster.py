@@ -4,7 +4,8 @@
 joint_state_broadcaster: publishes ``sensor_msgs/JointState`` from state interfaces.
 
 As ros2_controllers' joint_state_broadcaster (jazzy): on every controller-manager update
-(not rate-limited) it publishes ``/joint_states`` (``~/joint_states`` with
+(not rate-limited) it publishes ``joint_states`` in its namespace (``/joint_states`` for
+the controller without one; ``~/joint_states`` with
 ``use_local_topics``), stamped with the update time, one entry per joint in URDF order
 (joints absent from the URDF follow, in interface order, unless ``use_urdf_to_filter``
 removes them), with ``position``/``velocity``/``effort`` arrays holding NaN where a joint has
@@ -35,14 +36,19 @@ class JointStateBroadcaster(ControllerInterface):
 
     def on_init(self):
         """Declare the upstream parameters; returns True."""
-        self.auto_declare('joints', [''])
-        self.auto_declare('interfaces', [''])
-        self.auto_declare('extra_joints', [''])
-        self.auto_declare('use_local_topics', False)
+        self.auto_declare('joints', [''], 'Joints to publish; empty: every joint with state '
+                          'interfaces')
+        self.auto_declare('interfaces', [''], 'State interfaces to publish; empty: all')
+        self.auto_declare('extra_joints', [''], 'Joints published with zero state, e.g. '
+                          'passive joints')
+        self.auto_declare('use_local_topics', False, 'Publish on ~/joint_states instead of '
+                          '/joint_states')
         for field in FIELDS:
-            self.auto_declare(f'map_interface_to_joint_state.{field}', field)
-        self.auto_declare('use_urdf_to_filter', True)
-        self.auto_declare('frame_id', 'base_link')
+            self.auto_declare(f'map_interface_to_joint_state.{field}', field,
+                              f'State interface published as the JointState {field}')
+        self.auto_declare('use_urdf_to_filter', True, 'Publish only the joints of the robot '
+                          'description')
+        self.auto_declare('frame_id', 'base_link', 'frame_id of the published messages')
         self._publisher = None
         self._rows = []
         self._msg = None
@@ -70,7 +76,7 @@ class JointStateBroadcaster(ControllerInterface):
         self._extra = self._list('extra_joints')
         self._frame_id = self.param('frame_id', 'base_link')
         self._use_urdf = self.param('use_urdf_to_filter', True)
-        topic = '~/joint_states' if self.param('use_local_topics', False) else '/joint_states'
+        topic = '~/joint_states' if self.param('use_local_topics', False) else 'joint_states'
         if self._publisher is None:
             self._publisher = self.create_publisher(JointState, topic, QoSProfile(depth=10))
         return TransitionCallbackReturn.SUCCESS

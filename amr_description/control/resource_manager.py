@@ -62,6 +62,16 @@ class ResourceManager:
         urdf_joints = [j.get('name') for j in root.findall('joint')]
         self.urdf_joint_names = urdf_joints
         self.infos = parse_ros2_control(urdf_xml)
+        self.rw_rates = {}  # component name -> Hz from <ros2_control rw_rate="...">, else 0
+        self.is_async = {}  # component name -> bool from <ros2_control is_async="...">
+        for block in root.findall('ros2_control'):
+            name = block.get('name')
+            try:
+                self.rw_rates[name] = max(0, int(block.get('rw_rate', '0')))
+            except ValueError:
+                raise ValueError(f'ros2_control {name!r}: rw_rate must be an integer (Hz), '
+                                 f'got {block.get("rw_rate")!r}') from None
+            self.is_async[name] = block.get('is_async', 'false').strip().lower() == 'true'
         factory = hardware_factory or default_hardware_factory
         self.components = []
         self.state_interfaces = {}
@@ -95,8 +105,16 @@ class ResourceManager:
 
     def set_component_state(self, component, target):
         """
-        Move ``component`` to lifecycle ``target`` (``'inactive'`` or ``'active'``).
+        Move ``component`` to lifecycle ``target``.
 
+        As ros2_control's ``ResourceManager::set_component_state``: from unconfigured,
+        ``'inactive'`` configures and ``'active'`` configures then activates; from active,
+        ``'inactive'`` deactivates and ``'unconfigured'`` deactivates then cleans up;
+        ``'finalized'`` shuts the component down from any state. A finalized component
+        stays finalized.
+
+        :param component: one of :attr:`components`.
+        :param target: ``'unconfigured'``, ``'inactive'``, ``'active'`` or ``'finalized'``.
         :raises ValueError: when a lifecycle callback returns False.
         """
         if target in (hi.INACTIVE, hi.ACTIVE) and component.lifecycle_state == hi.UNCONFIGURED:
@@ -107,9 +125,25 @@ class ResourceManager:
             if not component.on_activate():
                 raise ValueError(f'hardware component {component.name!r}: on_activate failed')
             component.lifecycle_state = hi.ACTIVE
-        if target == hi.INACTIVE and component.lifecycle_state == hi.ACTIVE:
+        if target in (hi.INACTIVE, hi.UNCONFIGURED) and component.lifecycle_state == hi.ACTIVE:
             component.on_deactivate()
             component.lifecycle_state = hi.INACTIVE
+        if target == hi.UNCONFIGURED and component.lifecycle_state == hi.INACTIVE:
+            if not component.on_cleanup():
+                raise ValueError(f'hardware component {component.name!r}: on_cleanup failed')
+            component.lifecycle_state = hi.UNCONFIGURED
+        if target == hi.FINALIZED and component.lifecycle_state != hi.FINALIZED:
+            if component.lifecycle_state == hi.ACTIVE:
+                component.on_deactivate()
+            component.on_shutdown()
+            component.lifecycle_state = hi.FINALIZED
+
+    def component(self, name):
+        """Return the component named ``name``, or None."""
+        for component in self.components:
+            if component.name == name:
+                return component
+        return None
 
     def component_of(self, interface_name):
         """Return the component exporting ``interface_name`` (state or command), or None."""

@@ -266,6 +266,47 @@ def message_to_yaml(msg, *, truncate_length=None, no_arr=False, no_str=False,
         flow_style=flow_style)
 
 
+def message_to_csv(msg, *, truncate_length=None, no_arr=False, no_str=False):
+    """
+    Return the one CSV line ``ros2 topic echo --csv`` prints for ``msg`` (no newline).
+
+    As upstream rosidl_runtime_py (jazzy): the values of every field, depth-first in field
+    order, joined by commas, with no quoting; a sequence contributes its items (after
+    ``truncate_length`` items a single ``...``), or its ``--no-arr`` abbreviation; strings and
+    bytes longer than ``truncate_length`` are cut and get ``...``; ``no_str`` writes
+    ``<string length: <N>>``; numbers and booleans as Python's ``str``.
+
+    :param msg: a generated message instance.
+    :param truncate_length: see :func:`message_to_ordereddict`.
+    :param no_arr: abbreviate arrays and sequences.
+    :param no_str: abbreviate strings.
+    :returns: the CSV text.
+    """
+    def to_string(value, field_type=None):
+        if isinstance(value, (list, tuple, array.array, numpy.ndarray)):
+            if no_arr and field_type is not None:
+                return _abbreviate_sequence(value, field_type)
+            parts = []
+            for index, item in enumerate(value):
+                if truncate_length is not None and index >= truncate_length:
+                    parts.append('...')
+                    break
+                parts.append(to_string(item))
+            return ','.join(parts)
+        if isinstance(value, (bool, bytes, float, int, str, numpy.number, numpy.bool_)):
+            if no_str and isinstance(value, str):
+                return f'<string length: <{len(value)}>>'
+            if isinstance(value, (bytes, str)) and truncate_length is not None \
+                    and len(value) > truncate_length:
+                value = value[:truncate_length] + (b'...' if isinstance(value, bytes) else '...')
+            return str(value)
+        return message_to_csv(
+            value, truncate_length=truncate_length, no_arr=no_arr, no_str=no_str)
+
+    return ','.join(to_string(getattr(msg, name), field_type)
+                    for name, field_type in _slot_items(msg))
+
+
 # --------------------------------------------------------------------------- YAML -> message
 
 

@@ -17,6 +17,12 @@ makes a robot fall through the floor, explode, or drive backwards in simulation:
   below its centre, rolling without slipping moves the centre with ``v = w a x r`` where
   ``r = +z`` points from the contact to the centre, so the drive direction is ``a x z`` and
   forward needs ``(a x z) . x = a_y > 0``: the axle must point along base +y;
+- the document itself goes through the package's one loader
+  (:func:`amr_description.core.urdf_model.parse_urdf`): what it refuses (non-finite numbers,
+  duplicate names, unknown joint types, broken trees, non-positive inertia on moving links)
+  is an error naming the element that holds it, and no other check runs;
+- every ``<ros2_control>`` ``<hardware><plugin>`` is a hardware plugin the package registers
+  (entry-point group ``amr_description.hardware``, what mujoco_sim loads);
 - the ``<ros2_control>`` block against controllers.yaml (ros2_control format): every wheel of
   ``diff_drive_controller`` is a joint of the block with a velocity command interface and
   position and velocity state interfaces; ``wheel_separation`` and ``wheel_radius`` match the
@@ -40,11 +46,13 @@ import yaml
 
 from .ros2_control_info import parse_ros2_control
 from .urdf_model import parse_urdf_file
+from .urdf_model import URDFError
 
 ERROR = 'error'
 WARNING = 'warning'
 INFO = 'ok'
 DIFF_DRIVE_TYPE = 'diff_drive_controller/DiffDriveController'
+HARDWARE_GROUP = 'amr_description.hardware'
 GEOMETRY_TOLERANCE = 1e-3  # m, wheel_separation and wheel_radius against the URDF
 INERTIA_TOLERANCE = 0.1  # relative Frobenius distance tolerated from the geometric inertia
 
@@ -374,6 +382,23 @@ def _check_cylinder_axis(model, joint):
 # ros2_control and controllers.yaml
 # ---------------------------------------------------------------------------------------------
 
+def node_parameters(controllers, name):
+    """
+    Return the ``ros__parameters`` of node ``name`` in a parameter file, or None.
+
+    The section may be keyed by the plain name, the root-namespace name (``/name``) or the
+    any-namespace wildcard (``/**/name``, what namespaced robots need, as upstream).
+
+    :param controllers: the parsed YAML (dict).
+    :param name: node name without namespace.
+    """
+    for key in (name, '/' + name, '/**/' + name):
+        section = controllers.get(key)
+        if isinstance(section, dict):
+            return section.get('ros__parameters')
+    return None
+
+
 def diff_drive_params(controllers):
     """
     Return the ros__parameters of every diff_drive_controller in a controllers.yaml.
@@ -381,13 +406,23 @@ def diff_drive_params(controllers):
     :param controllers: the parsed YAML (dict), ros2_control format.
     :returns: dict controller name -> its ``ros__parameters`` dict (empty when absent).
     """
-    cm = ((controllers.get('controller_manager') or {}).get('ros__parameters') or {})
+    cm = node_parameters(controllers, 'controller_manager') or {}
     result = {}
     for name, value in cm.items():
         if isinstance(value, dict) and value.get('type') == DIFF_DRIVE_TYPE:
-            section = controllers.get(name) or {}
-            result[name] = dict(section.get('ros__parameters') or {})
+            result[name] = dict(node_parameters(controllers, name) or {})
     return result
+
+
+def hardware_plugins():
+    """
+    Return the hardware plugin names the installed package registers (a set).
+
+    :returns: the entry-point names of group ``amr_description.hardware`` (e.g.
+        ``'amr_description/MujocoSystem'``); empty when the package is not installed.
+    """
+    from importlib.metadata import entry_points
+    return {entry.name for entry in entry_points(group=HARDWARE_GROUP)}
 
 
 def check_ros2_control(model, urdf_xml, controllers=None):
@@ -405,7 +440,12 @@ def check_ros2_control(model, urdf_xml, controllers=None):
         return [Finding(ERROR, '<ros2_control>', str(exc))]
     findings = []
     components = {}
+    plugins = hardware_plugins()
     for info in infos:
+        if plugins and info.plugin not in plugins:
+            findings.append(Finding(ERROR, f'ros2_control {info.name!r}',
+                                    'unknown hardware plugin: mujoco_sim cannot load it',
+                                    'one of ' + ', '.join(sorted(plugins)), info.plugin))
         for joint in info.joints:
             components[joint.name] = joint
             if joint.name not in model.joints:
@@ -416,7 +456,7 @@ def check_ros2_control(model, urdf_xml, controllers=None):
                                         f'joint {joint.name!r} is fixed'))
     if controllers is None:
         return findings
-    cm = ((controllers.get('controller_manager') or {}).get('ros__parameters'))
+    cm = node_parameters(controllers, 'controller_manager')
     if not isinstance(cm, dict):
         return findings + [Finding(ERROR, 'controllers.yaml',
                                    'no controller_manager.ros__parameters section')]
@@ -458,6 +498,7 @@ def _check_diff_drive(model, components, name, params):
                                     f'{separation:g} m (+-1 mm)', f'{value}'))
         else:
             findings.append(Finding(INFO, element, f'wheel_separation {value:g} m matches'))
+        findings.extend(check_separation_multiplier(model, element, params, base, sides))
     value = params.get('wheel_radius')
     for wheel in sides['left'] + sides['right']:
         radius = wheel_radius(model, model.joints[wheel].child)
@@ -472,6 +513,46 @@ def _check_diff_drive(model, components, name, params):
         if sides['left'] + sides['right']:
             findings.append(Finding(INFO, element, f'wheel_radius {value:g} m matches'))
     return findings
+
+
+def check_separation_multiplier(model, element, params, base, sides):
+    """
+    Compare a skid-steer base's ``wheel_separation_multiplier`` with the Coulomb value.
+
+    A base with wheels at different x on one side (skid steer) turning in place slips its
+    wheels sideways; with equal wheel loads and Coulomb friction it turns at
+    ``omega = v b / (a^2 + b^2)`` (:mod:`amr_description.core.skid_steer`), so odometry needs
+    ``wheel_separation_multiplier = (a^2 + b^2) / b^2`` with ``b`` half the track and ``a``
+    the mean distance of the wheels from their centre along x (half the wheelbase).
+
+    :param model: :class:`~amr_description.core.urdf_model.RobotModel`.
+    :param element: the controller's name in findings (str).
+    :param params: its ``ros__parameters`` (dict).
+    :param base: the base frame the wheel positions are expressed in.
+    :param sides: dict ``'left'``/``'right'`` -> wheel joint names (URDF joints).
+    :returns: list of :class:`Finding`: nothing for a two-wheeled base, else a warning when
+        the multiplier is more than 10 % from the geometric value, an ``ok`` otherwise.
+    """
+    wheels = sides['left'] + sides['right']
+    if not sides['left'] or not sides['right']:
+        return []
+    positions = np.array([joint_position_in_frame(model, w, base) for w in wheels])
+    left_y = positions[:len(sides['left']), 1].mean()
+    right_y = positions[len(sides['left']):, 1].mean()
+    b = (left_y - right_y) / 2.0
+    a = float(np.mean(np.abs(positions[:, 0] - positions[:, 0].mean())))
+    if not b > 0.0 or a < GEOMETRY_TOLERANCE:
+        return []  # not a skid-steer base (or already reported as broken)
+    geometric = (a * a + b * b) / (b * b)
+    value = params.get('wheel_separation_multiplier', 1.0)
+    formula = (f'skid steer: (a^2 + b^2) / b^2 with half wheelbase a = {a:g} m, half track '
+               f'b = {b:g} m')
+    if not isinstance(value, (int, float)) or abs(value - geometric) > 0.1 * geometric:
+        return [Finding(WARNING, element, 'wheel_separation_multiplier is far from the '
+                        f'Coulomb-friction value, {formula}', f'{geometric:.3g} (+-10 %)',
+                        f'{value}')]
+    return [Finding(INFO, element,
+                    f'wheel_separation_multiplier {value:g} matches {formula} = {geometric:.3g}')]
 
 
 def _check_wheel_interfaces(element, wheel, component, model, position_feedback):
@@ -671,7 +752,9 @@ def main(argv=None):
     ``ros2 run amr_description check_model [--controllers YAML] [--quiet] URDF``
 
     :param argv: arguments without the program name (default: ``sys.argv[1:]``).
-    :returns: 0 when no errors, 1 when a check failed, 2 when a file cannot be read/parsed.
+    :returns: 0 when no errors, 1 when a check failed (including a rule of the URDF loader,
+        reported as an error naming the element), 2 when a file cannot be read or is not a
+        URDF document at all (malformed XML, no ``<robot>``).
     """
     parser = argparse.ArgumentParser(
         prog='check_model', description='Check a URDF beyond check_urdf: inertia, wheels, '
@@ -682,13 +765,20 @@ def main(argv=None):
     parser.add_argument('-q', '--quiet', action='store_true', help='print errors and warnings '
                         'only')
     args = parser.parse_args(sys.argv[1:] if argv is None else argv)
+    model = None
     try:
-        urdf_xml, model = parse_urdf_file(args.urdf)
+        try:
+            urdf_xml, model = parse_urdf_file(args.urdf)
+        except URDFError as exc:
+            if not exc.element:
+                raise
+            findings = [Finding(ERROR, exc.element, exc.problem)]
         controllers = load_controllers(args.controllers) if args.controllers else None
     except ValueError as exc:
         print(f'check_model: {exc}', file=sys.stderr)
         return 2
-    findings = check_model(model, urdf_xml, controllers)
+    if model is not None:
+        findings = check_model(model, urdf_xml, controllers)
     for path in (args.urdf, args.controllers):
         installed = installed_counterpart(path) if path else None
         if installed is not None:
@@ -698,8 +788,12 @@ def main(argv=None):
             print(finding)
     errors = sum(f.severity == ERROR for f in findings)
     warnings = sum(f.severity == WARNING for f in findings)
-    print(f'{args.urdf}: robot {model.name!r}, {len(model.links)} links, '
-          f'{len(model.joints)} joints: {errors} error(s), {warnings} warning(s)')
+    if model is None:
+        print(f'{args.urdf}: refused by the URDF loader: {errors} error(s), '
+              f'{warnings} warning(s)')
+    else:
+        print(f'{args.urdf}: robot {model.name!r}, {len(model.links)} links, '
+              f'{len(model.joints)} joints: {errors} error(s), {warnings} warning(s)')
     return 1 if errors else 0
 
 

@@ -4,14 +4,34 @@
 """
 A URDF kinematic tree parsed with yourdfpy, with tree queries and link poses (no rclpy).
 
-yourdfpy parses the elements; this module adds what yourdfpy leaves out when it does not
-build a scene graph: the root link, the joint above each link, the checks that make a tree
-(one root, every parent/child link exists, no link with two parents), material colours and
-mimic-joint resolution. Poses are 4x4 numpy matrices (see :mod:`.kinematics`).
+This is the one URDF loader of the package: robot_state_publisher, joint_state_publisher,
+``create`` and mujoco_sim's spawn path (through :mod:`amr_description.sim.urdf_to_mjcf`),
+``render`` and ``check_model`` all load a robot through :func:`parse_urdf`, so the same robot
+is accepted or refused everywhere. yourdfpy parses the elements; this module adds what
+yourdfpy leaves out when it does not build a scene graph, and refuses, with one line naming
+the element (:class:`URDFError`):
+
+- a number that is not finite (``nan``, ``inf``) in any attribute of a ``<link>``,
+  ``<joint>`` or ``<material>`` (origins, axes, inertia, mass, limits, dynamics, geometry,
+  colours);
+- two links or two joints with the same name;
+- a joint type that is not one of URDF's six (revolute, continuous, prismatic, fixed,
+  floating, planar);
+- a joint whose parent or child link does not exist, a link that is the child of two joints,
+  no single root link, joints forming a cycle;
+- a zero axis on a revolute, continuous or prismatic joint;
+- on a moving link (the child of a non-fixed joint), a non-positive mass or a non-positive
+  principal moment (``ixx``, ``iyy``, ``izz``) in its ``<inertial>``.
+
+A link with no ``<inertial>`` is accepted (display-only URDFs of the tutorial have none, and
+upstream robot_state_publisher loads them); ``check_model`` reports it. The rest of the module:
+the root link, the joint above each link, material colours and mimic-joint resolution. Poses
+are 4x4 numpy matrices (see :mod:`.kinematics`).
 """
 
 from dataclasses import dataclass
 import io
+import math
 
 from lxml import etree
 import numpy as np
@@ -107,9 +127,106 @@ class RobotModel:
         return self.materials.get(material.name)
 
 
+URDF_JOINT_TYPES = ('revolute', 'continuous', 'prismatic', 'fixed', 'floating', 'planar')
+"""The joint types of the URDF specification (urdfdom's ``parseJoint``)."""
+
+_TEXT_ATTRIBUTES = frozenset(('name', 'link', 'joint', 'type', 'filename', 'reference'))
+"""Attributes holding names or paths, never numbers (skipped by the non-finite scan)."""
+
+
+class URDFError(ValueError):
+    """
+    A URDF the loader refuses: one line ``<source>: <element>: <problem>``.
+
+    :param source: the file path or parameter name the URDF came from.
+    :param element: the element holding the problem, e.g. ``"joint 'base_joint'"``, or ''
+        when it is about the whole document.
+    :param problem: what is wrong, one line.
+    """
+
+    def __init__(self, source, element, problem):
+        """Store the parts; the message is ``source: element: problem``."""
+        self.source = source
+        self.element = element
+        self.problem = problem
+        parts = [source, element, problem] if element else [source, problem]
+        super().__init__(': '.join(parts))
+
+
 def _one_line(text):
     """Return ``text`` collapsed onto a single line."""
     return ' '.join(str(text).split())
+
+
+def _non_finite(value):
+    """Return True when a whitespace-separated token of ``value`` is a non-finite number."""
+    for token in value.split():
+        try:
+            number = float(token)
+        except ValueError:
+            continue
+        if not math.isfinite(number):
+            return True
+    return False
+
+
+def _check_elements(root_element, source):
+    """
+    Check the document before yourdfpy reads it (names, joint types, non-finite numbers).
+
+    :raises URDFError: on a duplicate link/joint name, an unknown joint type, or an attribute
+        holding a non-finite number (naming the ``<link>``/``<joint>``/``<material>`` that
+        holds it and the attribute).
+    """
+    seen = {'link': set(), 'joint': set()}
+    for element in root_element:
+        kind = element.tag
+        if kind not in ('link', 'joint', 'material'):
+            continue
+        name = element.get('name')
+        owner = f'{kind} {name!r}'
+        if kind in seen and name is not None:
+            if name in seen[kind]:
+                raise URDFError(source, owner, f'duplicate {kind} name')
+            seen[kind].add(name)
+        if kind == 'joint':
+            joint_type = element.get('type')
+            if joint_type not in URDF_JOINT_TYPES:
+                raise URDFError(source, owner, f'unknown joint type {joint_type!r} (expected '
+                                f'one of {", ".join(URDF_JOINT_TYPES)})')
+        for node in element.iter():
+            if not isinstance(node.tag, str):
+                continue  # comments, processing instructions
+            for attribute, value in node.attrib.items():
+                if attribute in _TEXT_ATTRIBUTES or not _non_finite(value):
+                    continue
+                where = '' if node is element else f'<{node.tag}> '
+                raise URDFError(source, owner, f'{where}{attribute}="{_one_line(value)}" '
+                                'is not finite (expected finite numbers)')
+
+
+def _check_moving_links(model, source):
+    """
+    Check the ``<inertial>`` of every moving link (the child of a non-fixed joint).
+
+    :raises URDFError: when its mass or a principal moment ixx/iyy/izz is not positive.
+    """
+    for joint in model.joints.values():
+        if joint.type == 'fixed':
+            continue
+        inertial = model.links[joint.child].inertial
+        if inertial is None:
+            continue
+        owner = f'link {joint.child!r}'
+        mass = inertial.mass
+        if mass is None or not float(mass) > 0.0:
+            raise URDFError(source, owner, f'<inertial> mass must be positive on a link moved '
+                            f'by joint {joint.name!r}, found {mass}')
+        inertia = np.asarray(inertial.inertia, dtype=float)
+        for axis, index in (('ixx', 0), ('iyy', 1), ('izz', 2)):
+            if not inertia[index, index] > 0.0:
+                raise URDFError(source, owner, f'<inertial> {axis} must be positive on a link '
+                                f'moved by joint {joint.name!r}, found {inertia[index, index]:g}')
 
 
 def parse_urdf(urdf_xml, source='robot_description'):
@@ -119,21 +236,23 @@ def parse_urdf(urdf_xml, source='robot_description'):
     :param urdf_xml: the URDF, str or bytes.
     :param source: what to name in error messages (a file path or parameter name).
     :returns: the :class:`RobotModel`.
-    :raises ValueError: one line naming ``source`` when the XML is malformed, yourdfpy rejects
-        an element, or the links and joints do not form one tree.
+    :raises URDFError: (a ValueError) one line naming ``source`` and the element when the
+        XML is malformed, yourdfpy rejects an element, or a rule of the module docstring is
+        broken.
     """
     if isinstance(urdf_xml, str):
         urdf_xml = urdf_xml.encode('utf-8')
     if not urdf_xml.strip():
-        raise ValueError(f'{source}: empty URDF')
+        raise URDFError(source, '', 'empty URDF')
     try:
         root_element = etree.fromstring(urdf_xml)
     except etree.XMLSyntaxError as exc:
-        raise ValueError(f'{source}: not well-formed XML: {_one_line(exc)}') from None
+        raise URDFError(source, '', f'not well-formed XML: {_one_line(exc)}') from None
     if root_element.tag != 'robot':
-        raise ValueError(f'{source}: root element must be <robot>, found <{root_element.tag}>')
+        raise URDFError(source, '', f'root element must be <robot>, found <{root_element.tag}>')
     if not root_element.get('name'):
-        raise ValueError(f'{source}: <robot> has no name attribute')
+        raise URDFError(source, '<robot>', 'no name attribute')
+    _check_elements(root_element, source)
     # imported here, not at module level: it pulls in trimesh (~1 s), whose imports swallow
     # exceptions, so a Ctrl-C during a node's start-up must reach it only after main()
     # installed the clean-shutdown signal handling (amr_description.nodes.shutdown)
@@ -143,32 +262,32 @@ def parse_urdf(urdf_xml, source='robot_description'):
             io.BytesIO(urdf_xml), build_scene_graph=False, load_meshes=False)
     except Exception as exc:  # yourdfpy raises KeyError/ValueError/AttributeError alike
         kind = type(exc).__name__
-        raise ValueError(f'{source}: invalid URDF ({kind}: {_one_line(exc)})') from None
+        raise URDFError(source, '', f'invalid URDF ({kind}: {_one_line(exc)})') from None
     robot = urdf.robot
     links = {link.name: link for link in robot.links}
     joints = {joint.name: joint for joint in robot.joints}
     if not links:
-        raise ValueError(f'{source}: the robot has no links')
+        raise URDFError(source, '', 'the robot has no links')
     if len(links) != len(robot.links):
-        raise ValueError(f'{source}: duplicate link names')
+        raise URDFError(source, '', 'duplicate link names')
     if len(joints) != len(robot.joints):
-        raise ValueError(f'{source}: duplicate joint names')
+        raise URDFError(source, '', 'duplicate joint names')
     parent_joint = {}
     for joint in robot.joints:
         for role, link in (('parent', joint.parent), ('child', joint.child)):
             if link not in links:
-                raise ValueError(
-                    f'{source}: joint {joint.name!r} {role} link {link!r} does not exist')
+                raise URDFError(source, f'joint {joint.name!r}',
+                                f'{role} link {link!r} does not exist')
         if joint.child in parent_joint:
-            raise ValueError(f'{source}: link {joint.child!r} is the child of two joints')
+            raise URDFError(source, f'link {joint.child!r}', 'is the child of two joints')
         if joint.type in MOVING_JOINT_TYPES and (
                 joint.axis is None or not np.any(joint.axis)):
-            raise ValueError(f'{source}: joint {joint.name!r} has a zero axis')
+            raise URDFError(source, f'joint {joint.name!r}', 'zero axis')
         parent_joint[joint.child] = joint
     roots = [name for name in links if name not in parent_joint]
     if len(roots) != 1:
         found = ', '.join(roots) if roots else 'none (a cycle)'
-        raise ValueError(f'{source}: expected exactly one root link, found {found}')
+        raise URDFError(source, '', f'expected exactly one root link, found {found}')
     model = RobotModel(
         name=robot.name, root=roots[0], links=links, joints=joints,
         parent_joint=parent_joint,
@@ -179,7 +298,8 @@ def parse_urdf(urdf_xml, source='robot_description'):
         try:
             model.chain(link)
         except ValueError:
-            raise ValueError(f'{source}: the joints above link {link!r} form a cycle') from None
+            raise URDFError(source, f'link {link!r}', 'the joints above it form a cycle') from None
+    _check_moving_links(model, source)
     return model
 
 
@@ -195,5 +315,5 @@ def parse_urdf_file(path):
         with open(path, 'rb') as f:
             data = f.read()
     except OSError as exc:
-        raise ValueError(f'{path}: cannot read: {exc.strerror}') from None
+        raise URDFError(path, '', f'cannot read: {exc.strerror}') from None
     return data.decode('utf-8', errors='replace'), parse_urdf(data, source=path)

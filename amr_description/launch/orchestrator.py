@@ -31,7 +31,6 @@ Python use (the orchestrator runs in a background thread)::
     # leaving the block shuts the stack down and waits for every process
 """
 
-import ctypes
 import heapq
 import itertools
 import os
@@ -45,30 +44,7 @@ import time
 from amr_description.launch.actions import LaunchError
 from amr_description.launch.actions import OnProcessExit
 from amr_description.launch.actions import Process
-
-_PR_SET_PDEATHSIG = 1
-
-
-def _child_setup(parent_pid):
-    """
-    Return a ``preexec_fn`` that ties the child's life to the orchestrator process.
-
-    :param parent_pid: pid of the orchestrator.
-    :returns: a callable run in the child between fork and exec.
-    """
-    def setup():
-        try:
-            libc = ctypes.CDLL(None, use_errno=True)
-            libc.prctl(_PR_SET_PDEATHSIG, signal.SIGKILL, 0, 0, 0)
-        except Exception:  # noqa: B902 - never fail a start because prctl is missing
-            pass
-        if os.getppid() != parent_pid:
-            # the orchestrator died between fork and prctl
-            os._exit(1)
-        # default dispositions, whatever the orchestrator set for itself
-        signal.signal(signal.SIGINT, signal.SIG_DFL)
-        signal.signal(signal.SIGTERM, signal.SIG_DFL)
-    return setup
+from amr_description.launch.child_process import tie_to_parent
 
 
 class RunningProcess:
@@ -342,7 +318,7 @@ class Orchestrator:
             popen = subprocess.Popen(
                 cmd, stdin=subprocess.DEVNULL, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
                 env=env, cwd=action.cwd, process_group=0,
-                preexec_fn=_child_setup(self._pid))
+                preexec_fn=tie_to_parent(self._pid))
         except OSError as exc:
             self._error = True
             self._log('ERROR', record.label, f'exception occurred while executing process: '

@@ -2,7 +2,7 @@
 # Licensed under the Apache License, Version 2.0
 
 """
-The stacks that replace the tutorial's launch files: ``display`` and ``sim``.
+The stacks that replace the tutorial's launch files: ``display``, ``sim`` and ``fleet``.
 
 Each stack is a function ``stack(arguments) -> list of actions`` plus its declared launch
 arguments (``STACKS[name] = (function, declared_arguments, description)``). Arguments are the
@@ -15,6 +15,7 @@ str values of ``name:=value`` pairs (see
         ...
 """
 
+import math
 import os
 
 from amr_description.launch.actions import DeclareLaunchArgument
@@ -65,6 +66,11 @@ def read_urdf(path=None):
 
 DISPLAY_ARGUMENTS = [
     DeclareLaunchArgument('use_sim_time', 'false', 'Use simulation (/clock) time if true'),
+    DeclareLaunchArgument('gui', 'true',
+                          'Flag to enable joint_state_publisher_gui (sliders in the browser)'),
+    DeclareLaunchArgument('viewer', 'true', 'Start the viewer (RViz stand-in in the browser)'),
+    DeclareLaunchArgument('viewer_port', '8080', 'TCP port of the viewer page'),
+    DeclareLaunchArgument('gui_port', '8081', 'TCP port of the joint_state_publisher_gui page'),
 ]
 
 SIM_ARGUMENTS = [
@@ -77,7 +83,31 @@ SIM_ARGUMENTS = [
     DeclareLaunchArgument('y', '0.0', 'Spawn position y in the world frame (m)'),
     DeclareLaunchArgument('z', '0.2', 'Spawn position z in the world frame (m)'),
     DeclareLaunchArgument('yaw', '0.0', 'Spawn heading about z (rad)'),
+    DeclareLaunchArgument('viewer', 'true', 'Start the viewer (RViz stand-in in the browser)'),
+    DeclareLaunchArgument('viewer_port', '8080', 'TCP port of the viewer page'),
 ]
+
+
+FLEET_ARGUMENTS = [
+    DeclareLaunchArgument('use_sim_time', 'true', 'Use simulation (/clock) time if true'),
+    DeclareLaunchArgument('rtf', '1.0',
+                          'Real-time factor of the simulation (0 = as fast as possible)'),
+    DeclareLaunchArgument('headless', 'true', 'Run the simulator without a viewer window'),
+    DeclareLaunchArgument('robots', '2', 'Number of robots, namespaces r1 ... rN'),
+    DeclareLaunchArgument('spacing', '2.0', 'Distance between neighbours on the grid (m)'),
+]
+
+
+def _port(args, name):
+    """Return launch argument ``name`` as a TCP port (int 1..65535)."""
+    try:
+        port = int(args[name])
+    except ValueError:
+        port = 0
+    if not 0 < port < 65536:
+        raise LaunchError(f"launch argument '{name}': expected a TCP port 1..65535, got "
+                          f"'{args[name]}'")
+    return port
 
 
 def _with_defaults(declared, args):
@@ -91,8 +121,11 @@ def display(args):
     """
     Describe the ``display`` stack (the tutorial's display.launch.py without RViz).
 
-    robot_state_publisher with ``robot_description`` = the installed URDF, and
-    joint_state_publisher.
+    robot_state_publisher with ``robot_description`` = the installed URDF;
+    joint_state_publisher_gui (``gui:=true``, port ``gui_port``) or joint_state_publisher
+    (``gui:=false``), as the tutorial's ``gui`` argument; the viewer with Fixed Frame
+    ``base_footprint`` as the tutorial's RViz configuration (``viewer:=true``, port
+    ``viewer_port``). Each page's node prints the URL to open.
 
     :param args: dict of launch-argument values (see ``DISPLAY_ARGUMENTS``; missing ones take
         their declared defaults).
@@ -101,13 +134,26 @@ def display(args):
     """
     args = _with_defaults(DISPLAY_ARGUMENTS, args)
     use_sim_time = parse_bool(args['use_sim_time'], 'use_sim_time')
+    gui = parse_bool(args['gui'], 'gui')
+    viewer = parse_bool(args['viewer'], 'viewer')
     description = read_urdf()
-    return [
+    actions = [
         Node(PACKAGE, 'robot_state_publisher', output='screen',
              parameters=[{'robot_description': description, 'use_sim_time': use_sim_time}]),
-        Node(PACKAGE, 'joint_state_publisher', output='screen',
-             parameters=[{'use_sim_time': use_sim_time}]),
     ]
+    if gui:
+        actions.append(Node(PACKAGE, 'joint_state_publisher_gui', output='screen',
+                            parameters=[{'use_sim_time': use_sim_time,
+                                         'port': _port(args, 'gui_port')}]))
+    else:
+        actions.append(Node(PACKAGE, 'joint_state_publisher', output='screen',
+                            parameters=[{'use_sim_time': use_sim_time}]))
+    if viewer:
+        actions.append(Node(PACKAGE, 'viewer', output='screen',
+                            parameters=[{'use_sim_time': use_sim_time,
+                                         'fixed_frame': 'base_footprint',
+                                         'port': _port(args, 'viewer_port')}]))
+    return actions
 
 
 def sim(args):
@@ -118,7 +164,8 @@ def sim(args):
     to ``/odom``); robot_state_publisher with ``use_sim_time``; ``create -topic
     robot_description -name ROBOT -x X -y Y -z Z -Y YAW``; when ``create`` exits successfully
     ``spawner joint_state_broadcaster``, and when that exits ``spawner diff_drive_controller``
-    (the tutorial's ``OnProcessExit`` chain).
+    (the tutorial's ``OnProcessExit`` chain); the viewer (Fixed Frame ``odom``, port
+    ``viewer_port``) unless ``viewer:=false``.
 
     :param args: dict of launch-argument values (see ``SIM_ARGUMENTS``; missing ones take
         their declared defaults).
@@ -133,6 +180,8 @@ def sim(args):
     headless = parse_bool(args['headless'], 'headless')
     robot = args['robot'] or 'amr'
     pose = {k: parse_float(args[k], k) for k in ('x', 'y', 'z', 'yaw')}
+    viewer = parse_bool(args['viewer'], 'viewer')
+    viewer_port = _port(args, 'viewer_port')
     description = read_urdf()
 
     mujoco_sim = Node(
@@ -151,20 +200,106 @@ def sim(args):
         PACKAGE, 'spawner', output='screen', arguments=['joint_state_broadcaster'])
     diff_drive_controller = Node(
         PACKAGE, 'spawner', output='screen', arguments=['diff_drive_controller'])
-    return [
+    actions = [
         mujoco_sim,
         robot_state_publisher,
         create,
         OnProcessExit(create, [joint_state_broadcaster], only_on_success=True),
         OnProcessExit(joint_state_broadcaster, [diff_drive_controller]),
     ]
+    if viewer:
+        actions.append(Node(PACKAGE, 'viewer', output='screen',
+                            parameters=[{'use_sim_time': use_sim_time, 'fixed_frame': 'odom',
+                                         'port': viewer_port}]))
+    return actions
+
+
+def fleet_grid(count, spacing):
+    """
+    Return the spawn positions of ``count`` robots on a square grid.
+
+    Robots fill rows of ``ceil(sqrt(count))`` along +x, rows stacked along +y, starting at the
+    world origin.
+
+    :param count: number of robots, >= 1.
+    :param spacing: distance between neighbours, m (> 0).
+    :returns: list of ``(x, y)`` in m, robot ``rI`` at index ``I - 1``.
+    """
+    columns = max(1, math.ceil(math.sqrt(count)))
+    return [((i % columns) * spacing, (i // columns) * spacing) for i in range(count)]
+
+
+def fleet(args):
+    """
+    Describe the ``fleet`` stack: one simulator and ``robots`` namespaced robots on a grid.
+
+    mujoco_sim (``real_time_factor``, ``headless``; ``/rI/diff_drive_controller/odom``
+    remapped to ``/rI/odom`` for every robot). For each robot ``rI`` (I = 1 ... N), in
+    namespace ``/rI``: robot_state_publisher with ``frame_prefix`` ``rI/`` (publishes
+    ``/rI/robot_description``, listens to ``/rI/joint_states``); ``create -topic
+    /rI/robot_description -name rI -robot_namespace rI -x X -y Y -z 0.2`` at its grid
+    position (:func:`fleet_grid`); when it exits successfully one ``spawner -c
+    /rI/controller_manager joint_state_broadcaster diff_drive_controller`` (one process per
+    robot rather than two: a Python process start costs about a second of CPU). The
+    controllers run in ``/rI`` (diff_drive_controller's default ``tf_frame_prefix_enable``
+    gives frames ``rI/odom`` and ``rI/base_link``), cmd_vel is
+    ``/rI/diff_drive_controller/cmd_vel``.
+
+    :param args: dict of launch-argument values (see ``FLEET_ARGUMENTS``; missing ones take
+        their declared defaults).
+    :returns: list of actions.
+    :raises LaunchError: on a bad argument value or an unreadable URDF.
+    """
+    args = _with_defaults(FLEET_ARGUMENTS, args)
+    use_sim_time = parse_bool(args['use_sim_time'], 'use_sim_time')
+    rtf = parse_float(args['rtf'], 'rtf')
+    if rtf < 0:
+        raise LaunchError(f"launch argument 'rtf': expected a number >= 0, got '{args['rtf']}'")
+    headless = parse_bool(args['headless'], 'headless')
+    try:
+        count = int(args['robots'])
+    except ValueError:
+        count = 0
+    if count < 1:
+        raise LaunchError(f"launch argument 'robots': expected an integer >= 1, got "
+                          f"'{args['robots']}'")
+    spacing = parse_float(args['spacing'], 'spacing')
+    if not spacing > 0:
+        raise LaunchError(f"launch argument 'spacing': expected a number > 0, got "
+                          f"'{args['spacing']}'")
+    description = read_urdf()
+    names = [f'r{i}' for i in range(1, count + 1)]
+    actions = [Node(
+        PACKAGE, 'mujoco_sim', output='screen',
+        parameters=[{'real_time_factor': rtf, 'headless': headless}],
+        remappings=[(f'/{ns}/diff_drive_controller/odom', f'/{ns}/odom') for ns in names])]
+    for ns, (x, y) in zip(names, fleet_grid(count, spacing)):
+        create = Node(
+            PACKAGE, 'create', output='screen',
+            arguments=['-topic', f'/{ns}/robot_description', '-name', ns,
+                       '-robot_namespace', ns, '-x', repr(x), '-y', repr(y), '-z', '0.2'])
+        spawner = Node(
+            PACKAGE, 'spawner', output='screen',
+            arguments=['-c', f'/{ns}/controller_manager', 'joint_state_broadcaster',
+                       'diff_drive_controller'])
+        actions += [
+            Node(PACKAGE, 'robot_state_publisher', namespace=ns, output='screen',
+                 parameters=[{'robot_description': description, 'use_sim_time': use_sim_time,
+                              'frame_prefix': f'{ns}/'}]),
+            create,
+            OnProcessExit(create, [spawner], only_on_success=True),
+        ]
+    return actions
 
 
 STACKS = {
     'display': (display, DISPLAY_ARGUMENTS,
-                'robot_state_publisher + joint_state_publisher for the installed URDF'),
+                'robot_state_publisher + joint_state_publisher(_gui) + viewer for the '
+                'installed URDF'),
     'sim': (sim, SIM_ARGUMENTS,
             'MuJoCo simulation, robot_state_publisher, spawn and ros2_control controllers'),
+    'fleet': (fleet, FLEET_ARGUMENTS,
+              'MuJoCo simulation with N namespaced robots (r1 ... rN) on a grid'),
 }
 
 

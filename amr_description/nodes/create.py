@@ -8,19 +8,24 @@ Flags as upstream ``ros_gz_sim create``: one source of ``-topic TOPIC`` (a std_m
 published transient-local, e.g. ``robot_description``), ``-file PATH`` (also
 ``package://``), ``-string XML`` or ``-param NAME`` (a string parameter of this node);
 ``-name NAME``, ``-allow_renaming``, pose ``-x -y -z`` (m) and ``-R -P -Y`` (rad),
-``-world`` (accepted, ignored: mujoco_sim has one world). Extra: ``-service`` (default
-``/mujoco_sim/spawn_entity``) and ``-timeout`` (s to wait for the topic and the service,
-default 30). Exits 0 when the entity was created, 1 with a one-line error otherwise.
+``-world`` (accepted, ignored: mujoco_sim has one world); ``-robot_namespace NS`` (as
+gazebo_ros ``spawn_entity.py``): the entity's ROS namespace, sent as the request's
+``entity_namespace``, so the simulator creates the robot's controller manager as
+``/NS/controller_manager``. Extra: ``-service`` (default ``/mujoco_sim/spawn_entity``) and
+``-timeout`` (s to wait for the topic and the service; default 0: as long as it takes, as
+upstream, which waits until interrupted). Exits 0 when the entity was created, 1 with a
+one-line error otherwise.
 """
 
 import argparse
 import math
 import sys
+import time
 
+from amr_description.nodes import shutdown
+from amr_description.nodes.shutdown import Node
 from geometry_msgs.msg import PoseStamped
-import rclpy
 from rclpy.executors import ExternalShutdownException
-from rclpy.node import Node
 from rclpy.qos import DurabilityPolicy
 from rclpy.qos import QoSProfile
 from rclpy.qos import ReliabilityPolicy
@@ -42,12 +47,14 @@ def build_parser():
     parser.add_argument('-allow_renaming', action='store_true',
                         help='rename the entity when the name is taken')
     parser.add_argument('-world', default='', help='world name (ignored: a single world)')
+    parser.add_argument('-robot_namespace', default='',
+                        help="ROS namespace of the entity's nodes (e.g. r1)")
     for flag, meaning in (('x', 'x (m)'), ('y', 'y (m)'), ('z', 'z (m)'),
                           ('R', 'roll (rad)'), ('P', 'pitch (rad)'), ('Y', 'yaw (rad)')):
         parser.add_argument(f'-{flag}', type=float, default=0.0, help=meaning)
     parser.add_argument('-service', default=DEFAULT_SERVICE, help='SpawnEntity service')
-    parser.add_argument('-timeout', type=float, default=30.0,
-                        help='seconds to wait for the topic and the service')
+    parser.add_argument('-timeout', type=float, default=0.0,
+                        help='seconds to wait for the topic and the service (0: no limit)')
     return parser
 
 
@@ -112,10 +119,8 @@ class Create(Node):
                          reliability=ReliabilityPolicy.RELIABLE)
         sub = self.create_subscription(String, topic, lambda m: received.append(m.data), qos)
         self.get_logger().info(f'Waiting messages on topic [{topic}].')
-        deadline = self.get_clock().now().nanoseconds * 1e-9 + self.opts.timeout
-        while rclpy.ok() and not received and \
-                self.get_clock().now().nanoseconds * 1e-9 < deadline:
-            rclpy.spin_once(self, timeout_sec=0.1)
+        deadline = time.monotonic() + (self.opts.timeout if self.opts.timeout > 0 else math.inf)
+        shutdown.spin(self, until=lambda: received or time.monotonic() > deadline)
         self.destroy_subscription(sub)
         if not received:
             raise RuntimeError(f'timed out after {self.opts.timeout:g} s waiting for a message '
@@ -126,17 +131,20 @@ class Create(Node):
         """Call the spawn service; return (ok, message)."""
         opts = self.opts
         self.get_logger().info(f'Waiting for service {opts.service}...')
-        if not self._client.wait_for_service(timeout_sec=opts.timeout):
+        if not self._client.wait_for_service(
+                timeout_sec=opts.timeout if opts.timeout > 0 else None):
             return False, (f'service {opts.service} not available after {opts.timeout:g} s: '
                            'is mujoco_sim running?')
         request = self._srv_type.Request()
         request.name = opts.name
         request.allow_renaming = opts.allow_renaming
+        request.entity_namespace = opts.robot_namespace
         request.entity_resource.resource_string = urdf
         request.initial_pose = pose_from_rpy(opts.x, opts.y, opts.z, opts.R, opts.P, opts.Y)
         self.get_logger().info('Requested creation of entity.')
         future = self._client.call_async(request)
-        rclpy.spin_until_future_complete(self, future, timeout_sec=opts.timeout + 30.0)
+        deadline = time.monotonic() + (opts.timeout + 30.0 if opts.timeout > 0 else math.inf)
+        shutdown.spin(self, until=lambda: future.done() or time.monotonic() > deadline)
         if not future.done() or future.result() is None:
             return False, f'no answer from {opts.service}'
         response = future.result()
@@ -146,34 +154,38 @@ class Create(Node):
 
 
 def main(args=None):
-    """Parse the flags, spawn, and return the exit code (0 created, 1 failed)."""
+    """
+    Parse the flags, spawn, and return the exit code (0 created, 1 failed).
+
+    Clean-shutdown pattern of :mod:`amr_description.nodes.shutdown`; a description the URDF
+    loader (:func:`amr_description.core.urdf_model.parse_urdf`) refuses is one error line and
+    exit code 1, before the simulator is asked.
+    """
     argv = sys.argv[1:] if args is None else list(args)
-    from rclpy.utilities import remove_ros_args
-    own = remove_ros_args(['create'] + argv)[1:]
+    own = shutdown.remove_ros_args(['create'] + argv)[1:]
     opts = build_parser().parse_args(own)
-    rclpy.init(args=['create'] + argv)
+    shutdown.init(['create'] + argv)
     node = None
     code = 1
     try:
-        node = Create(opts)
+        node = shutdown.create(Create, opts)
         urdf = node.description()
+        # the package's one loader refuses here what the simulator would refuse
+        from amr_description.core.urdf_model import parse_urdf
+        parse_urdf(urdf, source=opts.file or opts.param or (
+            f'topic [{opts.topic}]' if opts.topic else '-string'))
         ok, message = node.spawn(urdf)
         if ok:
             node.get_logger().info(message)
             code = 0
         else:
             node.get_logger().error(message)
-    except RuntimeError as exc:
-        if node is not None:
-            node.get_logger().error(str(exc))
-        else:
-            print(f'create: {exc}', file=sys.stderr)
+    except (RuntimeError, ValueError) as exc:
+        node.get_logger().error(' '.join(str(exc).split()))
     except (KeyboardInterrupt, ExternalShutdownException):
         code = 0  # Ctrl-C while waiting: a normal stop, not a failure (as the spawner)
     finally:
-        if node is not None:
-            node.destroy_node()
-        rclpy.try_shutdown()
+        shutdown.shutdown(node)
     return code
 
 

@@ -19,10 +19,9 @@ import sys
 
 from amr_description.core.urdf_model import parse_urdf
 from amr_description.nodes import shutdown
+from amr_description.nodes.shutdown import Node
 from rcl_interfaces.msg import ParameterDescriptor
 from rcl_interfaces.msg import ParameterType
-import rclpy
-from rclpy.node import Node
 from rclpy.qos import DurabilityPolicy
 from rclpy.qos import QoSProfile
 from sensor_msgs.msg import JointState
@@ -32,9 +31,13 @@ from std_msgs.msg import String
 class JointStatePublisher(Node):
     """Node ``joint_state_publisher`` (see the module docstring)."""
 
-    def __init__(self):
-        """Declare parameters, subscribe to the sources and the description, start the timer."""
-        super().__init__('joint_state_publisher')
+    def __init__(self, node_name='joint_state_publisher'):
+        """
+        Declare parameters, subscribe to the sources and the description, start the timer.
+
+        :param node_name: the node name (``joint_state_publisher_gui`` extends this node).
+        """
+        super().__init__(node_name)
         self.declare_parameter('robot_description', '')
         self.declare_parameter('rate', 10.0)
         self.declare_parameter('source_list', [''], ParameterDescriptor(
@@ -123,18 +126,15 @@ def main(args=None):
     Run :class:`JointStatePublisher` until Ctrl-C.
 
     :param args: command-line arguments for rclpy (default ``sys.argv``).
-    :returns: 0 on a clean shutdown, 1 on a bad parameter (one-line error).
+    :returns: 0 on a clean shutdown.
+    :raises SystemExit: code 1 after one error line on bad ROS arguments or a bad parameter
+        (:mod:`amr_description.nodes.shutdown`).
     """
     shutdown.init(args)
     node = None
     try:
-        node = JointStatePublisher()
+        node = shutdown.create(JointStatePublisher)
         shutdown.spin(node)
-    except ValueError as exc:
-        if node is not None:
-            raise
-        rclpy.logging.get_logger('joint_state_publisher').error(str(exc))
-        return 1
     except KeyboardInterrupt:
         pass
     finally:

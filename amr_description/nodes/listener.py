@@ -9,7 +9,7 @@ tutorial's ``minimal_subscriber``.
 """
 
 from amr_description.nodes import shutdown
-from rclpy.node import Node
+from amr_description.nodes.shutdown import Node
 from std_msgs.msg import String
 
 
@@ -40,7 +40,7 @@ def main(args=None):
     shutdown.init(args)
     node = None
     try:
-        node = MinimalSubscriber()
+        node = shutdown.create(MinimalSubscriber)
         shutdown.spin(node)
     except KeyboardInterrupt:
         pass

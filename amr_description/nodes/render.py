@@ -32,25 +32,30 @@ def _parse(argv):
 
 
 def _description_from_topic(args, timeout):
-    """Return the first /robot_description message's data, or None after ``timeout`` s."""
-    import rclpy
+    """
+    Return the first /robot_description message's data, or None after ``timeout`` s.
+
+    A short-lived node ``render`` in the clean-shutdown pattern of
+    :mod:`amr_description.nodes.shutdown` (bad ROS arguments: one line, exit code 1).
+    """
+    from amr_description.nodes import shutdown
     from rclpy.qos import DurabilityPolicy
     from rclpy.qos import QoSProfile
     from std_msgs.msg import String
 
     os.environ.setdefault('ROS_AUTOMATIC_DISCOVERY_RANGE', 'LOCALHOST')
-    rclpy.init(args=args)
-    node = rclpy.create_node('render')
+    shutdown.init(args)
+    node = None
     received = []
-    node.create_subscription(String, 'robot_description', lambda msg: received.append(msg.data),
-                             QoSProfile(depth=1, durability=DurabilityPolicy.TRANSIENT_LOCAL))
     try:
+        node = shutdown.create(shutdown.Node, 'render')
+        node.create_subscription(
+            String, 'robot_description', lambda msg: received.append(msg.data),
+            QoSProfile(depth=1, durability=DurabilityPolicy.TRANSIENT_LOCAL))
         deadline = time.monotonic() + timeout
-        while not received and time.monotonic() < deadline:
-            rclpy.spin_once(node, timeout_sec=0.1)
+        shutdown.spin(node, until=lambda: received or time.monotonic() > deadline)
     finally:
-        node.destroy_node()
-        rclpy.try_shutdown()
+        shutdown.shutdown(node)
     return received[0] if received else None
 
 
@@ -62,10 +67,10 @@ def main(args=None):
     :returns: 0 on success, 1 on a bad URDF, a missing description or an unwritable file
         (one-line error on stderr).
     """
-    from rclpy.utilities import remove_ros_args
+    from amr_description.nodes import shutdown
 
     argv = sys.argv if args is None else args
-    options = _parse(remove_ros_args(argv)[1:])
+    options = _parse(shutdown.remove_ros_args(argv)[1:])
     try:
         if options.urdf:
             try:
@@ -77,8 +82,12 @@ def main(args=None):
             urdf_xml = _description_from_topic(argv, options.timeout)
             if urdf_xml is None:
                 raise ValueError(f'no message on /robot_description within {options.timeout:g} s')
+        from amr_description.core.urdf_model import parse_urdf
         from amr_description.sim.render import render_urdf
         from amr_description.sim.render import save_png
+        # the package's one loader: what robot_state_publisher and the simulator refuse is
+        # refused here too, before any pixel is drawn or file written
+        parse_urdf(urdf_xml, source=options.urdf or '/robot_description')
         image = render_urdf(urdf_xml, options.width, options.height, options.frames)
         save_png(image, options.output)
     except KeyboardInterrupt:

@@ -34,14 +34,11 @@ from amr_description.core.kinematics import matrix_to_translation_quaternion
 from amr_description.core.kinematics import MOVING_JOINT_TYPES
 from amr_description.core.urdf_model import parse_urdf
 from amr_description.nodes import shutdown
+from amr_description.nodes.shutdown import Node
 from geometry_msgs.msg import TransformStamped
 from rcl_interfaces.msg import FloatingPointRange
 from rcl_interfaces.msg import ParameterDescriptor
 from rcl_interfaces.msg import SetParametersResult
-import rclpy
-from rclpy.exceptions import InvalidParameterTypeException
-from rclpy.exceptions import InvalidParameterValueException
-from rclpy.node import Node
 from rclpy.qos import DurabilityPolicy
 from rclpy.qos import qos_profile_sensor_data
 from rclpy.qos import QoSProfile
@@ -184,19 +181,16 @@ def main(args=None):
     Run :class:`RobotStatePublisher` until Ctrl-C.
 
     :param args: command-line arguments for rclpy (default ``sys.argv``).
-    :returns: 0 on a clean shutdown, 1 when ``robot_description`` is empty or invalid or a
-        parameter is out of range (one-line error, no traceback).
+    :returns: 0 on a clean shutdown.
+    :raises SystemExit: code 1 after one error line when the ROS arguments cannot be parsed,
+        ``robot_description`` is empty or refused by the URDF loader, or a parameter has the
+        wrong type or is out of range (:mod:`amr_description.nodes.shutdown`).
     """
     shutdown.init(args)
     node = None
     try:
-        node = RobotStatePublisher()
+        node = shutdown.create(RobotStatePublisher)
         shutdown.spin(node)
-    except (ValueError, InvalidParameterValueException, InvalidParameterTypeException) as exc:
-        if node is not None:
-            raise
-        rclpy.logging.get_logger('robot_state_publisher').error(' '.join(str(exc).split()))
-        return 1
     except KeyboardInterrupt:
         pass
     finally:

@@ -7,41 +7,75 @@ rclpy's default signal handler shuts the context down from inside the SIGINT han
 callbacks and other threads may still use it: publishers then fail ("publisher's context is
 invalid"), a callback in flight raises from a half-destroyed handle, and the second SIGINT that
 a launch-style orchestrator sends after the terminal's own raises ``KeyboardInterrupt`` in the
-middle of the cleanup (a traceback and exit code 1). Here SIGINT and SIGTERM only raise
-``KeyboardInterrupt`` in the main thread, once, and set a flag that :func:`spin` checks (in case
-a library swallowed the exception); later signals are ignored while ``main`` stops its
-threads, destroys its nodes and, last, shuts rclpy down::
+middle of the cleanup (a traceback and exit code 1). Here the first SIGINT or SIGTERM sets a
+flag; while :func:`spin` runs, that is all it does (an exception raised inside rclpy's C++
+calls, e.g. while ``take_message`` builds a message, escapes as an unrelated ``RuntimeError``),
+and ``spin`` raises ``KeyboardInterrupt`` itself once ``spin_once`` returned; outside ``spin``
+the handler raises ``KeyboardInterrupt`` in the main thread at once. Later signals are ignored
+while ``main`` stops its threads, destroys its nodes and, last, shuts rclpy down::
 
     init(args)
     node = None
     try:
-        node = MyNode()
+        node = create(MyNode)
         spin(node)
     except KeyboardInterrupt:
         pass
     finally:
         shutdown(node)
+
+The same pattern turns start-up errors into one line and exit code 1, never a traceback:
+
+- :func:`init`: rcl cannot parse the command line (``--ros-args -p name:=<not YAML>``, an
+  empty ``-p`` value, an unknown ``--ros-args`` flag): rcl's own message, as upstream prints
+  it (``failed to initialize rcl: Couldn't parse parameter override rule: ...``);
+- :func:`create`: the node refuses a parameter: a wrong type names the parameter and the
+  expected type (rclpy's ``InvalidParameterTypeException`` text), an out-of-range value its
+  range; a ``ValueError`` raised by the node's constructor is printed as it is;
+- :class:`Node` (the base class of our nodes): a whole number given on the command line for
+  a floating-point parameter (``-p real_time_factor:=0``) is accepted as that float. rcl
+  parses ``0`` as an integer and rclpy (like rclcpp) then refuses it for a parameter whose
+  default is a float, which users do not expect.
+
+The one line goes to stderr through the rclpy logger named after the program, i.e.
+``[ERROR] [<time>] [<name>]: <message>``.
 """
 
+import os
 import signal
+import sys
 import threading
 
 import rclpy
+from rclpy.exceptions import InvalidParameterTypeException
+from rclpy.exceptions import InvalidParameterValueException
+from rclpy.exceptions import ParameterException
 from rclpy.executors import ExternalShutdownException
 from rclpy.executors import SingleThreadedExecutor
+from rclpy.logging import LoggingSeverity
+import rclpy.node
+from rclpy.parameter import Parameter
 from rclpy.signals import SignalHandlerOptions
+import rclpy.utilities
 
 SPIN_PERIOD = 0.1
 """Seconds between checks for a signal while spinning (the wait is not interrupted)."""
 
 _SIGNALS = (signal.SIGINT, signal.SIGTERM)
 _interrupted = threading.Event()
+_spinning = threading.Event()
 
 
 def _interrupt(signum, frame):
     if _interrupted.is_set():
         return  # the cleanup is under way
     _interrupted.set()
+    if _spinning.is_set():
+        # inside spin(): do not raise in the middle of rclpy's C++ calls (a KeyboardInterrupt
+        # raised while pybind11 converts take_message's arguments surfaced as "RuntimeError:
+        # Unable to convert call argument '0' to Python object"); spin() raises it itself
+        # once spin_once() returned, at most one period later
+        return
     raise KeyboardInterrupt
 
 
@@ -57,16 +91,118 @@ def ignore_signals():
         signal.signal(signum, signal.SIG_IGN)
 
 
+def _one_line(text):
+    """Return ``text`` collapsed onto one line."""
+    return ' '.join(str(text).split())
+
+
+def _program(args):
+    """Return the program name for error lines (``args[0]`` or ``sys.argv[0]``, basename)."""
+    argv = sys.argv if args is None else args
+    return os.path.basename(argv[0]) if argv and argv[0] else 'amr_description'
+
+
+def fail(name, message):
+    """
+    Log ``message`` as one error line of logger ``name`` and exit with code 1.
+
+    :raises SystemExit: always, code 1.
+    """
+    rclpy.logging.get_logger(name).error(_one_line(message))
+    raise SystemExit(1)
+
+
+class _QuietRcl:
+    """Context: rcl's own error log lines off (rcl logs before raising; we print one line)."""
+
+    def __init__(self, args):
+        self._args = sys.argv if args is None else args
+
+    def __enter__(self):
+        self._previous = rclpy.logging.get_logger_level('rcl')
+        rclpy.logging.set_logger_level('rcl', LoggingSeverity.FATAL)
+        return self
+
+    def __exit__(self, kind, value, traceback):
+        user_set = any('rcl:=' in str(arg) for arg in self._args)  # --log-level rcl:=...
+        if kind is not None or not user_set:
+            rclpy.logging.set_logger_level('rcl', self._previous)
+        return False
+
+
 def init(args=None):
     """
     ``rclpy.init`` without rclpy's signal handlers; SIGINT/SIGTERM raise KeyboardInterrupt.
 
-    :param args: command-line arguments for rclpy (default ``sys.argv``).
+    :param args: command-line arguments for rclpy, program name first (default
+        ``sys.argv``).
     :raises KeyboardInterrupt: on a signal during the initialisation.
+    :raises SystemExit: code 1 after one error line when rcl cannot parse the ROS arguments
+        (rcl's text, e.g. ``failed to initialize rcl: Couldn't parse parameter override rule:
+        '-p robot_description:='. ...``).
     """
     for signum in _SIGNALS:
         signal.signal(signum, _interrupt)
-    rclpy.init(args=args, signal_handler_options=SignalHandlerOptions.NO)
+    try:
+        with _QuietRcl(args):
+            rclpy.init(args=args, signal_handler_options=SignalHandlerOptions.NO)
+    except RuntimeError as exc:  # rclpy's RCLError: rcl_init failed on the arguments
+        rclpy.try_shutdown()
+        fail(_program(args), exc)
+
+
+def remove_ros_args(args=None):
+    """
+    Return ``args`` without the ROS arguments (``rclpy.utilities.remove_ros_args``).
+
+    :param args: command line, program name first (default ``sys.argv``).
+    :raises SystemExit: code 1 after one error line when rcl cannot parse the ROS arguments.
+    """
+    argv = sys.argv if args is None else list(args)
+    try:
+        with _QuietRcl(argv):
+            return rclpy.utilities.remove_ros_args(args=argv)
+    except RuntimeError as exc:  # rclpy's RCLInvalidROSArgsError
+        fail(_program(argv), exc)
+
+
+def create(factory, *args, **kwargs):
+    """
+    Return ``factory(*args, **kwargs)`` (a node); a refused parameter exits with one line.
+
+    :param factory: the node class (or any callable building the node).
+    :raises SystemExit: code 1 after one error line when the constructor raises rclpy's
+        ``ParameterException`` family (wrong type, out of range, not declared...) or a
+        ``ValueError`` (a parameter value the node refuses).
+    """
+    try:
+        return factory(*args, **kwargs)
+    except (InvalidParameterTypeException, InvalidParameterValueException,
+            ParameterException, ValueError) as exc:
+        fail(_program(None), exc)
+
+
+class Node(rclpy.node.Node):
+    """
+    ``rclpy.node.Node`` that accepts a whole number for a floating-point parameter.
+
+    When a parameter is declared with a float default (or type ``Parameter.Type.DOUBLE``) and
+    its override (``--ros-args -p`` or a parameters file) is an integer, the override is
+    converted to that float before rclpy checks its type. Everything else is rclpy's.
+    """
+
+    def declare_parameters(self, namespace, parameters, ignore_override=False):
+        """Declare as rclpy does, after converting whole-number overrides of float parameters."""
+        for parameter in parameters:
+            name, value = parameter[0], parameter[1] if len(parameter) > 1 else None
+            full = f'{namespace}.{name}' if namespace else name
+            override = self._parameter_overrides.get(full)
+            wants_float = isinstance(value, float) or value == Parameter.Type.DOUBLE
+            if override is not None and wants_float and \
+                    override.type_ == Parameter.Type.INTEGER:
+                self._parameter_overrides[full] = Parameter(
+                    full, Parameter.Type.DOUBLE, float(override.value))
+        return super().declare_parameters(namespace, parameters, ignore_override)
 
 
 def spin(target, until=None, period=SPIN_PERIOD):
@@ -77,21 +213,32 @@ def spin(target, until=None, period=SPIN_PERIOD):
         ``Executor``.
     :param until: optional callable returning True to stop spinning.
     :param period: seconds of each wait (the longest delay before a signal is seen).
-    :raises KeyboardInterrupt: on SIGINT/SIGTERM.
+    :raises KeyboardInterrupt: on SIGINT/SIGTERM, raised here once ``spin_once`` returned
+        (never from inside an rclpy call); an error raised by ``spin_once`` after the signal
+        is part of stopping and ignored.
     """
     executor = target
     if not hasattr(target, 'spin_once'):
         executor = SingleThreadedExecutor(context=target.context)
         executor.add_node(target)
+    _spinning.set()
     try:
         while executor.context.ok() and not _interrupted.is_set() and \
                 not (until is not None and until()):
-            executor.spin_once(timeout_sec=period)
-    except ExternalShutdownException:
-        pass
+            try:
+                executor.spin_once(timeout_sec=period)
+            except ExternalShutdownException:
+                break
+            except Exception:  # noqa: B902 - see below
+                if not _interrupted.is_set():
+                    raise
+                break  # an entity torn down by the signal's shutdown: part of stopping
     finally:
+        _spinning.clear()
         if executor is not target:
             executor.shutdown(timeout_sec=0)
+    if _interrupted.is_set():
+        raise KeyboardInterrupt
 
 
 def shutdown(*nodes, executor=None):

@@ -7,12 +7,14 @@ Command line and log lines as ros2_control's ``controller_manager spawner`` (jaz
 
     spawner NAME... [-c CM] [-p PARAM_FILE]... [-n NS] [--load-only] [--inactive]
             [-u] [--controller-manager-timeout S] [--switch-timeout S]
-            [--service-call-timeout S] [--activate-as-group] [--ros-args ...]
+            [--service-call-timeout S] [--activate-as-group]
+            [--controller-ros-args ARGS]... [--ros-args ...]
 
 For every controller: skipped with a warning when already loaded, else (after setting
-``<name>.params_file``/``<name>.type`` on the manager when ``-p`` files mention it) loaded
-("Loaded NAME"); then configured and activated ("Configured and activated NAME"). Exit code
-0 on success, 1 on any failure (one error line, e.g. "Could not contact service
+``<name>.node_options_args`` from ``--controller-ros-args``, and ``<name>.params_file``/
+``<name>.type`` when ``-p`` files mention it, on the manager) loaded ("Loaded NAME");
+then configured and activated ("Configured and activated NAME"). Exit code 0 on success,
+1 on any failure (one error line, e.g. "Could not contact service
 /controller_manager/list_controllers" after ``--controller-manager-timeout`` seconds).
 """
 
@@ -21,17 +23,17 @@ import os
 import sys
 import time
 
+from amr_description.control import controller_manager_services as cms
+from amr_description.control.controller_manager_services import ServiceNotFoundError
 from amr_description.core import ros_param_file
+from amr_description.nodes import shutdown
 import rclpy
 from rclpy.node import Node
-from rclpy.signals import SignalHandlerOptions
 
-STRICT = 2
-BEST_EFFORT = 1
+STRICT = cms.STRICT
+BEST_EFFORT = cms.BEST_EFFORT
 
-
-class ServiceNotFoundError(Exception):
-    """The controller manager did not offer a service in time."""
+__all__ = ['Spawner', 'ServiceNotFoundError', 'main', 'run']
 
 
 class Spawner(Node):
@@ -41,65 +43,6 @@ class Spawner(Node):
         """Create node ``spawner_<first_controller>``."""
         kwargs = {'namespace': namespace} if namespace else {}
         super().__init__(f'spawner_{first_controller}', **kwargs)
-
-    def call(self, service_name, service_type, request, service_timeout=0.0, call_timeout=10.0,
-             attempts=3):
-        """
-        Call a service and return its response.
-
-        :param service_name: absolute service name.
-        :param service_type: service class.
-        :param request: request message.
-        :param service_timeout: seconds to wait for the service (0: forever, logging every
-            10 s).
-        :param call_timeout: seconds to wait for each response.
-        :param attempts: number of calls before giving up.
-        :returns: the response.
-        :raises ServiceNotFoundError: when the service does not appear in time.
-        :raises RuntimeError: when no response arrives.
-        """
-        client = self.create_client(service_type, service_name)
-        try:
-            while not client.service_is_ready():
-                self.get_logger().info(f'waiting for service {service_name} to become '
-                                       'available...')
-                if service_timeout:
-                    if not client.wait_for_service(service_timeout):
-                        raise ServiceNotFoundError(f'Could not contact service {service_name}')
-                elif not client.wait_for_service(10.0):
-                    self.get_logger().warn(f'Could not contact service {service_name}')
-            for attempt in range(attempts):
-                future = client.call_async(request)
-                rclpy.spin_until_future_complete(self, future, timeout_sec=call_timeout)
-                if future.result() is not None:
-                    return future.result()
-                self.get_logger().warn(
-                    f'Failed getting a result from calling {service_name} in {call_timeout}. '
-                    f'(Attempt {attempt + 1} of {attempts}.)')
-            raise RuntimeError(f'Could not successfully call service {service_name} after '
-                               f'{attempts} attempts.')
-        finally:
-            self.destroy_client(client)
-
-    def set_cm_parameter(self, cm, name, value):
-        """Set string parameter ``name`` on the controller manager; returns True when set."""
-        from rcl_interfaces.msg import Parameter
-        from rcl_interfaces.msg import ParameterType
-        from rcl_interfaces.msg import ParameterValue
-        from rcl_interfaces.srv import SetParameters
-        request = SetParameters.Request()
-        request.parameters = [Parameter(name=name, value=ParameterValue(
-            type=ParameterType.PARAMETER_STRING, string_value=str(value)))]
-        response = self.call(f'{cm}/set_parameters', SetParameters, request, 10.0)
-        ok = bool(response.results) and response.results[0].successful
-        controller, _, key = name.partition('.')
-        if ok:
-            self.get_logger().info(f'Setting controller param "{key}" to "{value}" for '
-                                   f'{controller}')
-        else:
-            self.get_logger().fatal(f'Could not set controller param "{key}" to "{value}" '
-                                    f'for {controller}')
-        return ok
 
 
 def _files_for(controller, namespace, files):
@@ -141,31 +84,25 @@ def _parser():
     parser.add_argument('--activate-as-group', action='store_true',
                         help='Activates all the parsed controllers list together instead of '
                         'one by one.')
+    parser.add_argument('--controller-ros-args', action='append', default=None,
+                        help='The --ros-args to be passed to the controller node, e.g., for '
+                        'remapping topics. Pass multiple times for every argument.')
     return parser
 
 
 def _switch(node, cm, activate, deactivate, timeout, call_timeout):
-    from builtin_interfaces.msg import Duration
-    from controller_manager_msgs.srv import SwitchController
-    request = SwitchController.Request()
-    request.activate_controllers = list(activate)
-    request.deactivate_controllers = list(deactivate)
-    request.strictness = STRICT
-    request.activate_asap = False
-    request.timeout = Duration(sec=int(timeout), nanosec=int((timeout % 1.0) * 1e9))
-    return node.call(f'{cm}/switch_controller', SwitchController, request,
-                     call_timeout=call_timeout + timeout)
+    return cms.switch_controllers(node, cm, deactivate, activate, True, False, timeout,
+                                  call_timeout)
 
 
 def run(node, args, cm):
     """Spawn every controller of ``args``; returns the exit code."""
-    from controller_manager_msgs import srv
     log = node.get_logger()
     names = args.controller_names
     tmo, call_tmo = args.controller_manager_timeout, args.service_call_timeout
+    ros_args = [arg for text in (args.controller_ros_args or []) for arg in text.split()]
     for name in names:
-        listed = node.call(f'{cm}/list_controllers', srv.ListControllers,
-                           srv.ListControllers.Request(), tmo, call_tmo)
+        listed = cms.list_controllers(node, cm, tmo, call_tmo)
         loaded = [c for c in listed.controller if c.name == name]
         if loaded:
             log.warn('Controller already loaded, skipping load_controller')
@@ -173,23 +110,26 @@ def run(node, args, cm):
                 log.warn(f'Controller {name} is already active, skipping')
                 continue
         else:
+            if ros_args and not cms.set_controller_parameter(
+                    node, cm, name, 'node_options_args', ros_args, call_tmo):
+                return 1
             if args.param_file:
                 files, type_name = _files_for(name, node.get_namespace(), args.param_file)
                 if files:
-                    if not node.set_cm_parameter(cm, f'{name}.params_file', str(files)):
+                    if not cms.set_controller_parameter(node, cm, name, 'params_file', files,
+                                                        call_tmo):
                         return 1
-                    if type_name and not node.set_cm_parameter(cm, f'{name}.type', type_name):
+                    if type_name and not cms.set_controller_parameter(
+                            node, cm, name, 'type', type_name, call_tmo):
                         return 1
-            ret = node.call(f'{cm}/load_controller', srv.LoadController,
-                            srv.LoadController.Request(name=name), tmo, call_tmo)
+            ret = cms.load_controller(node, cm, name, tmo, call_tmo)
             if not ret.ok:
                 log.fatal(f'Failed loading controller {name}')
                 return 1
             log.info(f'Loaded {name}')
         if args.load_only:
             continue
-        ret = node.call(f'{cm}/configure_controller', srv.ConfigureController,
-                        srv.ConfigureController.Request(name=name), tmo, call_tmo)
+        ret = cms.configure_controller(node, cm, name, tmo, call_tmo)
         if not ret.ok:
             log.error('Failed to configure controller')
             return 1
@@ -223,8 +163,7 @@ def run(node, args, cm):
             log.info(f'Successfully deactivated controllers : {names}')
         failed = False
         for name in names:
-            ret = node.call(f'{cm}/unload_controller', srv.UnloadController,
-                            srv.UnloadController.Request(name=name), tmo, call_tmo)
+            ret = cms.unload_controller(node, cm, name, tmo, call_tmo)
             if not ret.ok:
                 failed = True
                 log.error(f'Failed to unload controller : {name}')
@@ -235,10 +174,15 @@ def run(node, args, cm):
 
 
 def main(args=None):
-    """Entry point of ``ros2 run amr_description spawner``; returns the exit code."""
+    """
+    Entry point of ``ros2 run amr_description spawner``; returns the exit code.
+
+    Clean-shutdown pattern of :mod:`amr_description.nodes.shutdown` (bad ROS arguments: one
+    line, exit code 1).
+    """
     argv = sys.argv if args is None else ['spawner'] + list(args)
     os.environ.setdefault('ROS_AUTOMATIC_DISCOVERY_RANGE', 'LOCALHOST')
-    rclpy.init(args=argv, signal_handler_options=SignalHandlerOptions.NO)
+    shutdown.init(argv)
     opts = _parser().parse_args(rclpy.utilities.remove_ros_args(args=argv)[1:])
     for path in opts.param_file or []:
         if not os.path.isfile(path):
@@ -248,11 +192,8 @@ def main(args=None):
     node = None
     code = 1
     try:
-        node = Spawner(opts.controller_names[0], opts.namespace)
-        ns = node.get_namespace()
-        cm = opts.controller_manager
-        if not cm.startswith('/'):
-            cm = f'{ns.rstrip("/")}/{cm}' if ns and ns != '/' else f'/{cm}'
+        node = shutdown.create(Spawner, opts.controller_names[0], opts.namespace)
+        cm = cms.resolve_controller_manager(node, opts.controller_manager)
         code = run(node, opts, cm)
     except KeyboardInterrupt:
         if node is not None:
@@ -265,9 +206,7 @@ def main(args=None):
             print(f'spawner: {exc}', file=sys.stderr)
         code = 1
     finally:
-        if node is not None:
-            node.destroy_node()
-        rclpy.try_shutdown()
+        shutdown.shutdown(node)
     return code
 
 

@@ -9,7 +9,7 @@ and logs ``Publishing: "Hello World: N"``, like the tutorial's ``minimal_publish
 """
 
 from amr_description.nodes import shutdown
-from rclpy.node import Node
+from amr_description.nodes.shutdown import Node
 from std_msgs.msg import String
 
 TIMER_PERIOD = 0.5  # seconds
@@ -43,7 +43,7 @@ def main(args=None):
     shutdown.init(args)
     node = None
     try:
-        node = MinimalPublisher()
+        node = shutdown.create(MinimalPublisher)
         shutdown.spin(node)
     except KeyboardInterrupt:
         pass

@@ -21,7 +21,6 @@ Usage with the simulated robot::
 
 import os
 import select
-import signal
 import sys
 import termios
 import threading
@@ -33,13 +32,12 @@ from amr_description.core.teleop_keys import check_parameters
 from amr_description.core.teleop_keys import format_speeds
 from amr_description.core.teleop_keys import stop
 from amr_description.core.teleop_keys import TeleopState
+from amr_description.nodes import shutdown
+from amr_description.nodes.shutdown import Node
 from geometry_msgs.msg import Twist
 from geometry_msgs.msg import TwistStamped
 from rcl_interfaces.msg import ParameterDescriptor
-import rclpy
 from rclpy.executors import SingleThreadedExecutor
-from rclpy.node import Node
-from rclpy.signals import SignalHandlerOptions
 
 
 class TeleopTwistKeyboard(Node):
@@ -135,16 +133,18 @@ def _loop(node, fd, settings):
         waiting = True
 
 
-def _interrupt(signum, frame):
-    raise KeyboardInterrupt
-
-
 def main(args=None):
     """
     Run the keyboard teleop until Ctrl-C; publish a zero twist and restore the terminal.
 
+    The clean-shutdown pattern of :mod:`amr_description.nodes.shutdown`: the executor spins
+    in a thread, keys are read in the main thread, where SIGINT/SIGTERM raise
+    KeyboardInterrupt.
+
     :param args: ROS command-line arguments (default ``sys.argv``).
-    :returns: exit code: 0, or 1 when stdin is not a terminal or a parameter is invalid.
+    :returns: exit code: 0, or 1 when stdin is not a terminal.
+    :raises SystemExit: code 1 after one error line on bad ROS arguments or an invalid
+        parameter.
     """
     if not sys.stdin.isatty():
         print('teleop_twist_keyboard: stdin is not a terminal; run it in an interactive '
@@ -152,32 +152,29 @@ def main(args=None):
         return 1
     fd = sys.stdin.fileno()
     settings = termios.tcgetattr(fd)
-    rclpy.init(args=args, signal_handler_options=SignalHandlerOptions.NO)
+    shutdown.init(args)
+    node = executor = spinner = None
     try:
-        node = TeleopTwistKeyboard()
-    except ValueError as exc:
-        print(f'teleop_twist_keyboard: {exc}', file=sys.stderr)
-        rclpy.try_shutdown()
-        return 1
-    executor = SingleThreadedExecutor()
-    executor.add_node(node)
-    spinner = threading.Thread(target=executor.spin, daemon=True)
-    spinner.start()
-    signal.signal(signal.SIGTERM, _interrupt)
-    try:
+        node = shutdown.create(TeleopTwistKeyboard)
+        executor = SingleThreadedExecutor()
+        executor.add_node(node)
+        spinner = threading.Thread(target=executor.spin, daemon=True)
+        spinner.start()
         _loop(node, fd, settings)
     except KeyboardInterrupt:
         pass
     finally:
-        try:
-            node.publish_twist(0.0, 0.0, 0.0, 0.0)
-        except Exception:  # noqa: B902 - the context may already be gone
-            pass
+        shutdown.ignore_signals()
+        if node is not None:
+            try:
+                node.publish_twist(0.0, 0.0, 0.0, 0.0)
+            except Exception:  # noqa: B902 - the context may already be gone
+                pass
         termios.tcsetattr(fd, termios.TCSADRAIN, settings)
-        executor.shutdown(timeout_sec=1.0)
-        spinner.join(2.0)
-        node.destroy_node()
-        rclpy.try_shutdown()
+        if executor is not None:
+            executor.shutdown(timeout_sec=1.0)
+            spinner.join(2.0)
+        shutdown.shutdown(node)
     return 0
 
 

@@ -2,216 +2,197 @@
 # Licensed under the Apache License, Version 2.0
 
 """
-Simulation benchmark: real-time factor, fast-forward speed and start-up time, side by side.
+Scaling benchmark of the simulator: N robots, each driven, real time and fast-forward.
 
-Runs, in one invocation, each against fresh processes on a private ROS domain (localhost only):
+For every N in ``--robots`` (default 1, 2, 4, 8, 16, 32), each against a fresh stack brought
+up by the orchestrator on one ROS domain (localhost only): the ``sim`` stack for N = 1 (the
+robot without a namespace, as the tutorial runs it) and the ``fleet`` stack (``robots:=N``,
+namespaces ``r1`` ... ``rN`` on a 2 m grid) for N > 1:
 
-(a) real-time mode: ``mujoco_sim`` (1 kHz physics, ``real_time_factor`` 1.0) with the robot
-    spawned, ``joint_state_broadcaster`` and ``diff_drive_controller`` active and driven by
-    ``cmd_vel``; the real-time factor held (sim seconds / wall seconds, from /clock received
-    by an observer) and the rates of /clock, /joint_states, /odom and /tf. Target >= 0.99.
-(b) as fast as possible (``real_time_factor`` 0): sim speed as a multiple of real time, and
-    as a fraction of raw ``mj_step`` throughput of the same model in the same motion, measured
-    in this process (targets >= 30x and >= 40 %). Both drive the robot straight at
-    ``FAST_LINEAR`` (cmd_vel in the simulator, the same wheel speed as ``ctrl`` in the raw
-    loop): a turning skid-steer robot makes ``mj_step`` about twice as dear (wheels slide), so
-    comparing a turning simulation with a straight raw loop would measure the physics, not the
-    simulator. For reference the simulator is also run driven in a circle (``TURN_TWIST``).
-(c) wall time from starting ``mujoco_sim`` to both controllers active (``create`` and the
-    spawners started together with it, as a launch file does). Target < 3 s.
+start-up
+    wall time from starting the stack (mujoco_sim, robot_state_publishers, ``create`` and
+    spawners, as a launch file does) until every spawner has exited 0, i.e. every robot's
+    ``joint_state_broadcaster`` and ``diff_drive_controller`` are active. Measured in both
+    runs below; the smaller is reported.
+real time (``rtf:=1``)
+    every robot driven in a circle (``TURN_TWIST`` on its ``diff_drive_controller/cmd_vel``);
+    real-time factor held (sim seconds from /clock per wall second) over ``--duration``, CPU
+    of the ``mujoco_sim`` process and of the whole stack (``/proc/PID/stat``) per robot, in %
+    of one core.
+fast-forward (``rtf:=0``)
+    the same drive; x real time over ``--duration``, and the cost per robot-second (wall
+    seconds per simulated robot-second, ``1 / (x real time * N)``) relative to N = 1 (1.00 =
+    linear scaling).
+raw ``mj_step``
+    the same N-robot world (:func:`~amr_description.launch.stacks.fleet_grid` positions)
+    stepped by ``mujoco.mj_step`` in this process with the wheel speeds diff_drive_controller
+    commands for ``TURN_TWIST``; the simulator's fast-forward speed as a fraction of it.
 
-Usage: ``scripts/benchmark_sim [--duration S] [--output docs/benchmark.md]``.
+Commands are stamped an hour of sim time ahead of the /clock time seen when driving starts,
+so ``cmd_vel_timeout`` never stops a robot whatever the speed of the simulation (a load
+generator, not a user's behaviour); robots 2 m apart driving 0.6 m circles never touch.
+
+viewer (part d, unless ``--no-viewer``)
+    one robot in real time with robot_state_publisher, the ``viewer`` node and one headless
+    browser on its page: real-time factor held and the viewer's CPU
+    (:func:`amr_description.sim.benchmark_viewer.viewer_cost`).
+
+A run whose stack does not come up (a process exits with an error, or the controllers are
+not active in time) or whose measurement gets no /clock stops the benchmark: it prints the
+stage that failed and the captured output of the failing process, exits 1 and writes no
+report; nothing is retried. Usage: ``scripts/benchmark_sim [--robots 1,2,4] [--duration S]
+[--output docs/benchmark.md]`` (``--output ''`` prints only).
 """
 
 import argparse
 import datetime
+import math
 import os
-import re
-import signal
-import subprocess
 import sys
 import tempfile
 import time
 
-from amr_description.sim.urdf_to_mjcf import urdf_to_spec
-from amr_description.sim.world import World
-import mujoco
+DEFAULT_ROBOTS = (1, 2, 4, 8, 16, 32)
+TURN_TWIST = (0.3, 0.5)  # m/s, rad/s: every robot drives a circle of about 0.6 m radius
+SPACING = 2.0  # m between robots on the fleet grid
+CMD_LEAD = 3600.0  # s of sim time a command stays valid (stamped ahead)
+TARGETS = {
+    'rtf16': 1.0,  # real-time factor held with 16 robots
+    'linear16': 1.3,  # fast-mode cost per robot-second at 16 robots relative to N = 1
+    'startup16': 10.0,  # s until all 16 robots' controllers are active
+    'raw1': 0.60,  # fast mode / raw mj_step with one robot
+    'startup1': 2.0,  # s until both controllers of one robot are active
+    'viewer_rtf': 0.99,  # real-time factor held with the viewer and a browser
+    'viewer_cpu': 0.20,  # viewer CPU, fraction of one core
+}
 
-CONTROLLERS = ('joint_state_broadcaster', 'diff_drive_controller')
-WHEEL_RADIUS = 0.1  # m, config/controllers.yaml
-FAST_LINEAR = 0.2  # m/s, straight drive of (b): wheels at FAST_LINEAR / WHEEL_RADIUS rad/s
-TURN_TWIST = (0.3, 0.5)  # m/s, rad/s: drive of (a) and of the (b) reference run
+
+class BenchmarkError(Exception):
+    """A stage of the benchmark failed; ``str()`` is the one-line reason."""
+
+    def __init__(self, stage, message, output=''):
+        """
+        Record the failure.
+
+        :param stage: what was being done, e.g. ``'start-up, 4 robots, rtf 0'``.
+        :param message: one line: what went wrong.
+        :param output: captured output of the failing process(es), printed after the line.
+        """
+        super().__init__(f'{stage}: {message}')
+        self.output = output
 
 
 def _repo_root():
     return os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 
 
-def _exe(name):
-    from ament_index_python.packages import get_package_prefix
-    return os.path.join(get_package_prefix('amr_description'), 'lib', 'amr_description', name)
+def namespaces(count):
+    """Return the robot namespaces of the stack for ``count`` robots ('' for one robot)."""
+    return [''] if count == 1 else [f'r{i}' for i in range(1, count + 1)]
 
 
-def raw_step_rate(urdf_xml, seconds=3.0, physics_step=0.001,
-                  wheel_speed=FAST_LINEAR / WHEEL_RADIUS):
+def wheel_speeds(twist, config_path):
     """
-    Measure raw ``mj_step`` throughput of the robot driving straight in the empty world.
+    Return the (left, right) wheel speeds diff_drive_controller commands for ``twist``.
+
+    :param twist: ``(linear m/s, angular rad/s)``.
+    :param config_path: the controllers.yaml (``wheel_separation``, ``wheel_radius`` and their
+        multipliers of ``diff_drive_controller``).
+    :returns: rad/s of the left and right wheels (unicycle kinematics with the effective
+        track ``wheel_separation * wheel_separation_multiplier``, as the controller).
+    """
+    import yaml
+
+    from amr_description.core.model_check import node_parameters
+    with open(config_path) as f:
+        params = node_parameters(yaml.safe_load(f), 'diff_drive_controller')
+    track = params['wheel_separation'] * params.get('wheel_separation_multiplier', 1.0)
+    radius = params['wheel_radius']
+    left = radius * params.get('left_wheel_radius_multiplier', 1.0)
+    right = radius * params.get('right_wheel_radius_multiplier', 1.0)
+    v, w = twist
+    return (v - w * track / 2.0) / left, (v + w * track / 2.0) / right
+
+
+def raw_step_rate(urdf_xml, count, wheels, seconds=3.0, physics_step=0.001):
+    """
+    Measure raw ``mj_step`` throughput of ``count`` robots on the fleet grid, each driven.
 
     :param urdf_xml: the robot URDF (str).
+    :param count: number of robots.
+    :param wheels: ``(left, right)`` wheel velocity commands, rad/s (every robot).
     :param seconds: measuring time (wall s).
     :param physics_step: physics step (s).
-    :param wheel_speed: velocity command of every wheel (rad/s).
-    :returns: physics steps per wall second (float).
+    :returns: physics steps per wall second (float); x real time is that times
+        ``physics_step``.
     """
+    import mujoco
+    from amr_description.launch.stacks import fleet_grid
+    from amr_description.sim.urdf_to_mjcf import urdf_to_spec
+    from amr_description.sim.world import World
+
     world = World(physics_step)
-    world.spawn(urdf_to_spec(urdf_xml, pose=(0, 0, 0.0, 0, 0, 0)), 'amr')
-    world.step(500)
-    world.data.ctrl[:] = wheel_speed  # driving straight: contacts and actuators active
-    steps = 0
+    for i, (x, y) in enumerate(fleet_grid(count, SPACING)):
+        name = f'r{i + 1}'
+        world.spawn(urdf_to_spec(urdf_xml, name=name, pose=(x, y, 0.0, 0, 0, 0)), name)
+    model, data = world.model, world.data
+    for i in range(model.nu):
+        data.ctrl[i] = wheels[0] if 'left' in model.actuator(i).name else wheels[1]
+    mujoco.mj_step(model, data, nstep=500)  # settle on the ground, start turning
+    steps, batch = 0, 200
     start = time.perf_counter()
     while time.perf_counter() - start < seconds:
-        mujoco.mj_step(world.model, world.data, nstep=1000)
-        steps += 1000
+        mujoco.mj_step(model, data, nstep=batch)
+        steps += batch
     return steps / (time.perf_counter() - start)
 
 
-class _Stack:
-    """mujoco_sim + create + spawners on a private domain; killed on exit."""
+def _cpu_seconds(pid):
+    """Return user + system CPU seconds of a process (``/proc/PID/stat``), or None."""
+    try:
+        with open(f'/proc/{pid}/stat') as f:
+            fields = f.read().rsplit(')', 1)[1].split()
+    except (OSError, IndexError):
+        return None
+    return (int(fields[11]) + int(fields[12])) / os.sysconf('SC_CLK_TCK')
 
-    def __init__(self, domain_id, real_time_factor, urdf_path):
-        self.env = dict(os.environ, ROS_DOMAIN_ID=str(domain_id),
-                        ROS_AUTOMATIC_DISCOVERY_RANGE='LOCALHOST', PYTHONUNBUFFERED='1')
-        self.procs = []
-        self.start_wall = time.monotonic()
-        self.start_epoch = time.time()
-        self.sim = self._start([_exe('mujoco_sim'), '--ros-args', '-p',
-                                f'real_time_factor:={real_time_factor}', '-r',
-                                '/diff_drive_controller/odom:=/odom'])
-        self.create = self._start([_exe('create'), '-file', urdf_path, '-name', 'amr'])
-        self.spawners = [self._start([_exe('spawner'), name, '--controller-manager-timeout',
-                                      '30']) for name in CONTROLLERS]
 
-    def _start(self, argv):
-        log = tempfile.TemporaryFile()
-        proc = subprocess.Popen(argv, env=self.env, stdout=log, stderr=subprocess.STDOUT,
-                                stdin=subprocess.DEVNULL, start_new_session=True)
-        proc.log = log
-        self.procs.append(proc)
-        return proc
+class Observer:
+    """A node in its own context: samples /clock and publishes every robot's cmd_vel."""
 
-    def output(self, proc):
-        proc.log.seek(0)
-        return proc.log.read().decode(errors='replace')
-
-    def activation_time(self):
+    def __init__(self, domain_id, robot_namespaces):
         """
-        Return s from start to the last spawner's "Configured and activated" log line.
+        Create the node and one cmd_vel publisher per robot.
 
-        The spawner logs that line when switch_controller answered ok; its ROS log stamp is
-        wall-clock time. None when a spawner has not logged it.
+        :param domain_id: ROS domain of the stack.
+        :param robot_namespaces: list of namespaces ('' for the robot without one).
         """
-        stamps = []
-        for proc, name in zip(self.spawners, CONTROLLERS):
-            match = re.search(r'\[(\d+\.\d+)\] \[[^\]]*\]: Configured and activated ' + name,
-                              self.output(proc))
-            if match is None:
-                return None
-            stamps.append(float(match.group(1)))
-        return max(stamps) - self.start_epoch
-
-    def close(self):
-        for proc in self.procs:
-            if proc.poll() is None:
-                os.killpg(proc.pid, signal.SIGINT)
-        for proc in self.procs:
-            try:
-                proc.wait(5)
-            except subprocess.TimeoutExpired:
-                os.killpg(proc.pid, signal.SIGKILL)
-                proc.wait()
-
-
-class _Observer:
-    """Observer node: receives /clock, /joint_states, /odom, /tf; publishes cmd_vel."""
-
-    def __init__(self, domain_id):
         import rclpy
         from rclpy.context import Context
         from rclpy.executors import SingleThreadedExecutor
-        from rclpy.qos import qos_profile_sensor_data
-        from controller_manager_msgs.srv import ListControllers
         from geometry_msgs.msg import TwistStamped
-        from nav_msgs.msg import Odometry
-        from rosgraph_msgs.msg import Clock
-        from sensor_msgs.msg import JointState
-        from tf2_msgs.msg import TFMessage
 
-        os.environ['ROS_AUTOMATIC_DISCOVERY_RANGE'] = 'LOCALHOST'
         self.rclpy = rclpy
         self.context = Context()
         rclpy.init(context=self.context, domain_id=domain_id)
         self.node = rclpy.create_node('benchmark_observer', context=self.context)
         self.executor = SingleThreadedExecutor(context=self.context)
         self.executor.add_node(self.node)
-        self.counts = {'/clock': 0, '/joint_states': 0, '/odom': 0, '/tf': 0}
-        self.clock = None  # (wall, sim) of the latest /clock
-
-        def counter(topic):
-            def callback(msg):
-                self.counts[topic] += 1
-            return callback
-
-        def on_clock(msg):
-            self.counts['/clock'] += 1
-            self.clock = (time.monotonic(), msg.clock.sec + msg.clock.nanosec * 1e-9)
-
-        self._clock_sub = self.node.create_subscription(Clock, '/clock', on_clock, 10)
-        self._other_subs = [
-            self.node.create_subscription(JointState, '/joint_states', counter('/joint_states'),
-                                          qos_profile_sensor_data),
-            self.node.create_subscription(Odometry, '/odom', counter('/odom'), 10),
-            self.node.create_subscription(TFMessage, '/tf', counter('/tf'), 100)]
-        self.cmd_pub = self.node.create_publisher(
-            TwistStamped, '/diff_drive_controller/cmd_vel', 10)
+        self.publishers = [self.node.create_publisher(
+            TwistStamped, (f'/{ns}' if ns else '') + '/diff_drive_controller/cmd_vel', 10)
+            for ns in robot_namespaces]
         self.twist = TwistStamped()
+        self.twist.header.frame_id = 'base_link'
         self.twist.twist.linear.x, self.twist.twist.angular.z = TURN_TWIST
-        self.list_client = self.node.create_client(
-            ListControllers, '/controller_manager/list_controllers')
-        self.list_request = ListControllers.Request()
 
-    def spin_for(self, seconds, cmd_rate=20.0):
-        """Spin ``seconds`` wall seconds, publishing cmd_vel (zero stamp = now) at cmd_rate."""
-        end = time.monotonic() + seconds
-        next_cmd = 0.0
-        while True:
-            now = time.monotonic()
-            if now >= end:
-                break
-            if now >= next_cmd:
-                self.cmd_pub.publish(self.twist)
-                next_cmd = now + 1.0 / cmd_rate
-            # sleep in the wait until the next command (callbacks wake it up)
-            self.executor.spin_once(timeout_sec=max(0.0, min(next_cmd, end) - now))
-
-    def active_controllers(self):
-        """Return the names of active controllers (empty while the manager is absent)."""
-        if not self.list_client.service_is_ready():
-            self.executor.spin_once(timeout_sec=0.02)
-            return set()
-        future = self.list_client.call_async(self.list_request)
-        end = time.monotonic() + 2.0
-        while not future.done() and time.monotonic() < end:
-            self.executor.spin_once(timeout_sec=0.01)
-        if not future.done():
-            return set()
-        return {c.name for c in future.result().controller if c.state == 'active'}
-
-    def clock_sample(self, timeout=5.0):
+    def clock_sample(self, timeout=10.0):
         """
-        Return (wall, sim) of one /clock message from a short-lived subscription.
+        Return ``(wall, sim)`` of one /clock message from a short-lived subscription.
 
-        Used in fast-forward mode, where receiving every /clock message would load the
-        2-core machine with the observer's own callbacks.
+        Receiving every /clock message would load the 2-core machine with the observer's own
+        callbacks in fast-forward mode.
+
+        :returns: monotonic wall s and sim s, or None when no /clock came within ``timeout``.
         """
         from rosgraph_msgs.msg import Clock
         sample = []
@@ -224,185 +205,379 @@ class _Observer:
         self.node.destroy_subscription(sub)
         return sample[0] if sample else None
 
-    def measure_fast(self, seconds, twist=(FAST_LINEAR, 0.0)):
-        """Return the sim/wall speed over ``seconds`` driven by ``twist`` (m/s, rad/s)."""
-        self.twist.twist.linear.x, self.twist.twist.angular.z = twist
-        self.node.destroy_subscription(self._clock_sub)
-        for sub in self._other_subs:
-            self.node.destroy_subscription(sub)
-        first = self.clock_sample()
-        self.spin_for(seconds)
-        last = self.clock_sample()
-        if first is None or last is None:
-            return 0.0
-        return (last[1] - first[1]) / (last[0] - first[0])
+    def drive(self, sim_now):
+        """Publish every robot's command, stamped :data:`CMD_LEAD` after ``sim_now`` (s)."""
+        stamp = sim_now + CMD_LEAD
+        self.twist.header.stamp.sec = int(stamp)
+        self.twist.header.stamp.nanosec = int((stamp - int(stamp)) * 1e9)
+        for publisher in self.publishers:
+            publisher.publish(self.twist)
 
-    def measure(self, seconds):
-        """Return (rtf, rates dict Hz of wall time) over ``seconds`` wall seconds."""
-        self.spin_for(0.5)
-        self.counts = dict.fromkeys(self.counts, 0)
-        first = self.clock
-        self.spin_for(seconds)
-        last = self.clock
-        if first is None or last is None or last[0] <= first[0]:
-            return 0.0, self.counts
-        wall = last[0] - first[0]
-        return (last[1] - first[1]) / wall, {k: v / seconds for k, v in self.counts.items()}
+    def wait(self, seconds, sim_now):
+        """Wait ``seconds`` wall seconds, re-publishing the commands every 0.5 s."""
+        end = time.monotonic() + seconds
+        while time.monotonic() < end:
+            self.drive(sim_now)
+            time.sleep(max(0.0, min(0.5, end - time.monotonic())))
 
     def close(self):
+        """Destroy the node and shut the context down."""
         self.executor.shutdown()
         self.node.destroy_node()
         self.rclpy.try_shutdown(context=self.context)
 
 
-def _run_stack(domain_id, real_time_factor, urdf_path, duration, log,
-               twist=(FAST_LINEAR, 0.0)):
-    """Start a stack, wait for the controllers, measure; return a result dict."""
-    observer = _Observer(domain_id)
-    stack = _Stack(domain_id, real_time_factor, urdf_path)
-    result = {'startup': None, 'rtf': 0.0, 'rates': {}}
-    try:
-        deadline = time.monotonic() + 60
+class Stack:
+    """The ``sim`` (one robot) or ``fleet`` stack under the orchestrator, output captured."""
+
+    def __init__(self, count, rtf, domain_id):
+        """
+        Start the stack.
+
+        :param count: number of robots.
+        :param rtf: real-time factor (0 = as fast as possible).
+        :param domain_id: ROS domain.
+        """
+        from amr_description.launch import stacks
+        from amr_description.launch.orchestrator import Orchestrator
+
+        self.count = count
+        self.stage = f'{count} robot{"s" if count > 1 else ""}, rtf {rtf:g}'
+        name = 'sim' if count == 1 else 'fleet'
+        argv = [f'rtf:={rtf:g}', 'headless:=true']
+        if count > 1:
+            argv += [f'robots:={count}', f'spacing:={SPACING:g}']
+        if 'viewer' in {d.name for d in stacks.STACKS[name][1]}:
+            argv.append('viewer:=false')
+        self.lines = {}
+        env = dict(os.environ, ROS_DOMAIN_ID=str(domain_id),
+                   ROS_AUTOMATIC_DISCOVERY_RANGE='LOCALHOST')
+        self._log = tempfile.TemporaryFile(mode='w+')
+        self.orchestrator = Orchestrator(stacks.describe(name, argv), stream=self._log,
+                                         env=env, line_callback=self._line)
+        self.started = time.monotonic()
+        self.orchestrator.start()
+        self.spawners = count if count > 1 else 2  # the sim stack spawns one per controller
+
+    def _line(self, label, line):
+        self.lines.setdefault(label, []).append(line)
+
+    def output(self, label, tail=40):
+        """Return the last ``tail`` output lines of process ``label``."""
+        return '\n'.join(f'[{label}] {line}' for line in self.lines.get(label, [])[-tail:])
+
+    def _failed(self):
+        """Return the record of a process that exited with an error (or the sim), or None."""
+        for record in list(self.orchestrator.processes):
+            code = record.returncode
+            if code is None:
+                continue
+            if code != 0 or record.action.name == 'mujoco_sim':
+                return record
+        return None
+
+    def check(self, what):
+        """
+        Raise :class:`BenchmarkError` when a process of the stack failed.
+
+        :param what: the stage, e.g. ``'start-up'``.
+        """
+        record = self._failed()
+        if record is not None:
+            raise BenchmarkError(f'{what}, {self.stage}',
+                                 f'{record.label} exited with code {record.returncode}',
+                                 self.output(record.label))
+
+    def wait_active(self, timeout):
+        """
+        Wait until every spawner exited 0; return the wall seconds since the stack started.
+
+        :raises BenchmarkError: a process failed, or not every controller was active in time.
+        """
+        deadline = self.started + timeout
         while time.monotonic() < deadline:
-            if set(CONTROLLERS) <= observer.active_controllers():
-                # the observer's own discovery of the new controller manager services can lag
-                # by ~1 s: take the spawners' confirmation time when they logged it
-                result['startup'] = stack.activation_time() or \
-                    time.monotonic() - stack.start_wall
-                break
-            if stack.sim.poll() is not None:
-                break
-        if result['startup'] is None:
-            log(f'controllers not active; mujoco_sim output:\n{stack.output(stack.sim)}')
-            for proc in stack.spawners + [stack.create]:
-                log(stack.output(proc))
-            return result
-        if duration <= 0:
-            pass
-        elif real_time_factor > 0:
-            result['rtf'], result['rates'] = observer.measure(duration)
-        else:
-            result['rtf'] = observer.measure_fast(duration, twist)
+            self.check('start-up')
+            done = [r for r in self.orchestrator.find('spawner') if r.returncode == 0]
+            if len(done) >= self.spawners:
+                return time.monotonic() - self.started
+            time.sleep(0.02)
+        records = list(self.orchestrator.processes)
+        states = ', '.join(
+            f'{r.label} ' + ('running' if r.returncode is None else f'exit {r.returncode}')
+            for r in records)
+        raise BenchmarkError(
+            f'start-up, {self.stage}',
+            f'controllers not active after {timeout:g} s ({self.spawners} spawner(s) '
+            f'expected to exit 0; processes: {states})',
+            '\n'.join(self.output(r.label, 8) for r in records if r.returncode is None))
+
+    def pids(self, name=None):
+        """Return the pids of the running processes (of action ``name`` only, if given)."""
+        return [r.pid for r in list(self.orchestrator.processes)
+                if r.returncode is None and r.pid and (name is None or r.action.name == name)]
+
+    def close(self):
+        """Stop every process of the stack and wait for them."""
+        self.orchestrator.shutdown()
+        self.orchestrator.wait(timeout=30.0)
+        self._log.close()
+
+
+def measure(count, rtf, duration, domain_id, log, startup_timeout=120.0):
+    """
+    Bring a stack up, drive every robot, measure, stop it.
+
+    :returns: dict ``startup`` (s), ``speed`` (sim s per wall s), ``cpu_sim`` and
+        ``cpu_stack`` (cores, over the window).
+    :raises BenchmarkError: on a failed stage (see the module docstring).
+    """
+    stack = Stack(count, rtf, domain_id)
+    observer = None
+    try:
+        startup = stack.wait_active(timeout=startup_timeout + 3.0 * count)
+        log(f'  {stack.stage}: controllers active after {startup:.2f} s')
+        observer = Observer(domain_id, namespaces(count))
+        first = observer.clock_sample()
+        if first is None:
+            stack.check('measuring')
+            raise BenchmarkError(f'measuring, {stack.stage}', 'no /clock within 10 s',
+                                 stack.output('mujoco_sim-1'))
+        observer.wait(1.0, first[1])  # every robot under way before the window opens
+        pids_sim, pids_all = stack.pids('mujoco_sim'), stack.pids()
+        cpu0 = {p: _cpu_seconds(p) for p in pids_all}
+        start = observer.clock_sample()
+        wall0 = time.monotonic()
+        observer.wait(duration, first[1])
+        end = observer.clock_sample()
+        cpu1 = {p: _cpu_seconds(p) for p in pids_all}
+        wall = time.monotonic() - wall0
+        stack.check('measuring')
+        if start is None or end is None or end[0] <= start[0]:
+            raise BenchmarkError(f'measuring, {stack.stage}', 'no /clock during the window',
+                                 stack.output('mujoco_sim-1'))
+
+        def cores(pids):
+            used = [cpu1[p] - cpu0[p] for p in pids
+                    if cpu0.get(p) is not None and cpu1.get(p) is not None]
+            return sum(used) / wall
+
+        return {'startup': startup, 'speed': (end[1] - start[1]) / (end[0] - start[0]),
+                'cpu_sim': cores(pids_sim), 'cpu_stack': cores(pids_all)}
     finally:
+        if observer is not None:
+            observer.close()
         stack.close()
-        observer.close()
+
+
+def run(robots=DEFAULT_ROBOTS, duration=10.0, domain_id=0, log=print, viewer=True):
+    """
+    Measure every N of ``robots``; return a list of row dicts (see :func:`report`).
+
+    :raises BenchmarkError: on the first failed stage; nothing is retried.
+    """
+    root = _repo_root()
+    with open(os.path.join(root, 'urdf', 'amr.urdf')) as f:
+        urdf = f.read()
+    wheels = wheel_speeds(TURN_TWIST, os.path.join(root, 'config', 'controllers.yaml'))
+    rows = []
+    for count in robots:
+        log(f'N = {count}: load average {os.getloadavg()[0]:.2f}')
+        row = {'robots': count, 'load': [os.getloadavg()[0]]}
+        real = measure(count, 1.0, duration, domain_id, log)
+        log(f'  real time: rtf {real["speed"]:.3f}, mujoco_sim {100 * real["cpu_sim"]:.0f} % '
+            f'of a core')
+        fast = measure(count, 0.0, duration, domain_id, log)
+        log(f'  fast-forward: {fast["speed"]:.1f}x real time')
+        try:
+            raw = raw_step_rate(urdf, count, wheels, seconds=min(5.0, duration)) * 0.001
+        except Exception as exc:  # noqa: B902 - reported as the stage that failed
+            raise BenchmarkError(f'raw mj_step, {count} robots', repr(exc)) from None
+        log(f'  raw mj_step: {raw:.1f}x real time')
+        row['load'].append(os.getloadavg()[0])
+        row.update(rtf=real['speed'], cpu_sim=real['cpu_sim'], cpu_stack=real['cpu_stack'],
+                   fast=fast['speed'], raw=raw,
+                   startup=min(real['startup'], fast['startup']),
+                   startups=(real['startup'], fast['startup']))
+        rows.append(row)
+    base = next((r for r in rows if r['robots'] == 1), None)
+    for row in rows:
+        row['cost'] = 1.0 / (row['fast'] * row['robots']) if row['fast'] > 0 else math.inf
+        row['cost_rel'] = row['cost'] / base['cost'] if base else None
+    if viewer and rows:
+        log('viewer: 1 robot in real time with the viewer and a headless browser ...')
+        rows[0]['viewer'] = measure_viewer(duration, domain_id, log)
+        log(f'  rtf {rows[0]["viewer"]["rtf"]:.4f}, viewer '
+            f'{100 * rows[0]["viewer"]["viewer_cpu"]:.1f} % of a core')
+    return rows
+
+
+def measure_viewer(duration, domain_id, log):
+    """
+    Run part (d); return ``{'rtf': float, 'viewer_cpu': fraction of a core}``.
+
+    :raises BenchmarkError: when the viewer page could not be opened or no /clock came.
+    """
+    from amr_description.sim.benchmark_viewer import viewer_cost
+    lines = []
+    try:
+        result = viewer_cost(domain_id, os.path.join(_repo_root(), 'urdf', 'amr.urdf'),
+                             duration, log=lines.append)
+    except Exception as exc:  # noqa: B902 - reported as the stage that failed
+        raise BenchmarkError('viewer, 1 robot, rtf 1', repr(exc), '\n'.join(lines)) from None
+    if result['viewer_cpu'] is None or not result['rtf'] > 0:
+        raise BenchmarkError('viewer, 1 robot, rtf 1', 'the viewer page was not measured',
+                             '\n'.join(lines))
     return result
 
 
-def run(duration=10.0, urdf_path=None, log=print):
-    """Run (a), (b), (c) and return the results dict (see the module docstring)."""
-    urdf_path = urdf_path or os.path.join(_repo_root(), 'urdf', 'amr.urdf')
-    with open(urdf_path) as f:
-        urdf = f.read()
-    base = (os.getpid() % 100) + 120
-    log(f'(a) real time, {duration:g} s ...')
-    realtime = _run_stack(base, 1.0, urdf_path, duration, log)
-    log(f'(b) as fast as possible, {duration:g} s ...')
-    afap = _run_stack(base + 1, 0.0, urdf_path, duration, log)
-    log('raw mj_step throughput ...')
-    raw = raw_step_rate(urdf, seconds=min(5.0, duration))
-    raw_rtf = raw * 0.001
-    log(f'(b) for reference, driven in a circle, {duration:g} s ...')
-    turning = _run_stack(base + 3, 0.0, urdf_path, duration, log, twist=TURN_TWIST)
-    log('(c) start-up, one more run ...')
-    extra = _run_stack(base + 2, 1.0, urdf_path, 0.0, log)
-    startups = [s for s in (realtime['startup'], afap['startup'], extra['startup'])
-                if s is not None]
-    return {
-        'rtf_realtime': realtime['rtf'], 'rates_realtime': realtime['rates'],
-        'rtf_afap': afap['rtf'], 'rates_afap': afap['rates'], 'rtf_afap_turning': turning['rtf'],
-        'raw_steps_per_s': raw, 'raw_rtf': raw_rtf,
-        'afap_fraction_of_raw': afap['rtf'] / raw_rtf if raw_rtf else 0.0,
-        'startup_s': sorted(startups)[len(startups) // 2] if startups else None,
-        'startup_runs_s': startups,
-    }
-
-
-def report(results, duration):
-    """Return the Markdown report of :func:`run` results (str)."""
-    def mark(ok):
-        return 'PASS' if ok else 'FAIL'
-    r = results
-    startup = r['startup_s']
-    rates = r['rates_realtime']
+def format_table(rows):
+    """Return the printed/Markdown table of :func:`run` rows (str)."""
     lines = [
-        '# Simulation benchmark', '',
-        f'Measured {datetime.date.today().isoformat()} with `scripts/benchmark_sim '
-        f'--duration {duration:g}` on {os.cpu_count()} CPU cores (shared, noisy). '
-        '1 kHz physics (implicitfast), 100 Hz controller manager, joint_state_broadcaster '
-        'and diff_drive_controller active, robot driven by cmd_vel at 20 Hz (wall).', '',
-        '| measure | value | target | |', '|---|---|---|---|',
-        f'| (a) real-time factor held (rtf 1.0) | {r["rtf_realtime"]:.4f} | >= 0.99 | '
-        f'{mark(r["rtf_realtime"] >= 0.99)} |',
-        f'| (b) as fast as possible: x real time | {r["rtf_afap"]:.1f}x | >= 30x | '
-        f'{mark(r["rtf_afap"] >= 30)} |',
-        f'| (b) raw mj_step, same model, same straight drive | '
-        f'{r["raw_steps_per_s"]:.0f} steps/s = {r["raw_rtf"]:.1f}x | | |',
-        f'| (b) fraction of raw throughput | {100 * r["afap_fraction_of_raw"]:.1f} % | '
-        f'>= 40 % | {mark(r["afap_fraction_of_raw"] >= 0.40)} |',
-        f'| (b) for reference: driven in a circle (0.3 m/s, 0.5 rad/s; wheels skid) | '
-        f'{r["rtf_afap_turning"]:.1f}x | | |',
-        '| (c) mujoco_sim start -> both controllers active (median of 3) | ' +
-        (f'{startup:.2f} s | < 3 s | {mark(startup < 3.0)} |' if startup is not None
-         else 'not reached | < 3 s | FAIL |'), '',
-        'Topic rates received by an observer in real-time mode (Hz, wall): ' +
-        ', '.join(f'{k} {v:.1f}' for k, v in rates.items()) + '.', '',
-        'In fast-forward mode the observer samples /clock only at the start and the end '
-        '(subscribing to every topic at ~30x would load the shared cores with its own '
-        'callbacks) and drives the robot straight at 0.2 m/s with cmd_vel at 20 Hz (wall); '
-        'the raw loop commands the same wheel speed (2 rad/s). Same motion, same physics '
-        'cost: a skid-steer robot turning makes mj_step about twice as dear (raw, same '
-        'model: ~108x at rest or straight, ~57x turning with 6.15/-0.15 rad/s wheels), so '
-        'a turning simulation compared with a straight raw loop measures the physics, not '
-        'the simulator. Until 2026-11-21 (b) drove the robot in a circle as (a) does.', '',
-        f'Start-up runs (s): {", ".join(f"{s:.2f}" for s in r["startup_runs_s"])} '
-        '(the median is reported; each run starts mujoco_sim, create and the two spawners '
-        'together, as a launch file does; the end is the later of the two spawners\u2019 '
-        '"Configured and activated" log stamps, confirmed by list_controllers).', '',
-    ]
-    lines += [
-        'Where fast-forward time goes (py-spy, per-thread CPU from /proc and timers around '
-        'mj_step in mujoco_sim, 2026-11-21). (1) cm.update went from ~55 us to ~26 us per '
-        'update (in isolation) by reusing the JointState/Odometry/TF messages, caching the '
-        'controller configuration and the MjData views. (2) /clock and the ground truth were '
-        'published by a separate thread woken by an Event at every update: the simulation '
-        'thread was preempted ~4500 times/s (involuntary context switches) and ran at ~75 % '
-        'of a core; publishing inline in the simulation thread (plus a request deque instead '
-        'of a queue.get_nowait exception per update) leaves it at ~93 % of a core with ~350 '
-        'switches/s. A/B runs of the old and new mujoco_sim interleaved under the same load '
-        '(3 pairs each, 5 s, medians): straight drive 42.0x -> 51.8x (37 % -> 46 % of raw), '
-        'circle drive 27.7x -> 32.4x. sys.setswitchinterval(0.02) was tried and dropped (no '
-        'gain: only the simulation thread and the executor, which blocks in its wait, run '
-        'Python). (3) The raw loop drove straight while the simulator turned: (b) now drives '
-        'both straight. Per update (10 ms of sim time, straight) the simulation thread now '
-        'spends ~110 us in mj_step (vs ~90 us raw: cache and the shared cores) and ~85 us in '
-        'Python, about half of it in rclpy publish (message conversion: Clock ~4 us, '
-        'JointState ~12 us every update; Odometry ~10 us, TF ~7 us, ground truth ~10 us at '
-        '50 Hz). Left: publishing pre-serialized messages (Publisher.publish accepts CDR '
-        'bytes in jazzy, ~2 us for Clock vs ~4 us) would need hand-written serializers for '
-        'little gain. Raw mj_step of a turning skid-steer robot is about half as fast as '
-        'driving straight (MuJoCo contact cost, not the simulator); in the circle run the '
-        'robot turns only part of the time (cmd_vel at 20 Hz wall with the 0.5 s '
-        'cmd_vel_timeout: at ~40x a command every ~2 s of sim time).', '',
-    ]
+        '| N | start-up s | real time: rtf held | mujoco_sim CPU / robot | stack CPU / robot '
+        '| fast: x real time | cost / robot-s vs N=1 | raw mj_step x real time '
+        '| fast / raw | load avg |',
+        '|---|---|---|---|---|---|---|---|---|---|']
+    for r in rows:
+        rel = f'{r["cost_rel"]:.2f}' if r['cost_rel'] is not None else '-'
+        lines.append(
+            f'| {r["robots"]} | {r["startup"]:.2f} | {r["rtf"]:.3f} | '
+            f'{100 * r["cpu_sim"] / r["robots"]:.1f} % | '
+            f'{100 * r["cpu_stack"] / r["robots"]:.1f} % | {r["fast"]:.1f}x | {rel} | '
+            f'{r["raw"]:.1f}x | {100 * r["fast"] / r["raw"]:.0f} % | '
+            f'{r["load"][0]:.1f} -> {r["load"][1]:.1f} |')
     return '\n'.join(lines)
 
 
+def targets(rows):
+    """Return ``(description, measured text, passed)`` for every target whose N was run."""
+    by_n = {r['robots']: r for r in rows}
+    out = []
+    if 16 in by_n:
+        r = by_n[16]
+        out.append(('16 robots, real time: rtf >= 1.0', f'{r["rtf"]:.3f}',
+                    r['rtf'] >= 0.99 * TARGETS['rtf16']))
+        if r['cost_rel'] is not None:
+            out.append(('16 robots, fast: cost per robot-second <= 1.3x linear',
+                        f'{r["cost_rel"]:.2f}x', r['cost_rel'] <= TARGETS['linear16']))
+        out.append(('16 robots: all controllers active < 10 s', f'{r["startup"]:.2f} s',
+                    r['startup'] < TARGETS['startup16']))
+    viewer = next((r['viewer'] for r in rows if r.get('viewer')), None)
+    if viewer is not None:
+        out.append(('1 robot + viewer + browser: rtf >= 0.99, viewer < 20 % of a core',
+                    f'{viewer["rtf"]:.4f}, {100 * viewer["viewer_cpu"]:.1f} %',
+                    viewer['rtf'] >= TARGETS['viewer_rtf'] and
+                    viewer['viewer_cpu'] < TARGETS['viewer_cpu']))
+    if 1 in by_n:
+        r = by_n[1]
+        out.append(('1 robot, fast: >= 60 % of raw mj_step', f'{100 * r["fast"] / r["raw"]:.0f} %',
+                    r['fast'] / r['raw'] >= TARGETS['raw1']))
+        out.append(('1 robot: both controllers active < 2 s', f'{r["startup"]:.2f} s',
+                    r['startup'] < TARGETS['startup1']))
+    return out
+
+
+def report(rows, duration, argv):
+    """Return the Markdown page of the :func:`format_table` rows and the targets (str)."""
+    load = ', '.join(f'N={r["robots"]}: {r["load"][0]:.1f} -> {r["load"][1]:.1f}' for r in rows)
+    lines = [
+        '# Simulation benchmark: scaling with the number of robots', '',
+        f'Measured {datetime.datetime.now(datetime.timezone.utc):%Y-%m-%d %H:%M} UTC with '
+        f'`scripts/benchmark_sim {" ".join(argv)}` (window {duration:g} s per mode) on '
+        f'{os.cpu_count()} CPU cores. 1-minute load average before -> after each N: {load}.',
+        '',
+        'Each N runs two fresh stacks (real time, then as fast as possible) under the '
+        'orchestrator: the `sim` stack for N = 1, the `fleet` stack (`robots:=N`, 2 m grid) '
+        'for N > 1; every robot drives a 0.6 m circle (0.3 m/s, 0.5 rad/s) on its own '
+        '`cmd_vel`. Start-up: stack start until every spawner exited 0 (the smaller of the '
+        'two runs). CPU: user + system time from /proc of mujoco_sim and of every process '
+        'of the stack over the window, per robot, in % of one core. Cost per robot-second = '
+        '1 / (x real time * N), relative to N = 1 (1.00 = linear). Raw mj_step: the same '
+        'N-robot world stepped in the benchmark process with the same wheel speeds.', '',
+        format_table(rows), '',
+        '| target | measured | |', '|---|---|---|',
+    ]
+    lines += [f'| {d} | {m} | {"PASS" if ok else "FAIL"} |' for d, m, ok in targets(rows)]
+    lines += ['', 'A loaded machine (other work running) lowers every figure; re-run '
+              '`scripts/benchmark_sim` on a quiet machine for reference values. A stage '
+              'that fails stops the benchmark with the captured error and leaves this page '
+              'unchanged.', '']
+    return '\n'.join(lines)
+
+
+BEGIN = '<!-- benchmark_sim: generated from here -->'
+END = '<!-- benchmark_sim: generated up to here -->'
+
+
+def write_report(path, text):
+    """
+    Write ``text`` between the :data:`BEGIN` and :data:`END` markers of ``path``.
+
+    What the file holds outside the markers (method notes, profiles, history) is kept; a
+    file without markers gets the block at its top.
+
+    :param path: the Markdown file.
+    :param text: the generated report.
+    """
+    try:
+        with open(path) as f:
+            old = f.read()
+    except FileNotFoundError:
+        old = ''
+    block = f'{BEGIN}\n{text.rstrip()}\n{END}\n'
+    if BEGIN in old and END in old:
+        head, rest = old.split(BEGIN, 1)
+        new = head + block + rest.split(END, 1)[1].lstrip('\n')
+    else:
+        new = block + ('\n' + old if old else '')
+    with open(path, 'w') as f:
+        f.write(new)
+
+
+def _robot_list(text):
+    try:
+        values = [int(v) for v in text.split(',') if v.strip()]
+    except ValueError:
+        values = []
+    if not values or min(values) < 1:
+        raise argparse.ArgumentTypeError(f'expected a comma-separated list of robot counts '
+                                         f'>= 1, got {text!r}')
+    return values
+
+
 def main(args=None):
-    """Run the benchmark, print the ratios and write the Markdown report; exit code 0."""
-    parser = argparse.ArgumentParser(prog='benchmark_sim', description=__doc__.split('\n')[0])
+    """Run the benchmark, print the ratios, write the report; 0, or 1 on a failed stage."""
+    argv = list(sys.argv[1:] if args is None else args)
+    parser = argparse.ArgumentParser(prog='benchmark_sim', description=__doc__.split('\n')[1])
+    parser.add_argument('--robots', type=_robot_list, default=list(DEFAULT_ROBOTS),
+                        help='robot counts to run, e.g. 1,2,4 (default 1,2,4,8,16,32)')
     parser.add_argument('--duration', type=float, default=10.0,
-                        help='measuring time of (a) and (b) in wall seconds')
-    parser.add_argument('--urdf', default=None, help='robot URDF (default urdf/amr.urdf)')
+                        help='measuring window of each mode in wall seconds (10)')
+    parser.add_argument('--domain', type=int,
+                        default=int(os.environ.get('ROS_DOMAIN_ID', '0') or 0),
+                        help='ROS domain of the stacks (default $ROS_DOMAIN_ID or 0)')
+    parser.add_argument('--no-viewer', action='store_true',
+                        help='leave out part (d), the viewer with a headless browser')
     parser.add_argument('--output', default=os.path.join(_repo_root(), 'docs', 'benchmark.md'),
                         help='Markdown report to write ("" = none)')
-    opts = parser.parse_args(args)
-    results = run(opts.duration, opts.urdf, log=lambda m: print(m, flush=True))
-    text = report(results, opts.duration)
-    print(text)
+    opts = parser.parse_args(argv)
+    os.environ['ROS_AUTOMATIC_DISCOVERY_RANGE'] = 'LOCALHOST'
+    log = lambda m: print(m, flush=True)  # noqa: E731
+    try:
+        rows = run(opts.robots, opts.duration, opts.domain, log=log, viewer=not opts.no_viewer)
+    except BenchmarkError as exc:
+        print(f'benchmark_sim: FAILED at {exc}', file=sys.stderr, flush=True)
+        if exc.output:
+            print(exc.output, file=sys.stderr, flush=True)
+        print('benchmark_sim: no figures reported, ' +
+              (f'{opts.output} left unchanged' if opts.output else 'no report written'),
+              file=sys.stderr, flush=True)
+        return 1
+    print()
+    print(format_table(rows))
+    for description, measured, ok in targets(rows):
+        print(f'{description}: {measured} {"PASS" if ok else "FAIL"}')
     if opts.output:
-        with open(opts.output, 'w') as f:
-            f.write(text)
+        write_report(opts.output, report(rows, opts.duration, argv))
         print(f'written {opts.output}')
     return 0
 

@@ -11,6 +11,14 @@ rad/s or m/s) and actuator force (``effort``: N m or N). Command interfaces writ
 interface's ``min``/``max``; a NaN command means "no command": a velocity actuator then
 holds zero velocity, an effort actuator applies zero, a position actuator holds the current
 position.
+
+A velocity interface with ``ki`` in the ``<mujoco>`` block is a PI servo of two actuators
+that get the same command: ``<joint>/velocity`` (torque ``kv (command - qdot)``) and
+``<joint>/velocity/integral`` (MuJoCo ``intvelocity``: its activation integrates the command,
+torque ``ki (act - q)``); the joint's actuator force range limits their sum. Anti-windup, as
+in a motor drive: at every write the activation is kept where the total torque it asks for
+stays inside that range (``lo <= kv (command - qdot) + ki (act - q) <= hi``), so a blocked
+or overloaded wheel does not store up a run-away.
 """
 
 import math
@@ -39,6 +47,9 @@ class MujocoSystem(SystemInterface):
         self.prefix = prefix
         self._states = []    # (handle, array, index): array is a view into self.data
         self._commands = []  # (handle, actuator id, lo, hi, kind, qpos address)
+        # PI velocity servos: (handle, integral actuator id, its act address, command lo,
+        # hi, qpos address, dof address, kv, ki, joint force lo, hi)
+        self._integrals = []
 
     def on_init(self, info):
         """
@@ -107,6 +118,24 @@ class MujocoSystem(SystemInterface):
                 commands.append((handle, actuator, lo, hi, iface.name, qadr))
         self._states = states
         self._commands = commands
+        integrals = []
+        for handle, actuator, lo, hi, kind, qadr in commands:
+            if kind != 'velocity':
+                continue
+            try:
+                integral = self.model.actuator(
+                    self.model.actuator(actuator).name + '/integral')
+            except KeyError:
+                continue
+            jid = int(self.model.actuator_trnid[actuator, 0])
+            flo, fhi = (float(v) for v in self.model.jnt_actfrcrange[jid])
+            if not self.model.jnt_actfrclimited[jid]:
+                flo, fhi = -math.inf, math.inf
+            integrals.append((handle, int(integral.id), int(integral.actadr[0]), lo, hi, qadr,
+                              int(self.model.jnt_dofadr[jid]),
+                              float(self.model.actuator_gainprm[actuator, 0]),
+                              float(integral.gainprm[0]), flo, fhi))
+        self._integrals = integrals
         self._ctrl = self.data.ctrl
         self._qpos = self.data.qpos
 
@@ -137,6 +166,17 @@ class MujocoSystem(SystemInterface):
             if value != value:  # NaN: no command
                 value = qpos[qadr] if kind == 'position' else 0.0
             ctrl[actuator] = min(max(value, lo), hi)
+        if self._integrals:
+            act, qvel = self.data.act, self.data.qvel
+            for handle, integral, actadr, lo, hi, qadr, dadr, kv, ki, flo, fhi in \
+                    self._integrals:
+                value = handle.value
+                value = 0.0 if value != value else min(max(value, lo), hi)
+                ctrl[integral] = value
+                proportional = kv * (value - qvel[dadr])
+                position = qpos[qadr]
+                act[actadr] = min(max(act[actadr], position + (flo - proportional) / ki),
+                                  position + (fhi - proportional) / ki)
         return True
 
     def on_deactivate(self):
@@ -147,4 +187,6 @@ class MujocoSystem(SystemInterface):
         """
         for handle, actuator, lo, hi, kind, qadr in self._commands:
             self.data.ctrl[actuator] = self.data.qpos[qadr] if kind == 'position' else 0.0
+        for entry in self._integrals:
+            self.data.ctrl[entry[1]] = 0.0
         return True

@@ -20,24 +20,36 @@ Mapping (URDF -> MuJoCo, units SI, REP 103 axes):
   ``floating`` -> free; ``<axis>``, ``<limit>`` and ``<dynamics damping friction>`` are kept.
   ``planar`` joints are rejected.
 - each joint command interface listed in ``<ros2_control>`` gets one actuator named
-  ``<joint>/<interface>``: ``velocity`` -> velocity actuator (``kv``), ``effort`` -> motor,
-  ``position`` -> position actuator (``kp``, ``kv`` damping), force range from ``<mujoco>``.
-- contact ``friction`` (and optional ``solref``, ``solimp``, ``condim``) from ``<mujoco>``.
+  ``<joint>/<interface>``: ``velocity`` -> velocity actuator (``kv``); with ``ki > 0`` a PI
+  velocity servo: that actuator plus ``<joint>/velocity/integral``, MuJoCo's
+  ``intvelocity`` actuator whose activation integrates the command (torque
+  ``kv (command - qdot) + ki (integral of command - q)``, no steady-state speed error under
+  load, the sum limited by the joint's actuator force range); ``effort`` -> motor,
+  ``position`` -> position actuator (``kp``, ``kv`` damping), force range from ``<mujoco>``;
+  ``armature`` (kg m^2, the motor's rotor inertia reflected through its gearbox) is added to
+  the joint.
+- contact ``friction`` (and optional ``solref``, ``solimp``, ``condim``) from ``<mujoco>``;
+  per link, ``shape="sphere"`` replaces its collision cylinders by spheres of the cylinder
+  radius at the same origin (a wheel then touches the ground in one point below its axle),
+  and ``solreffriction`` (time constant s, damping ratio) is the reference of the friction
+  directions of the contacts between the link and the ground plane
+  (:class:`amr_description.sim.world.World` makes them explicit contact pairs; a text element
+  ``ground_contact/<geom>`` of the spec carries the request).
 
 The ``<mujoco>`` block (see docs/architecture.md)::
 
     <mujoco>
       <ros2_control parameters="package://amr_description/config/controllers.yaml"/>
       <contact friction="1.0 0.005 0.0001" solref="0.02 1" solimp="0.9 0.95 0.001"/>
-      <link name="wheel_front_left" friction="1.0 0.005 0.0001"/>
-      <actuator kv="5.0" forcerange="-20 20"/>
+      <link name="wheel_front_left" friction="1.0 0.005 0.0001" shape="sphere"
+            solreffriction="1 1"/>
+      <actuator kv="5.0" ki="100" armature="0.05" forcerange="-20 20"/>
       <actuator joint="joint_wheel_front_left" kv="5.0" forcerange="-20 20"/>
     </mujoco>
 """
 
 from dataclasses import dataclass
 from dataclasses import field
-import io
 import logging
 import math
 import os
@@ -57,7 +69,12 @@ DEFAULT_CONTACT = {
     'condim': 3,
 }
 #: actuator parameters used when the ``<mujoco>`` block gives none
-DEFAULT_ACTUATOR = {'kv': 5.0, 'kp': 100.0, 'forcerange': (-20.0, 20.0)}
+DEFAULT_ACTUATOR = {'kv': 5.0, 'kp': 100.0, 'ki': 0.0, 'armature': 0.0,
+                    'forcerange': (-20.0, 20.0)}
+#: contact shapes a ``<mujoco><link shape=...>`` may ask for
+CONTACT_SHAPES = ('urdf', 'sphere')
+#: prefix of the spec text elements asking the world for an explicit ground contact pair
+GROUND_CONTACT_PREFIX = 'ground_contact/'
 
 COLLISION_GROUP = 3
 VISUAL_GROUP = 2
@@ -85,7 +102,8 @@ class MujocoConfig:
     joint_actuator: dict = field(default_factory=dict)
 
 
-_CONTACT_SIZES = {'friction': (1, 3), 'solref': (2, 2), 'solimp': (3, 5)}
+_CONTACT_SIZES = {'friction': (1, 3), 'solref': (2, 2), 'solimp': (3, 5),
+                  'solreffriction': (2, 2)}
 
 
 def _floats(text, name, where, sizes):
@@ -110,13 +128,18 @@ def _contact_attrs(element, where):
         if element.get('condim') not in ('1', '3', '4', '6'):
             raise ValueError(f'<mujoco>: {where} condim must be 1, 3, 4 or 6')
         attrs['condim'] = int(element.get('condim'))
+    if element.get('shape') is not None:
+        if element.get('shape') not in CONTACT_SHAPES:
+            raise ValueError(f'<mujoco>: {where} shape must be one of {", ".join(CONTACT_SHAPES)}'
+                             f', found {element.get("shape")!r}')
+        attrs['shape'] = element.get('shape')
     return attrs
 
 
 def _actuator_attrs(element, where):
     """Return the actuator attributes present on ``element`` as a dict."""
     attrs = {}
-    for name in ('kv', 'kp'):
+    for name in ('kv', 'kp', 'ki', 'armature'):
         if element.get(name) is not None:
             value = _floats(element.get(name), name, where, (1, 1))[0]
             if value < 0:
@@ -329,10 +352,15 @@ def _add_actuators(spec, joint_types, hardware, config):
                     f'{joint_types[joint.name]} and cannot be actuated')
             params = dict(config.actuator)
             params.update(config.joint_actuator.get(joint.name, {}))
+            if params.get('armature', 0.0) > 0.0:
+                spec.joint(joint.name).armature = params['armature']
             for iface in joint.command_interfaces:
                 actuator = spec.add_actuator(
                     name=f'{joint.name}/{iface.name}', target=joint.name,
                     trntype=mujoco.mjtTrn.mjTRN_JOINT)
+                if iface.name == 'velocity' and params.get('ki', 0.0) > 0.0:
+                    _add_integral_velocity(spec, joint, iface, actuator, params)
+                    continue
                 if iface.name == 'velocity':
                     actuator.set_to_velocity(kv=params['kv'])
                 elif iface.name == 'position':
@@ -350,23 +378,44 @@ def _add_actuators(spec, joint_types, hardware, config):
                     actuator.ctrlrange = [iface.min, iface.max]
 
 
+def _add_integral_velocity(spec, joint, iface, actuator, params):
+    """
+    Make ``actuator`` the P part of a PI velocity servo and add its I part.
+
+    ``<joint>/velocity``: velocity actuator, torque ``kv (command - qdot)``;
+    ``<joint>/velocity/integral``: MuJoCo ``intvelocity`` actuator without damping, whose
+    activation integrates the command: torque ``ki (act - q)`` = ``ki`` times the integral of
+    the speed error. Both take the same command (MujocoSystem writes both); their sum is
+    limited by the joint's actuator force range (``forcerange``), not per actuator.
+    """
+    actuator.set_to_velocity(kv=params['kv'])
+    integral = spec.add_actuator(name=f'{joint.name}/{iface.name}/integral', target=joint.name,
+                                 trntype=mujoco.mjtTrn.mjTRN_JOINT)
+    integral.set_to_intvelocity(kp=params['ki'], kv=0.0)
+    integral.actlimited = mujoco.mjtLimited.mjLIMITED_FALSE
+    for element in (actuator, integral):
+        element.forcelimited = mujoco.mjtLimited.mjLIMITED_FALSE
+        if iface.min is not None and iface.max is not None and iface.min < iface.max:
+            element.ctrllimited = mujoco.mjtLimited.mjLIMITED_TRUE
+            element.ctrlrange = [iface.min, iface.max]
+    mj_joint = spec.joint(joint.name)
+    mj_joint.actfrclimited = mujoco.mjtLimited.mjLIMITED_TRUE
+    mj_joint.actfrcrange = list(params['forcerange'])
+
+
 def _load_urdf(urdf_xml):
-    """Parse the URDF text; return (ElementTree root, yourdfpy robot)."""
-    import yourdfpy
+    """
+    Parse the URDF text with the package's one loader; return (ElementTree root, yourdfpy robot).
+
+    :raises ValueError: the loader's one line (:func:`amr_description.core.urdf_model.parse_urdf`
+        refuses non-finite numbers, duplicate names, unknown joint types, broken trees and
+        non-positive inertia on moving links, naming the element).
+    """
+    from amr_description.core.urdf_model import parse_urdf
     if isinstance(urdf_xml, str):
         urdf_xml = urdf_xml.encode('utf-8')
-    try:
-        root = ET.fromstring(urdf_xml)
-    except ET.ParseError as exc:
-        raise ValueError(f'URDF is not well-formed XML: {exc}') from None
-    if root.tag != 'robot':
-        raise ValueError(f'URDF root element must be <robot>, found <{root.tag}>')
-    try:
-        urdf = yourdfpy.URDF.load(io.BytesIO(urdf_xml), build_scene_graph=False,
-                                  load_meshes=False, load_collision_meshes=False)
-    except Exception as exc:  # yourdfpy raises many types on bad input
-        raise ValueError(f'URDF could not be parsed: {exc}'.splitlines()[0]) from None
-    return root, urdf.robot
+    model = parse_urdf(urdf_xml, source='URDF')
+    return ET.fromstring(urdf_xml), model.urdf.robot
 
 
 def _root_link(robot):
@@ -456,6 +505,12 @@ def urdf_to_spec(urdf_xml, name='amr', pose=(0.0, 0.0, 0.0, 0.0, 0.0, 0.0), free
             if geom is None:
                 continue
             geom.name = f'{link_name}/{collision.name or f"collision_{index}"}'
+            if contact.get('shape') == 'sphere' and geom.type == mujoco.mjtGeom.mjGEOM_CYLINDER:
+                geom.type = mujoco.mjtGeom.mjGEOM_SPHERE
+                geom.size = [geom.size[0], 0.0, 0.0]
+            if 'solreffriction' in contact:
+                spec.add_text(name=GROUND_CONTACT_PREFIX + geom.name, data='solreffriction ' +
+                              ' '.join(repr(float(v)) for v in contact['solreffriction']))
             geom.group = COLLISION_GROUP
             geom.contype = 1
             geom.conaffinity = 1

@@ -14,6 +14,7 @@ step (default 1 ms).
 from dataclasses import dataclass
 import math
 
+from amr_description.sim.urdf_to_mjcf import GROUND_CONTACT_PREFIX
 import mujoco
 import numpy as np
 
@@ -131,6 +132,7 @@ class World:
         frame = self.spec.worldbody.add_frame()
         self.spec.attach(robot_spec, prefix=prefix, frame=frame)
         try:
+            self._add_ground_pairs(prefix)
             self._recompile()
         except Exception as exc:
             body = self.spec.body(prefix + root_name)
@@ -142,11 +144,61 @@ class World:
         self.robots[name] = robot
         return robot
 
+    def _add_ground_pairs(self, prefix):
+        """
+        Turn a robot's ``ground_contact/<geom>`` requests into explicit ground contact pairs.
+
+        :func:`~amr_description.sim.urdf_to_mjcf.urdf_to_spec` records, for the collision
+        geoms of links with a ``solreffriction`` in the URDF's ``<mujoco>`` block, a text
+        element ``ground_contact/<geom>`` = ``'solreffriction <timeconst> <dampratio>'``.
+        MuJoCo sets ``solreffriction`` only on explicit ``<pair>`` contacts, so each such geom
+        gets a pair with the ground plane carrying the values the dynamic contact would have
+        (friction: the element-wise maximum of both geoms; solref, solimp, condim: the
+        robot geom's, the ground using MuJoCo's defaults) plus the friction reference, and the
+        dynamic ground contact of its body is excluded (MuJoCo's ``<exclude>`` leaves
+        explicit pairs alone).
+
+        :param prefix: the robot's name prefix (``'<name>/'``).
+        """
+        ground = self.spec.geom('ground_plane')
+        marker = prefix + GROUND_CONTACT_PREFIX
+        excluded = set()
+        for text in list(self.spec.texts):
+            if not text.name.startswith(marker):
+                continue
+            geom = self.spec.geom(prefix + text.name[len(marker):])
+            values = text.data.split()
+            if geom is None or len(values) != 3 or values[0] != 'solreffriction':
+                raise ValueError(f'malformed ground contact request {text.name!r}')
+            friction = [max(a, b) for a, b in zip(geom.friction, ground.friction)]
+            self.spec.add_pair(
+                name=f'{prefix}ground_pair/{geom.name[len(prefix):]}',
+                geomname1=ground.name, geomname2=geom.name, condim=geom.condim,
+                friction=[friction[0], friction[0], friction[1], friction[2], friction[2]],
+                solref=list(geom.solref), solimp=list(geom.solimp),
+                solreffriction=[float(values[1]), float(values[2])])
+            body = self._geom_body(geom.name)
+            if body not in excluded:
+                excluded.add(body)
+                self.spec.add_exclude(name=f'{prefix}ground_exclude/{body[len(prefix):]}',
+                                      bodyname1='world', bodyname2=body)
+
+    def _geom_body(self, geom_name):
+        """Return the name of the body holding a geom of the spec."""
+        for body in self.spec.bodies:
+            if any(g.name == geom_name for g in body.geoms):
+                return body.name
+        raise ValueError(f'geom {geom_name!r} has no body')
+
     def _delete_robot_elements(self, prefix, body):
-        """Delete the actuators named ``prefix*`` and the body tree ``body`` from the spec."""
+        """Delete the elements named ``prefix*`` and the body tree ``body`` from the spec."""
         for actuator in list(self.spec.actuators):
             if actuator.name.startswith(prefix):
                 self.spec.delete(actuator)
+        for group in (self.spec.pairs, self.spec.excludes, self.spec.texts):
+            for element in list(group):
+                if element.name.startswith(prefix):
+                    self.spec.delete(element)
         if body is not None:
             self.spec.delete(body)
 

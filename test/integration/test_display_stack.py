@@ -25,7 +25,7 @@ def _root(frame, parents):
 
 
 def test_display_stack_forms_one_tf_tree(ros_env, procs, exe):
-    stack = procs.start([exe('bringup'), 'display'], ros_env)
+    stack = procs.start([exe('bringup'), 'display', 'gui:=false', 'viewer:=false'], ros_env)
     peer = Peer(int(ros_env['ROS_DOMAIN_ID']))
     try:
         def tree():

@@ -71,8 +71,8 @@ def drive_peer(ros_env):
     p.close()
 
 
-def test_drive_straight_turn_and_timeout(procs, exe, ros_env, drive_peer):
-    peer = drive_peer
+def _bring_up(procs, exe, ros_env, peer):
+    """Start mujoco_sim, spawn the robot, activate the controllers, pause and settle."""
     sim = procs.start([exe('mujoco_sim'), '--ros-args', '-p', 'real_time_factor:=0.0',
                        '-r', '/diff_drive_controller/odom:=/odom'], ros_env)
     assert peer.spin_until(lambda: peer.now is not None, 20), sim.output
@@ -87,6 +87,12 @@ def test_drive_straight_turn_and_timeout(procs, exe, ros_env, drive_peer):
         peer.msg.Result.RESULT_OK
     peer.step(500)  # settle, and get fresh ground truth and odometry
     assert peer.odom and peer.ctrl_odom, sim.output
+    return sim
+
+
+def test_drive_straight_turn_and_timeout(procs, exe, ros_env, drive_peer):
+    peer = drive_peer
+    sim = _bring_up(procs, exe, ros_env, peer)
     gx0, gy0, gyaw0, ox0, oy0, oyaw0 = peer.pose()
 
     # 0.5 m/s for 2 s of sim time, then an explicit stop (ramps up and down cancel out)
@@ -106,11 +112,11 @@ def test_drive_straight_turn_and_timeout(procs, exe, ros_env, drive_peer):
     peer.command(0.0, 0.0)
     peer.step(500)
     _, _, gyaw2, _, _, oyaw2 = peer.pose()
-    # a skid-steer base slips its wheels when turning in place; with the calibrated
-    # wheel_separation_multiplier the odometry's heading follows the real one
+    # a skid-steer base slips its wheels when turning in place; with the geometric
+    # wheel_separation_multiplier (a^2 + b^2) / b^2 the odometry's heading follows the real one
     print(f'turn: ground truth {gyaw2 - gyaw:.3f} rad, odometry {oyaw2 - oyaw:.3f} rad')
     assert oyaw2 - oyaw > 0.3
-    assert gyaw2 - gyaw == pytest.approx(oyaw2 - oyaw, rel=0.1)
+    assert gyaw2 - gyaw == pytest.approx(oyaw2 - oyaw, rel=0.03)
 
     # one command then silence: after cmd_vel_timeout (0.5 s) the robot brakes to rest
     peer.command(0.5, 0.0)
@@ -119,3 +125,30 @@ def test_drive_straight_turn_and_timeout(procs, exe, ros_env, drive_peer):
     peer.step(1000)
     assert abs(peer.odom[-1].twist.twist.linear.x) < 0.02
     assert abs(peer.ctrl_odom[-1].twist.twist.linear.x) < 0.02
+
+
+def test_odometry_follows_ground_truth(procs, exe, ros_env, drive_peer):
+    """Issue 11 item 5: 2 m straight within 0.5 %, turns in place 0.1-1.0 rad/s within 3 %."""
+    peer = drive_peer
+    sim = _bring_up(procs, exe, ros_env, peer)
+    gx0, gy0, _, ox0, oy0, _ = peer.pose()
+    peer.drive(0.5, 0.0, 4.0)  # 2 m at 0.5 m/s (ramps at 2 m/s^2 both ways cancel out)
+    peer.command(0.0, 0.0)
+    peer.step(500)
+    gx, gy, gyaw, ox, oy, oyaw = peer.pose()
+    ground = math.hypot(gx - gx0, gy - gy0)
+    odom = math.hypot(ox - ox0, oy - oy0)
+    print(f'straight: ground truth {ground:.4f} m, odometry {odom:.4f} m')
+    assert ground == pytest.approx(2.0, rel=0.02), sim.output[-2000:]
+    assert odom == pytest.approx(ground, rel=0.005)
+    for rate, seconds in ((0.1, 10.0), (0.5, 2.0), (1.0, 1.0)):
+        peer.drive(0.0, rate, seconds)
+        peer.command(0.0, 0.0)
+        peer.step(500)
+        _, _, gyaw2, _, _, oyaw2 = peer.pose()
+        true_turn = math.remainder(gyaw2 - gyaw, math.tau)
+        odom_turn = math.remainder(oyaw2 - oyaw, math.tau)
+        print(f'turn {rate} rad/s: ground truth {true_turn:.4f} rad, odometry {odom_turn:.4f} rad')
+        assert true_turn > 0.5 * rate * seconds
+        assert odom_turn == pytest.approx(true_turn, rel=0.03), (rate, true_turn, odom_turn)
+        gyaw, oyaw = gyaw2, oyaw2

@@ -34,7 +34,7 @@ def _hold(peer, master, key, seconds, period=0.1, until=None):
 
 
 def test_teleop_drives_simulated_robot(ros_env, procs, exe):
-    stack = procs.start([exe('bringup'), 'sim'], ros_env)
+    stack = procs.start([exe('bringup'), 'sim', 'viewer:=false'], ros_env)
     assert stack.wait_for_output('Configured and activated diff_drive_controller', 60.0), \
         stack.output[-3000:]
     peer = DrivePeer(int(ros_env['ROS_DOMAIN_ID']))

@@ -104,7 +104,7 @@ def test_stack_names():
 
 def test_sim_stack_layout(monkeypatch):
     monkeypatch.setattr(stacks, 'read_urdf', lambda path=None: '<robot name="amr"/>')
-    args = stacks.resolve('sim', ['rtf:=0', 'robot:=r2', 'x:=1', 'yaw:=1.57'])
+    args = stacks.resolve('sim', ['rtf:=0', 'robot:=r2', 'x:=1', 'yaw:=1.57', 'viewer:=false'])
     mujoco_sim, rsp, create, on_create, on_jsb = stacks.sim(args)
     assert mujoco_sim.executable == 'mujoco_sim'
     assert mujoco_sim.parameters == [{'real_time_factor': 0.0, 'headless': True}]
@@ -123,14 +123,25 @@ def test_sim_stack_layout(monkeypatch):
         stacks.sim(stacks.resolve('sim', ['rtf:=fast']))
     with pytest.raises(LaunchError, match="launch argument 'headless': expected true or false"):
         stacks.sim(stacks.resolve('sim', ['headless:=maybe']))
+    *_, viewer = stacks.sim(stacks.resolve('sim', ['viewer_port:=18080']))
+    assert viewer.executable == 'viewer'
+    assert viewer.parameters == [{'use_sim_time': True, 'fixed_frame': 'odom', 'port': 18080}]
+    with pytest.raises(LaunchError, match="launch argument 'viewer_port': expected a TCP port"):
+        stacks.sim(stacks.resolve('sim', ['viewer_port:=http']))
 
 
 def test_display_stack_layout(monkeypatch):
     monkeypatch.setattr(stacks, 'read_urdf', lambda path=None: '<robot name="amr"/>')
-    rsp, jsp = stacks.display(stacks.resolve('display'))
+    rsp, jsp = stacks.display(stacks.resolve('display', ['gui:=false', 'viewer:=false']))
     assert (rsp.executable, jsp.executable) == ('robot_state_publisher', 'joint_state_publisher')
     assert rsp.parameters == [{'robot_description': '<robot name="amr"/>',
                                'use_sim_time': False}]
+    rsp, gui, viewer = stacks.display(stacks.resolve('display'))
+    assert gui.executable == 'joint_state_publisher_gui'
+    assert gui.parameters == [{'use_sim_time': False, 'port': 8081}]
+    assert viewer.executable == 'viewer'
+    assert viewer.parameters == [{'use_sim_time': False, 'fixed_frame': 'base_footprint',
+                                  'port': 8080}]
 
 
 def test_unreadable_urdf(tmp_path):

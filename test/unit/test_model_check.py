@@ -6,6 +6,7 @@
 import os
 import re
 import shutil
+import warnings as python_warnings
 
 from amr_description.core import model_check as mc
 from amr_description.core.urdf_model import parse_urdf
@@ -73,6 +74,7 @@ def test_amr_passes_with_zero_errors_and_warnings(urdf_xml, controllers):
     assert sum('drives forward' in line for line in ok) == 4
     assert any('wheel_separation 0.3 m matches' in line for line in ok)
     assert any('wheel_radius 0.1 m matches' in line for line in ok)
+    assert any('wheel_separation_multiplier 2.78 matches' in line for line in ok)
 
 
 def test_reversed_axle_of_the_tutorial_is_an_error(urdf_xml, controllers):
@@ -103,8 +105,8 @@ def test_missing_collision(urdf_xml):
 
 @pytest.mark.parametrize('mass', ['-0.5', '0'])
 def test_non_positive_mass(urdf_xml, mass):
-    xml = edit_link(urdf_xml, 'wheel_back_right', '<mass value="0.5"/>',
-                    f'<mass value="{mass}"/>')
+    # on base_link (fixed joint); on a wheel the loader itself refuses it (test_urdf_model)
+    xml = edit_link(urdf_xml, 'base_link', '<mass value="5.0"/>', f'<mass value="{mass}"/>')
     found = errors(run(xml))
     assert len(found) == 1 and found[0].message == 'mass must be positive'
     assert found[0].found == f'{float(mass):g} kg'
@@ -165,7 +167,7 @@ def test_drive_direction_closed_form():
 def test_controllers_yaml_mismatch(tmp_path, urdf_xml, key, value, words):
     with open(YAML_PATH) as f:
         data = yaml.safe_load(f)
-    data['diff_drive_controller']['ros__parameters'][key] = value
+    data['/**/diff_drive_controller']['ros__parameters'][key] = value
     path = tmp_path / 'controllers.yaml'
     path.write_text(yaml.safe_dump(data))
     found = errors(run(urdf_xml, mc.load_controllers(str(path))))
@@ -174,8 +176,32 @@ def test_controllers_yaml_mismatch(tmp_path, urdf_xml, key, value, words):
 
 def test_separation_within_one_millimetre(urdf_xml, controllers):
     data = yaml.safe_load(yaml.safe_dump(controllers))
-    data['diff_drive_controller']['ros__parameters']['wheel_separation'] = 0.3009
+    data['/**/diff_drive_controller']['ros__parameters']['wheel_separation'] = 0.3009
     assert errors(run(urdf_xml, data)) == []
+
+
+@pytest.mark.parametrize('multiplier, severity', [
+    (4.2, mc.WARNING), (1.0, mc.WARNING), (2.6, mc.INFO), (25.0 / 9.0, mc.INFO)])
+def test_separation_multiplier_against_coulomb_value(urdf_xml, controllers, multiplier,
+                                                     severity):
+    data = yaml.safe_load(yaml.safe_dump(controllers))
+    params = data['/**/diff_drive_controller']['ros__parameters']
+    params['wheel_separation_multiplier'] = multiplier
+    found = [f for f in run(urdf_xml, data) if 'wheel_separation_multiplier' in f.message]
+    assert len(found) == 1 and found[0].severity == severity, [str(f) for f in found]
+    # the message names the formula and the geometry it used: a = 0.2 m, b = 0.15 m -> 2.78
+    assert '(a^2 + b^2) / b^2' in found[0].message and 'a = 0.2 m' in found[0].message
+    assert 'b = 0.15 m' in found[0].message
+    if severity == mc.WARNING:
+        assert found[0].expected == '2.78 (+-10 %)' and found[0].found == str(multiplier)
+
+
+def test_two_wheeled_base_has_no_multiplier_finding(urdf_xml, controllers):
+    data = yaml.safe_load(yaml.safe_dump(controllers))
+    params = data['/**/diff_drive_controller']['ros__parameters']
+    params['left_wheel_names'] = ['joint_wheel_front_left']
+    params['right_wheel_names'] = ['joint_wheel_front_right']
+    assert not [f for f in run(urdf_xml, data) if 'wheel_separation_multiplier' in f.message]
 
 
 def test_wheel_without_velocity_command_or_position_state(urdf_xml, controllers):
@@ -224,3 +250,37 @@ def test_cli_exit_codes(tmp_path, capsys, urdf_xml):
     assert err.startswith(f'check_model: {bad}: not well-formed XML') and '\n' not in err
     assert mc.main([str(tmp_path / 'missing.urdf')]) == 2
     assert mc.main(['--controllers', str(bad), URDF_PATH]) == 2
+
+
+@pytest.mark.parametrize('old, new, element, words', [
+    ('<origin xyz="0 0 0.1" rpy="0 0 0"/>', '<origin xyz="0 0 nan" rpy="0 0 0"/>',
+     "joint 'base_joint'", 'xyz="0 0 nan" is not finite'),
+    ('<mass value="0.5"/>', '<mass value="inf"/>', "link 'wheel_front_left'",
+     'value="inf" is not finite'),
+    ('<joint name="base_joint" type="fixed">', '<joint name="base_joint" type="hinge">',
+     "joint 'base_joint'", "unknown joint type 'hinge'"),
+])
+def test_cli_reports_what_the_loader_refuses(tmp_path, capsys, urdf_xml, old, new, element,
+                                             words):
+    bad = tmp_path / 'bad.urdf'
+    bad.write_text(urdf_xml.replace(old, new, 1))
+    with python_warnings.catch_warnings():
+        python_warnings.simplefilter('error')  # a numpy RuntimeWarning fails the test
+        assert mc.main([str(bad)]) == 1
+    out, err = capsys.readouterr()
+    lines = out.splitlines()
+    assert lines[0].startswith(f'ERROR   {element}: ') and words in lines[0], out
+    assert 'wheel' not in lines[0] or 'wheel' in element
+    assert lines[1] == f'{bad}: refused by the URDF loader: 1 error(s), 0 warning(s)'
+    assert err == ''
+
+
+def test_unknown_hardware_plugin(urdf_xml):
+    assert 'amr_description/MujocoSystem' in mc.hardware_plugins()
+    xml = urdf_xml.replace('<plugin>amr_description/MujocoSystem</plugin>',
+                           '<plugin>gz_ros2_control/GazeboSimSystem</plugin>')
+    found = errors(run(xml))
+    assert len(found) == 1, [str(f) for f in found]
+    assert found[0].element.startswith('ros2_control ')
+    assert 'unknown hardware plugin' in found[0].message
+    assert found[0].found == 'gz_ros2_control/GazeboSimSystem'

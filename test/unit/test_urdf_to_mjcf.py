@@ -179,7 +179,35 @@ def test_package_urdf_total_mass_7kg():
     with open(AMR_URDF) as f:
         model, _ = _compile(f.read())
     assert model.body(1).subtreemass[0] == pytest.approx(7.0)
-    assert model.nu == 4
+    assert model.nu == 8  # PI wheel drives: <joint>/velocity and <joint>/velocity/integral
+
+
+def test_wheel_contact_shape_friction_reference_and_pi_drive():
+    extra = """<mujoco><link name="wheel_front_left" shape="sphere" solreffriction="1 1"/>
+      <actuator joint="joint_wheel_front_left" kv="5" ki="100" armature="0.05"
+                forcerange="-3 4"/></mujoco>"""
+    spec = urdf_to_spec(tutorial_urdf(extra=extra))
+    assert [t.name for t in spec.texts] == ['ground_contact/wheel_front_left/collision_0']
+    assert spec.texts[0].data == 'solreffriction 1.0 1.0'
+    model = spec.compile()
+    left = model.geom('wheel_front_left/collision_0')
+    assert left.type[0] == mujoco.mjtGeom.mjGEOM_SPHERE and left.size[0] == 0.1
+    assert model.geom('wheel_front_left/visual_0').type[0] == mujoco.mjtGeom.mjGEOM_CYLINDER
+    assert model.geom('wheel_front_right/collision_0').type[0] == \
+        mujoco.mjtGeom.mjGEOM_CYLINDER
+    joint = model.joint('joint_wheel_front_left')
+    assert joint.armature[0] == 0.05 and model.joint('joint_wheel_front_right').armature[0] == 0
+    np.testing.assert_allclose(model.jnt_actfrcrange[joint.id], [-3, 4])
+    assert model.jnt_actfrclimited[joint.id]
+    p = model.actuator('joint_wheel_front_left/velocity')
+    i = model.actuator('joint_wheel_front_left/velocity/integral')
+    assert p.gainprm[0] == 5.0 and p.biasprm[2] == -5.0 and not p.forcelimited[0]
+    assert i.dyntype[0] == mujoco.mjtDyn.mjDYN_INTEGRATOR and i.gainprm[0] == 100.0
+    assert i.biasprm[1] == -100.0 and i.biasprm[2] == 0.0 and not i.actlimited[0]
+    assert model.nu == 5
+    with pytest.raises(ValueError, match='shape must be one of urdf, sphere'):
+        urdf_to_spec(tutorial_urdf(extra='<mujoco><link name="base_link" shape="box"/>'
+                                         '</mujoco>'))
 
 
 def test_pose_as_quaternion_matches_rpy():

@@ -1,0 +1,634 @@
+# Copyright 2026 The amr_description Authors
+# Licensed under the Apache License, Version 2.0
+
+"""
+The simulation engine without rclpy: one MuJoCo world, its robots, their controller managers.
+
+:class:`Simulation` owns a :class:`~amr_description.sim.world.World`, the spawned entities and
+one controller manager per entity whose URDF has ``<ros2_control>`` (as gz_ros2_control creates
+one per model). Its cycle, run by one simulation thread (:meth:`Simulation.start`) or by the
+caller (:meth:`Simulation.run_cycle`, for tests and benchmarks)::
+
+    step physics (mj_step batch) to the next control instant
+    for every controller manager due at that instant: read(t, period)
+    for every controller manager due:                 update(t, period)
+    for every controller manager due:                 write(t, period)
+    after_cycle(t) hook (the ROS plumbing publishes /clock and ground truth here)
+    pace to the real-time factor (or to an external clock)
+
+``read``/``update``/``write`` are the phases of ros2_control's ``controller_manager`` (its
+``ros2_control_node`` loop calls them in this order); a controller manager that only has
+``update`` (all three phases in one call) is called once per instant instead.
+
+Threads: everything that changes the world (spawn, reset, step while paused, pause/play) is
+a request run by the simulation thread between two cycles (:meth:`Simulation.call`). The
+controller-manager factory and the entity ``setup``/``release`` callbacks run on the thread
+that calls :meth:`Simulation.spawn` (the ROS node's executor thread), so that a user of rclpy
+creates and destroys its entities on one thread and the simulation thread never does.
+
+Time: sim time ``t = step_count * physics_step`` (s), exact multiples of the physics step;
+MuJoCo's ``data.time`` is not used for it. Control instants are the multiples of each
+controller manager's ``1 / update_rate`` (rounded to physics steps); with no controller
+manager the cycle is :data:`IDLE_RATE` Hz of sim time.
+"""
+
+import collections
+import logging
+import math
+import re
+import threading
+import time
+
+from amr_description.sim.world import World
+import mujoco
+
+IDLE_RATE = 100.0
+"""Hz of sim time of the cycle (and of the ``after_cycle`` hook) while no controller runs."""
+
+REQUEST_TIMEOUT = 30.0
+"""Seconds :meth:`Simulation.call` waits for the simulation thread."""
+
+PAUSED_TICK = 0.1
+"""Seconds (wall) between ``paused_tick`` hook calls while paused."""
+
+RTF_WINDOW = 5.0
+"""Seconds (wall) over which the achieved real-time factor is measured."""
+
+RTF_SHORTFALL = 0.9
+"""Warn (once) when the achieved real-time factor is below this fraction of the target."""
+
+_NAME_TOKEN = re.compile(r'^[A-Za-z_][A-Za-z0-9_]*$')
+_BAD_QPOS = int(mujoco.mjtWarning.mjWARN_BADQPOS)
+_BAD_QVEL = int(mujoco.mjtWarning.mjWARN_BADQVEL)
+_BAD_QACC = int(mujoco.mjtWarning.mjWARN_BADQACC)
+
+
+def normalize_namespace(namespace):
+    """
+    Return a ROS namespace in its absolute form, ``''`` for the root namespace.
+
+    Rules of rcl's ``rmw_validate_namespace`` as they apply to a node namespace: tokens of
+    letters, digits and ``_``, not starting with a digit, separated by single ``/``; no
+    trailing ``/``. A relative namespace (``r1``) is made absolute (``/r1``).
+
+    :param namespace: str, e.g. ``'r1'``, ``'/fleet/r1'``, ``''`` or ``'/'``.
+    :returns: ``''`` or ``'/r1'``-style str.
+    :raises ValueError: one line naming the namespace and the rule it breaks.
+    """
+    if namespace in ('', '/'):
+        return ''
+    text = namespace if namespace.startswith('/') else '/' + namespace
+    for token in text[1:].split('/'):
+        if not _NAME_TOKEN.match(token):
+            raise ValueError(
+                f'namespace {namespace!r} is not a valid ROS namespace: tokens of letters, '
+                'digits and "_" not starting with a digit, separated by single "/"')
+    return text
+
+
+class Entity:
+    """
+    A spawned robot: its world entry, its namespace and its controller manager.
+
+    :ivar name: entity name, unique in the simulation (str).
+    :ivar namespace: ROS namespace, ``''`` or ``'/r1'`` (unique in the simulation).
+    :ivar robot: the :class:`~amr_description.sim.world.Robot` (bodies prefixed ``name/``).
+    :ivar urdf: the URDF it was spawned from (str).
+    :ivar controller_manager: the controller manager, or None (no ``<ros2_control>``).
+    :ivar systems: the ``MujocoSystem`` hardware components bound to the world.
+    :ivar user: a dict for the owner of the simulation (e.g. the node's publishers).
+    """
+
+    def __init__(self, name, namespace, robot, urdf):
+        """Keep the fields (see the class docstring)."""
+        self.name = name
+        self.namespace = namespace
+        self.robot = robot
+        self.urdf = urdf
+        self.controller_manager = None
+        self.per_update = 0
+        self.systems = []
+        self.user = {}
+
+    @property
+    def frame_prefix(self):
+        """Return the TF frame prefix of the entity, ``''`` or ``'r1/'`` (REP 105 fleets)."""
+        return self.namespace[1:] + '/' if self.namespace else ''
+
+
+class _Request:
+    """A function to run in the simulation thread and its outcome."""
+
+    __slots__ = ('function', 'done', 'result', 'error')
+
+    def __init__(self, function):
+        self.function = function
+        self.done = threading.Event()
+        self.result = None
+        self.error = None
+
+
+class Simulation:
+    """
+    A MuJoCo world with robots and their controller managers, stepped by one thread.
+
+    :param physics_step: physics step in s (> 0).
+    :param real_time_factor: target sim-time/wall-time ratio; 0 = as fast as possible (an
+        empty world runs in real time even then: fast-forward starts with the first entity).
+    :param paused: start paused.
+    :param controller_manager_factory: ``(entity, hardware_factory, parameters_file) ->
+        controller manager`` called on the spawning thread for an entity with
+        ``<ros2_control>``; ``hardware_factory(info)`` builds the ``MujocoSystem`` of the
+        entity. None: entities get no controller manager.
+    :param controller_manager_release: ``(controller manager) -> None`` destroying one (on a
+        failed spawn and in :meth:`close`), or None.
+    :param parameters_file: controllers YAML for every entity (``''``: each URDF's
+        ``<mujoco><ros2_control parameters=...>``).
+    :param logger: a ``logging.Logger``-like object (``info``, ``warning``, ``error``).
+
+    Hooks (attributes, called on the simulation thread; None to skip):
+    ``before_update(t)`` before the controller managers' ``read`` at an instant where any is
+    due; ``after_cycle(t)`` after every cycle; ``paused_tick(t)`` every :data:`PAUSED_TICK`
+    s of wall time while paused; ``on_reset()`` after :meth:`reset`.
+    """
+
+    def __init__(self, physics_step=0.001, real_time_factor=1.0, paused=False,
+                 controller_manager_factory=None, controller_manager_release=None,
+                 parameters_file='', logger=None):
+        """Build the empty world (see the class docstring)."""
+        if not real_time_factor >= 0:
+            raise ValueError(f'real_time_factor must be >= 0, found {real_time_factor!r}')
+        self.world = World(physics_step)
+        self.physics_step = self.world.physics_step
+        self.real_time_factor = float(real_time_factor)
+        self.paused = bool(paused)
+        self.parameters_file = parameters_file
+        self.logger = logger or logging.getLogger('simulation')
+        self._factory = controller_manager_factory
+        self._release = controller_manager_release
+        self.entities = {}          # name -> Entity (spawned; possibly still being set up)
+        self.active = ()            # Entities set up and stepped with their controllers
+        self._managers = ()         # (cm, per_update, read, update, write)
+        self.step_count = 0
+        self.before_update = None
+        self.after_cycle = None
+        self.paused_tick = None
+        self.on_reset = None
+        self._requests = collections.deque()
+        self._wake = threading.Event()
+        self._running = False
+        self._thread = None
+        self._pending_steps = 0
+        self._step_waiters = []
+        self._anchor = None
+        self._external_time = None   # s, the clock we must not run ahead of (None: own clock)
+        self._external = False
+        self._halted = None          # message of the non-finite state that paused us
+        self._warnings_seen = 0
+        self._rebind()
+        self._rtf_window = None
+        self._rtf_warned = False
+        self.update_errors = 0
+        self.thread_error = None
+
+    # ------------------------------------------------------------------ properties
+    @property
+    def time(self):
+        """Return the sim time in s (``step_count * physics_step``)."""
+        return self.step_count * self.physics_step
+
+    @property
+    def halted(self):
+        """Return the one-line report of a non-finite state that paused the world, or None."""
+        return self._halted
+
+    # ------------------------------------------------------------------ thread
+    def start(self, name='simulation'):
+        """Start the simulation thread (daemon) running :meth:`run`."""
+        self._running = True
+        self._thread = threading.Thread(target=self.run, name=name, daemon=True)
+        self._thread.start()
+
+    def stop(self, timeout=5.0):
+        """Stop and join the simulation thread (no-op when not started)."""
+        self._running = False
+        self._wake.set()
+        if self._thread is not None:
+            self._thread.join(timeout)
+            self._thread = None
+
+    def close(self):
+        """Stop the thread, then release every controller manager (caller's thread)."""
+        self.stop()
+        self.active = ()
+        self._managers = ()
+        for entity in list(self.entities.values()):
+            cm, entity.controller_manager = entity.controller_manager, None
+            if cm is not None and self._release is not None:
+                try:
+                    self._release(cm)
+                except Exception as exc:  # noqa: B902 - best effort at exit
+                    self.logger.warning(f'controller manager of {entity.name!r}: {exc!r}')
+
+    def call(self, function, timeout=REQUEST_TIMEOUT):
+        """
+        Run ``function()`` on the simulation thread between two cycles; return its result.
+
+        Runs it directly when no simulation thread is running (tests, before :meth:`start`)
+        or when called from the simulation thread itself.
+
+        :raises TimeoutError: when the simulation thread does not answer in ``timeout`` s.
+        :raises Exception: whatever ``function`` raised.
+        """
+        if self._thread is None or threading.current_thread() is self._thread:
+            return function()
+        request = _Request(function)
+        self._requests.append(request)
+        self._wake.set()
+        if not request.done.wait(timeout):
+            raise TimeoutError('the simulation thread did not answer')
+        if request.error is not None:
+            raise request.error
+        return request.result
+
+    def _process_requests(self):
+        requests = self._requests
+        while requests:
+            request = requests.popleft()
+            try:
+                request.result = request.function()
+            except Exception as exc:  # noqa: B902 - reported to the caller, loop goes on
+                request.error = exc
+            request.done.set()
+
+    # ------------------------------------------------------------------ spawn
+    def spawn(self, urdf, name='', pose=None, namespace='', allow_renaming=False, setup=None):
+        """
+        Add a robot to the world with its controller manager (call from one thread at a time).
+
+        :param urdf: URDF text (str).
+        :param name: entity name; ``''`` takes the URDF's ``<robot name>``.
+        :param pose: ``[x, y, z, qx, qy, qz, qw]`` in the world frame (m), or None.
+        :param namespace: ROS namespace of its controller manager and topics (``''``: root).
+        :param allow_renaming: add ``_1``, ``_2``... to a taken name instead of failing.
+        :param setup: optional ``(entity) -> None`` run on this thread once the controller
+            manager exists, before the entity is stepped with its controllers (the owner
+            creates its publishers here); an exception undoes the spawn.
+        :returns: the :class:`Entity`.
+        :raises ValueError: one line: malformed URDF, taken name or namespace, invalid
+            namespace, a robot MuJoCo cannot compile, a controller manager that fails. The
+            world and every other robot are left as they were.
+        """
+        from amr_description.core.ros2_control_info import parse_ros2_control
+        namespace = normalize_namespace(namespace)
+        name = self._entity_name(name, urdf)
+        try:
+            has_control = bool(parse_ros2_control(urdf))
+        except ValueError as exc:
+            raise ValueError(str(exc).splitlines()[0]) from None
+        entity = self.call(lambda: self._add(urdf, name, pose, namespace, allow_renaming))
+        cm = None
+        try:
+            if has_control and self._factory is not None:
+                cm = self._factory(entity, self._hardware_factory(entity),
+                                   self._parameters_file(urdf))
+                entity.controller_manager = cm
+            if setup is not None:
+                setup(entity)
+        except Exception as exc:  # noqa: B902 - any failure: undo, report one line
+            entity.controller_manager = None
+            if cm is not None and self._release is not None:
+                try:
+                    self._release(cm)
+                except Exception:  # noqa: B902 - the original error is what matters
+                    pass
+            self.call(lambda: self._remove(entity))
+            text = str(exc).splitlines()[0] if str(exc) else repr(exc)
+            raise ValueError(text) from None
+        self.call(lambda: self._activate(entity))
+        return entity
+
+    def _entity_name(self, name, urdf):
+        if name:
+            return name
+        import xml.etree.ElementTree as ET
+        try:
+            name = ET.fromstring(urdf).get('name') or ''
+        except ET.ParseError as exc:
+            raise ValueError(f'URDF is not well-formed XML: {exc}') from None
+        if not name:
+            raise ValueError('no entity name given and the URDF <robot> has no name')
+        return name
+
+    def _add(self, urdf, name, pose, namespace, allow_renaming):
+        """Add the robot's bodies to the world (simulation thread)."""
+        from amr_description.sim.urdf_to_mjcf import urdf_to_spec
+        if name in self.entities and allow_renaming:
+            index = 1
+            while f'{name}_{index}' in self.entities:
+                index += 1
+            name = f'{name}_{index}'
+        if name in self.entities:
+            raise ValueError(f'an entity named {name!r} already exists')
+        for other in self.entities.values():
+            if other.namespace == namespace:
+                shown = namespace or '/'
+                raise ValueError(
+                    f'namespace {shown!r} is already used by entity {other.name!r}; give each '
+                    'robot its own namespace (entity_namespace / -robot_namespace)')
+        spec = urdf_to_spec(urdf, name=name, pose=(0, 0, 0, 0, 0, 0) if pose is None else pose)
+        robot = self.world.spawn(spec, name, urdf)
+        entity = Entity(name, namespace, robot, urdf)
+        self.entities[name] = entity
+        self._rebind()
+        return entity
+
+    def _remove(self, entity):
+        """Take a (not yet active) entity out of the world (simulation thread)."""
+        self.entities.pop(entity.name, None)
+        if entity.name in self.world.robots:
+            self.world.remove(entity.name)
+        self._rebind()
+
+    def _activate(self, entity):
+        """Start stepping the entity's controller manager and calling hooks on it."""
+        cm = entity.controller_manager
+        if cm is not None:
+            rate = float(getattr(cm, 'update_rate', IDLE_RATE) or IDLE_RATE)
+            entity.per_update = max(1, int(round(1.0 / (rate * self.physics_step))))
+        self.active = self.active + (entity,)
+        self._managers = tuple(
+            (e.controller_manager, e.per_update) + _phases(e.controller_manager)
+            for e in self.active if e.controller_manager is not None)
+
+    def _rebind(self):
+        model, data = self.world.model, self.world.data
+        self._warning_stats = tuple(data.warning[i] for i in (_BAD_QPOS, _BAD_QVEL, _BAD_QACC))
+        for entity in self.entities.values():
+            for system in entity.systems:
+                system.rebind(model, data)
+
+    def _hardware_factory(self, entity):
+        """Return ``(HardwareInfo) -> SystemInterface`` building MujocoSystem for ``entity``."""
+        from amr_description.control.resource_manager import default_hardware_factory
+        from amr_description.sim.mujoco_system import MujocoSystem
+
+        def factory(info):
+            if info.plugin == 'amr_description/MujocoSystem':
+                system = MujocoSystem(self.world.model, self.world.data,
+                                      prefix=entity.robot.prefix)
+                entity.systems.append(system)
+                return system
+            return default_hardware_factory(info)
+        return factory
+
+    def _parameters_file(self, urdf):
+        """Return the controllers YAML path for ``urdf`` (None when there is none)."""
+        import os
+        import xml.etree.ElementTree as ET
+        from amr_description.sim.urdf_to_mjcf import parse_mujoco_block
+        from amr_description.sim.urdf_to_mjcf import resolve_uri
+        path = self.parameters_file
+        if not path:
+            path = parse_mujoco_block(ET.fromstring(urdf)).parameters
+        if not path:
+            return None
+        path = resolve_uri(path)
+        if not os.path.isfile(path):
+            raise ValueError(f'controller parameters file {path!r} not found')
+        return path
+
+    # ------------------------------------------------------------------ state changes
+    def reset(self):
+        """Reset every robot to its spawn pose at rest and the time to 0 s (thread-safe)."""
+        def apply():
+            self.world.reset()
+            self.step_count = 0
+            self._anchor = None
+            self._halted = None
+            self._warnings_seen = 0
+            if self.on_reset is not None:
+                self.on_reset()
+        self.call(apply)
+
+    def set_paused(self, paused):
+        """Pause or play (thread-safe). Playing after a non-finite halt needs a reset first."""
+        def apply():
+            self.paused = bool(paused)
+            self._anchor = None
+        self.call(apply)
+
+    def request_steps(self, steps):
+        """
+        Queue ``steps`` physics steps while paused (thread-safe).
+
+        :returns: a ``threading.Event`` set when they are done (or the world halted).
+        """
+        done = threading.Event()
+
+        def apply():
+            self._pending_steps += int(steps)
+            self._step_waiters.append((self.step_count + int(steps), done))
+        self.call(apply)
+        return done
+
+    def follow_external_clock(self):
+        """Never run ahead of the time given to :meth:`set_external_time` (lock-step)."""
+        self._external = True
+
+    def set_external_time(self, t):
+        """
+        Let the simulation advance up to ``t`` s (from another simulator's /clock).
+
+        Before the first entity is spawned, the simulation jumps to ``t`` (it joins the
+        running time of the other simulator). Thread-safe; wakes the simulation thread.
+        """
+        self._external_time = t
+        self._wake.set()
+
+    # ------------------------------------------------------------------ the cycle
+    def _due_steps(self):
+        """Return physics steps to the next control instant (>= 1)."""
+        count = self.step_count
+        if not self._managers:
+            per = max(1, int(round(1.0 / (IDLE_RATE * self.physics_step))))
+            return per - count % per
+        return min(per - count % per for _, per, _, _, _ in self._managers)
+
+    def run_cycle(self):
+        """
+        Step to the next control instant and run the controller managers due there.
+
+        Honours pause (only queued steps), the external clock and a halted world; does not
+        pace. Called by :meth:`run`, or directly when no simulation thread runs.
+
+        :returns: the number of physics steps taken (0 when nothing could be stepped).
+        """
+        count = self._due_steps()
+        if self.paused:
+            count = min(count, self._pending_steps)
+            self._pending_steps -= count
+        if self._external:
+            limit = self._external_time
+            if limit is None:
+                return 0
+            if not self.active and self.step_count * self.physics_step < limit:
+                self.step_count = int(round(limit / self.physics_step))
+                return 0
+            count = min(count, int(math.floor(limit / self.physics_step + 1e-6))
+                        - self.step_count)
+        if count <= 0:
+            return 0
+        self.world.step(count)
+        self.step_count += count
+        self._check_finite()
+        step_count = self.step_count
+        t = step_count * self.physics_step
+        due = [m for m in self._managers if step_count % m[1] == 0]
+        if due and self._halted is None:
+            if self.before_update is not None:
+                self.before_update(t)
+            dt = self.physics_step
+            try:
+                for cm, per, read, update, write in due:
+                    if read is not None:
+                        read(t, per * dt)
+                for cm, per, read, update, write in due:
+                    update(t, per * dt)
+                for cm, per, read, update, write in due:
+                    if write is not None:
+                        write(t, per * dt)
+            except Exception as exc:  # noqa: B902 - a controller bug must not stop physics
+                self.update_errors += 1
+                n = self.update_errors
+                if n in (1, 10, 100) or n % 1000 == 0:
+                    self.logger.error(f'controller manager update failed ({n}x): {exc!r}')
+        if self.after_cycle is not None:
+            self.after_cycle(t)
+        if self._step_waiters:
+            self._release_step_waiters()
+        return count
+
+    def _check_finite(self):
+        """
+        Pause once the state is not finite, naming the first non-finite body.
+
+        ``mj_step`` checks qpos, qvel and qacc; on a non-finite (or huge) value it counts a
+        warning (``mjWARN_BADQPOS/BADQVEL/BADQACC``) and resets the data; a non-finite model
+        (e.g. a NaN in the robot's description) produces one at every step. A new warning
+        halts the world. Reading the three counters costs far less than scanning the state.
+        """
+        qpos, qvel, qacc = self._warning_stats  # live views into data.warning
+        seen = qpos.number + qvel.number + qacc.number
+        if seen == self._warnings_seen:
+            return
+        self._warnings_seen = seen
+        if self._halted is not None:
+            return
+        self._halted = (f'non-finite state at t = {self.time:.3f} s in body '
+                        f'{self._bad_body()!r}: the simulation is paused (reset it to go on)')
+        self.paused = True
+        self._pending_steps = 0
+        self.logger.error(self._halted)
+
+    def _bad_body(self):
+        """Return the name of the first body with a non-finite state (``'?'`` if none)."""
+        import numpy as np
+        model, data = self.world.model, self.world.data
+        for i in range(1, model.nbody):
+            if not (np.isfinite(data.xpos[i]).all() and np.isfinite(data.cvel[i]).all()):
+                return model.body(i).name
+        for i in range(model.nq):
+            if not math.isfinite(data.qpos[i]):
+                joint = max(j for j in range(model.njnt) if model.jnt_qposadr[j] <= i)
+                return model.body(int(model.jnt_bodyid[joint])).name
+        for kind in (_BAD_QPOS, _BAD_QVEL, _BAD_QACC):
+            if data.warning[kind].number:
+                index = int(data.warning[kind].lastinfo)
+                if kind == _BAD_QPOS and 0 <= index < model.nq:
+                    joint = max(j for j in range(model.njnt) if model.jnt_qposadr[j] <= index)
+                    return model.body(int(model.jnt_bodyid[joint])).name
+                if 0 <= index < model.nv:
+                    return model.body(int(model.dof_bodyid[index])).name
+        return '?'
+
+    def _release_step_waiters(self):
+        waiting = []
+        for target, event in self._step_waiters:
+            if self.step_count >= target or self._pending_steps == 0:
+                event.set()
+            else:
+                waiting.append((target, event))
+        self._step_waiters = waiting
+
+    def run(self):
+        """Run cycles until :meth:`stop`: requests, step, controllers, hooks, pacing."""
+        requests = self._requests
+        last_tick = 0.0
+        try:
+            while self._running:
+                if requests:
+                    self._process_requests()
+                if self.paused and self._pending_steps == 0:
+                    if self._step_waiters:
+                        self._release_step_waiters()
+                    now = time.monotonic()
+                    if now - last_tick > PAUSED_TICK:
+                        last_tick = now
+                        if self.paused_tick is not None:
+                            self.paused_tick(self.time)
+                    self._wake.wait(0.05)
+                    self._wake.clear()
+                    continue
+                if self.run_cycle() == 0:
+                    # waiting for the external clock (or a request)
+                    self._wake.wait(0.05)
+                    self._wake.clear()
+                    continue
+                if not self.paused and not self._external:
+                    if self.real_time_factor > 0:
+                        self._pace(self.time, self.real_time_factor)
+                    elif not self.active:
+                        self._pace(self.time, 1.0)  # fast-forward starts with the first entity
+                    else:
+                        self._anchor = None
+        except Exception as exc:  # noqa: B902 - report instead of a silent thread death
+            if self._running:
+                self.thread_error = exc
+                self.logger.error(f'simulation thread stopped: {exc!r}')
+        finally:
+            for _, event in self._step_waiters:
+                event.set()
+
+    def _pace(self, t, factor):
+        """Sleep so that sim time ``t`` (s) advances at ``factor`` times wall time."""
+        now = time.perf_counter()
+        window = self._rtf_window
+        if window is None or self._anchor is None:
+            self._rtf_window = (now, t)
+        elif now - window[0] >= RTF_WINDOW:
+            achieved = (t - window[1]) / (now - window[0])
+            self._rtf_window = (now, t)
+            if achieved < RTF_SHORTFALL * factor and self.active and not self._rtf_warned:
+                self._rtf_warned = True
+                self.logger.warning(
+                    f'real-time factor achieved {achieved:.2f} < real_time_factor '
+                    f'{factor:g} with {len(self.active)} entities: more robots than this '
+                    'machine simulates in real time')
+        if self._anchor is None:
+            self._anchor = (now, t)
+            return
+        target = self._anchor[0] + (t - self._anchor[1]) / factor
+        if target > now:
+            time.sleep(target - now)
+        elif now - target > 0.25:  # far behind (e.g. a spawn): do not try to catch up
+            self._anchor = (now, t)
+
+
+def _phases(cm):
+    """Return the (read, update, write) bound methods of a controller manager."""
+    read = getattr(cm, 'read', None)
+    write = getattr(cm, 'write', None)
+    if read is None or write is None:
+        return None, cm.update, None  # one call does read -> update -> write
+    return read, cm.update, write

@@ -1,0 +1,130 @@
+# Copyright 2026 The amr_description Authors
+# Licensed under the Apache License, Version 2.0
+
+"""
+Start a viser web server on a given host and port, or fail with one clear line.
+
+viser (PyPI, MIT) serves its bundled browser client and a websocket on one port. It silently
+moves to the next port when the requested one is taken; our nodes must not (a user opens the
+printed URL), so the port is checked first and the bound port verified afterwards.
+"""
+
+import contextlib
+import errno
+import io
+import logging
+import socket
+
+
+class PortInUse(RuntimeError):
+    """The requested TCP port cannot be bound (message: one line naming port and parameter)."""
+
+
+def page_url(host, port):
+    """
+    Return the URL a user opens for a server bound to ``host:port``.
+
+    :param host: bind address; ``0.0.0.0``/``::`` print as ``127.0.0.1``/``[::1]``.
+    :param port: TCP port.
+    :returns: ``http://HOST:PORT/``.
+    """
+    if host in ('0.0.0.0', ''):
+        host = '127.0.0.1'
+    elif host == '::':
+        host = '::1'
+    if ':' in host:
+        host = f'[{host}]'
+    return f'http://{host}:{port}/'
+
+
+def check_port(host, port, parameter='port'):
+    """
+    Raise :class:`PortInUse` when ``host:port`` cannot be bound.
+
+    :param host: bind address.
+    :param port: TCP port (1..65535).
+    :param parameter: the node parameter to name in the message.
+    :raises PortInUse: one line, e.g. ``port 8080 on 127.0.0.1 is already in use; choose
+        another with -p port:=N``.
+    """
+    family = socket.AF_INET6 if ':' in host else socket.AF_INET
+    sock = socket.socket(family, socket.SOCK_STREAM)
+    try:
+        sock.setsockopt(socket.SOL_SOCKET, socket.SO_REUSEADDR, 1)
+        sock.bind((host, port))
+    except OSError as exc:
+        if exc.errno == errno.EADDRINUSE:
+            raise PortInUse(f'port {port} on {host} is already in use; choose another with '
+                            f'-p {parameter}:=N') from None
+        raise PortInUse(f'cannot listen on {host}:{port} ({exc.strerror}); set -p '
+                        f'{parameter}:=N or -p host:=ADDRESS') from None
+    finally:
+        sock.close()
+
+
+def start_server(host, port, parameter='port'):
+    """
+    Start a ``viser.ViserServer`` on exactly ``host:port`` (its banner off).
+
+    :param host: bind address (127.0.0.1 keeps the page on this machine).
+    :param port: TCP port.
+    :param parameter: the node parameter to name in an error.
+    :returns: the running ``viser.ViserServer``; stop it with :func:`stop_server`.
+    :raises PortInUse: when the port is taken (checked before and after starting).
+
+    The page's share button is hidden and its request ignored: sharing opens a tunnel through
+    a server on the internet, and nothing of the page may leave this machine.
+    """
+    check_port(host, port, parameter)
+    import viser  # noqa: I100 - heavy import (~1 s), only once the port is known to be free
+    logging.getLogger('websockets').setLevel(logging.CRITICAL)
+    with contextlib.redirect_stdout(io.StringIO()):  # viser prints a banner even when quiet
+        server = viser.ViserServer(host=host, port=port, verbose=False)
+    if server.get_port() != port:  # lost a race for the port: viser moved to another one
+        stop_server(server)
+        raise PortInUse(f'port {port} on {host} is already in use; choose another with '
+                        f'-p {parameter}:=N')
+    server.request_share_url = lambda *args, **kwargs: None
+    server.gui.configure_theme(show_share_button=False, control_width='large')
+    return server
+
+
+def stop_server(server):
+    """Stop a server from :func:`start_server` and close its port (waits up to ~1 s)."""
+    with contextlib.redirect_stdout(io.StringIO()):  # viser prints 'Server stopped'
+        server.stop()
+
+
+def run_web_node(node_class, node_name, args=None):
+    """
+    Run a node that serves a page until Ctrl-C or SIGTERM (``main`` of the web nodes).
+
+    The project's clean-shutdown pattern (:mod:`amr_description.nodes.shutdown`) plus the web
+    part: once the node is built (its server listens) one line ``<node_name>: open URL in a
+    browser`` is printed; the server is stopped before the node is destroyed.
+
+    :param node_class: the Node class; its instances have ``url`` and ``stop_server()``.
+    :param node_name: the node's name, used in the URL line and the error line.
+    :param args: command-line arguments for rclpy (default ``sys.argv``).
+    :returns: 0 on a clean shutdown, 1 on a port in use or a bad parameter (one line).
+    """
+    import rclpy
+    from amr_description.nodes import shutdown
+    shutdown.init(args)
+    node = None
+    try:
+        node = shutdown.create(node_class)
+        print(f'{node_name}: open {node.url} in a browser', flush=True)
+        shutdown.spin(node)
+    except (PortInUse, ValueError) as exc:
+        if node is not None:
+            raise
+        rclpy.logging.get_logger(node_name).error(str(exc))
+        return 1
+    except KeyboardInterrupt:
+        pass
+    finally:
+        if node is not None:
+            node.stop_server()
+        shutdown.shutdown(node)
+    return 0

@@ -1,0 +1,166 @@
+# Copyright 2026 The amr_description Authors
+# Licensed under the Apache License, Version 2.0
+"""
+Fleets: two namespaced robots in one simulator, driven independently over DDS.
+
+``create -robot_namespace rI`` gives each robot its controller manager
+``/rI/controller_manager``, cmd_vel ``/rI/diff_drive_controller/cmd_vel``, odometry
+``/rI/odom`` (remapped as the fleet stack does), ground truth ``/rI/ground_truth/odom`` and TF
+frames ``rI/...`` (diff_drive_controller's ``tf_frame_prefix_enable``, robot_state_publisher's
+``frame_prefix``). The simulator is paused and stepped so sim-time durations are exact; each
+chunk is preceded by fresh commands (zero stamp: stamped on receipt by the controller).
+"""
+
+import math
+import os
+import re
+
+import pytest
+from test_sim import Peer  # noqa: I100 - the simulator tests' DDS peer
+
+ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', '..')
+URDF_PATH = os.path.join(ROOT, 'urdf', 'amr.urdf')
+CHUNK_STEPS = 250  # 0.25 s of 1 ms physics steps
+ROBOTS = {'r1': (0.0, 0.0), 'r2': (2.0, 0.0)}
+
+
+def _pose(msg):
+    p, q = msg.pose.pose.position, msg.pose.pose.orientation
+    return p.x, p.y, math.atan2(2.0 * (q.w * q.z + q.x * q.y), 1.0 - 2.0 * (q.y * q.y + q.z * q.z))
+
+
+class FleetPeer(Peer):
+    """Peer with per-robot cmd_vel publishers, odometry, ground truth and a /tf listener."""
+
+    def __init__(self, domain_id):
+        from geometry_msgs.msg import TwistStamped
+        from nav_msgs.msg import Odometry
+        from rclpy.qos import DurabilityPolicy
+        from rclpy.qos import QoSProfile
+        from tf2_msgs.msg import TFMessage
+        super().__init__(domain_id)
+        self.TwistStamped = TwistStamped
+        self.cmd, self.odom_of, self.truth_of = {}, {}, {}
+        for ns in ROBOTS:
+            self.cmd[ns] = self.node.create_publisher(
+                TwistStamped, f'/{ns}/diff_drive_controller/cmd_vel', 10)
+            self.odom_of[ns], self.truth_of[ns] = [], []
+            self.node.create_subscription(Odometry, f'/{ns}/odom', self.odom_of[ns].append, 100)
+            self.node.create_subscription(Odometry, f'/{ns}/ground_truth/odom',
+                                          self.truth_of[ns].append, 100)
+        self.edges = set()  # (parent, child) frame pairs seen on /tf and /tf_static
+        self.node.create_subscription(TFMessage, '/tf', self._on_tf, 100)
+        latched = QoSProfile(depth=10, durability=DurabilityPolicy.TRANSIENT_LOCAL)
+        self.node.create_subscription(TFMessage, '/tf_static', self._on_tf, latched)
+
+    def _on_tf(self, msg):
+        for t in msg.transforms:
+            self.edges.add((t.header.frame_id, t.child_frame_id))
+
+    def command(self, twists):
+        for ns, (linear, angular) in twists.items():
+            msg = self.TwistStamped()
+            msg.twist.linear.x = float(linear)
+            msg.twist.angular.z = float(angular)
+            self.cmd[ns].publish(msg)
+        self.spin_for(0.15)  # delivery over DDS while the simulation is paused
+
+    def step(self, steps):
+        start = self.now
+        request = self.srv.StepSimulation.Request()
+        request.steps = steps
+        assert self.call('step', request).result.result == self.msg.Result.RESULT_OK
+        assert self.spin_until(lambda: self.now >= start + steps * 1e-3 - 1e-9, 10)
+        self.spin_for(0.2)  # the last odometry and ground truth messages
+
+    def poses(self, ns):
+        return _pose(self.truth_of[ns][-1]), _pose(self.odom_of[ns][-1])
+
+
+@pytest.fixture
+def fleet_peer(ros_env):
+    pytest.importorskip('controller_manager_msgs.srv')
+    p = FleetPeer(int(ros_env['ROS_DOMAIN_ID']))
+    yield p
+    p.close()
+
+
+def test_two_namespaced_robots_drive_independently(procs, exe, ros_env, fleet_peer):
+    peer = fleet_peer
+    remaps = []
+    for ns in ROBOTS:
+        remaps += ['-r', f'/{ns}/diff_drive_controller/odom:=/{ns}/odom']
+    sim = procs.start([exe('mujoco_sim'), '--ros-args', '-p', 'real_time_factor:=0.0'] +
+                      remaps, ros_env)
+    assert peer.spin_until(lambda: peer.now is not None, 20), sim.output
+    with open(URDF_PATH) as f:
+        urdf = f.read()
+    for ns, (x, y) in ROBOTS.items():
+        procs.start([exe('robot_state_publisher'), '--ros-args', '-r', f'__ns:=/{ns}',
+                     '-p', 'use_sim_time:=true', '-p', f'frame_prefix:={ns}/',
+                     '-p', f'robot_description:={urdf}'], ros_env)
+        create = procs.start([exe('create'), '-topic', f'/{ns}/robot_description', '-name', ns,
+                              '-robot_namespace', ns, '-x', str(x), '-y', str(y), '-z', '0.2'],
+                             ros_env)
+        assert create.wait(60) == 0, create.output + sim.output
+    for ns in ROBOTS:
+        spawner = procs.start([exe('spawner'), '-c', f'/{ns}/controller_manager',
+                               'joint_state_broadcaster', 'diff_drive_controller',
+                               '--controller-manager-timeout', '30'], ros_env)
+        assert spawner.wait(90) == 0, spawner.output + sim.output
+    assert peer.set_state(peer.msg.SimulationState.STATE_PAUSED).result == \
+        peer.msg.Result.RESULT_OK
+    peer.step(500)
+    assert all(peer.odom_of[ns] and peer.truth_of[ns] for ns in ROBOTS), sim.output[-3000:]
+    start = {ns: peer.poses(ns) for ns in ROBOTS}
+    for ns, (x, y) in ROBOTS.items():  # each ground truth is its own robot's
+        assert start[ns][0][:2] == pytest.approx((x, y), abs=0.05)
+
+    # r1 forward, r2 turning in place, at the same time
+    for _ in range(8):
+        peer.command({'r1': (0.5, 0.0), 'r2': (0.0, 0.8)})
+        peer.step(CHUNK_STEPS)
+    peer.command({'r1': (0.0, 0.0), 'r2': (0.0, 0.0)})
+    peer.step(500)
+    end = {ns: peer.poses(ns) for ns in ROBOTS}
+
+    (t0, o0), (t1, o1) = start['r1'], end['r1']
+    forward = math.hypot(t1[0] - t0[0], t1[1] - t0[1])
+    assert forward == pytest.approx(1.0, rel=0.1) and t1[0] - t0[0] > 0.9
+    assert abs(t1[2] - t0[2]) < 0.05
+    assert math.hypot(o1[0] - o0[0], o1[1] - o0[1]) == pytest.approx(forward, rel=0.03)
+
+    (t0, o0), (t1, o1) = start['r2'], end['r2']
+    turn = t1[2] - t0[2]
+    assert turn > 0.8  # about 1.6 rad commanded
+    assert math.hypot(t1[0] - t0[0], t1[1] - t0[1]) < 0.1
+    assert o1[2] - o0[2] == pytest.approx(turn, rel=0.1)
+
+    # TF: two separate trees, every frame prefixed with its robot's namespace
+    assert peer.spin_until(lambda: all((f'{ns}/base_footprint', f'{ns}/base_link') in peer.edges
+                                       for ns in ROBOTS), 20), peer.edges
+    edges = set(peer.edges)
+    for ns in ROBOTS:
+        assert (f'{ns}/odom', f'{ns}/base_link') in edges, edges
+        assert (f'{ns}/base_link', f'{ns}/wheel_front_left') in edges, edges
+    for parent, child in edges:
+        assert re.match(r'r[12]/', child) and child[:3] == parent[:3], (parent, child)
+    # the controller's odometry frames too
+    assert peer.odom_of['r2'][-1].header.frame_id == 'r2/odom'
+    assert peer.odom_of['r2'][-1].child_frame_id == 'r2/base_link'
+
+
+def test_fleet_stack_comes_up(procs, exe, ros_env, tmp_path, fleet_peer):
+    peer = fleet_peer
+    from amr_description.launch.stacks import STACKS
+    argv = ['robots:=2', 'rtf:=0']
+    if 'viewer' in {d.name for d in STACKS['fleet'][1]}:
+        argv.append('viewer:=false')
+    proc = procs.start([exe('bringup'), 'fleet'] + argv, ros_env)
+    assert peer.spin_until(lambda: all(peer.odom_of[ns] and peer.truth_of[ns]
+                                       for ns in ROBOTS), 120), proc.output[-4000:]
+    for ns, (x, y) in ROBOTS.items():
+        assert _pose(peer.truth_of[ns][-1])[:2] == pytest.approx((x, y), abs=0.05)
+    assert peer.spin_until(lambda: ('r2/base_footprint', 'r2/base_link') in peer.edges, 30), \
+        peer.edges
+    assert proc.interrupt(timeout=30) == 0, proc.output[-3000:]

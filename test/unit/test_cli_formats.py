@@ -1,0 +1,109 @@
+# Copyright 2026 The amr_description Authors
+# Licensed under the Apache License, Version 2.0
+
+"""Output formatters of the ``ros2`` verbs against texts worked out from ros2cli/rosbag2."""
+
+import time
+
+from amr_description.cli.bag.info import format_duration
+from amr_description.cli.bag.info import format_info
+from amr_description.cli.bag.info import format_size
+from amr_description.cli.doctor import format_report
+from amr_description.cli.param.api import parameter_value_from_string
+from amr_description.cli.param.change import dump_yaml
+from amr_description.cli.topic.rates import format_bandwidth
+from amr_description.cli.topic.rates import format_delay
+from amr_description.core.message_yaml import message_to_csv
+import pytest
+
+
+def test_message_to_csv_flattens_in_field_order():
+    from geometry_msgs.msg import PoseStamped
+    msg = PoseStamped()
+    msg.header.stamp.sec, msg.header.frame_id = 3, 'map'
+    msg.pose.position.x, msg.pose.orientation.w = 1.5, 1.0
+    assert message_to_csv(msg) == '3,0,map,1.5,0.0,0.0,0.0,0.0,0.0,1.0'
+
+
+def test_message_to_csv_truncates_and_abbreviates():
+    from sensor_msgs.msg import JointState
+    msg = JointState(name=['a', 'b', 'c'], position=[1.0, 2.0, 3.0])
+    assert message_to_csv(msg, truncate_length=2) == '0,0,,a,b,...,1.0,2.0,...,,'
+    assert message_to_csv(msg, no_arr=True, no_str=True) == (
+        '0,0,<string length: <0>>,<sequence type: string, length: 3>,'
+        '<sequence type: double, length: 3>,<sequence type: double, length: 0>,'
+        '<sequence type: double, length: 0>')
+
+
+@pytest.mark.parametrize('size, text', [
+    (0, '0 B'), (1023, '1023 B'), (1024, '1.0 KiB'), (2_306_867, '2.2 MiB')])
+def test_bag_size_is_1024_based(size, text):
+    assert format_size(size) == text
+
+
+def test_bag_duration_keeps_upstreams_unpadded_milliseconds():
+    # rosbag2 writes std::to_string(ms % 1000): 5.005 s is printed "5.5"
+    assert format_duration(5_005_000_000) == '5.5'
+    assert format_duration(12_345_678_901) == '12.345'
+
+
+def test_bag_info_layout():
+    start = int(time.mktime((2026, 11, 21, 18, 55, 16, 0, 0, -1))) * 10 ** 9 + 123_000_000
+    text = format_info(['b_0.mcap'], 2048, 'mcap', 'jazzy', start, 2_500_000_000,
+                       [('/a', 'std_msgs/msg/String', 3, 'cdr'),
+                        ('/b', 'std_msgs/msg/Int32', 4, 'cdr')])
+    seconds = start // 10 ** 9
+    assert text == (
+        '\nFiles:             b_0.mcap\n'
+        'Bag size:          2.0 KiB\n'
+        'Storage id:        mcap\n'
+        'ROS Distro:        jazzy\n'
+        'Duration:          2.500s\n'
+        f'Start:             Nov 21 2026 18:55:16.123 ({seconds}.123)\n'
+        f'End:               Nov 21 2026 18:55:18.623 ({seconds + 2}.623)\n'
+        'Messages:          7\n'
+        'Topic information: Topic: /a | Type: std_msgs/msg/String | Count: 3 | '
+        'Serialization Format: cdr\n'
+        '                   Topic: /b | Type: std_msgs/msg/Int32 | Count: 4 | '
+        'Serialization Format: cdr\n'
+        'Service:           0\n'
+        'Service information: \n')
+
+
+def test_bandwidth_units_follow_the_rate():
+    assert format_bandwidth([68] * 10, 1.0) == (
+        '680 B/s from 10 messages\n\tMessage size mean: 68 B min: 68 B max: 68 B')
+    assert format_bandwidth([1500, 2500], 2.0) == (
+        '2.00 KB/s from 2 messages\n\tMessage size mean: 2.00 KB min: 1.50 KB max: 2.50 KB')
+
+
+def test_delay_statistics():
+    assert format_delay([0.1, 0.3]) == (
+        'average delay: 0.200\n\tmin: 0.100s max: 0.300s std dev: 0.10000s window: 2')
+
+
+def test_doctor_report_pads_to_longest_item_plus_four():
+    assert format_report('RMW MIDDLEWARE', [('middleware name', 'rmw_fastrtps_cpp')]) == (
+        '\n   RMW MIDDLEWARE\nmiddleware name    : rmw_fastrtps_cpp\n')
+
+
+@pytest.mark.parametrize('text, field, value', [
+    ('true', 'bool_value', True), ('3', 'integer_value', 3), ('2.5', 'double_value', 2.5),
+    ('hello', 'string_value', 'hello'), ('[1, 2]', 'integer_array_value', [1, 2]),
+    ('[a, b]', 'string_array_value', ['a', 'b']), ('[1, a]', 'string_value', '[1, a]'),
+    ('{x: [', 'string_value', '{x: ['),
+])
+def test_set_guesses_the_type_as_ros2param(text, field, value):
+    parameter = parameter_value_from_string(text)
+    assert list(getattr(parameter, field)) == value if isinstance(value, list) \
+        else getattr(parameter, field) == value
+
+
+def test_dump_nests_dotted_names_and_sorts():
+    from rcl_interfaces.msg import ParameterValue
+    names = ['linear.x.max_velocity', 'use_sim_time', 'wheel_names']
+    values = [ParameterValue(type=3, double_value=1.0), ParameterValue(type=1),
+              ParameterValue(type=9, string_array_value=['l', 'r'])]
+    assert dump_yaml('/ddc', names, values) == (
+        '/ddc:\n  ros__parameters:\n    linear:\n      x:\n        max_velocity: 1.0\n'
+        '    use_sim_time: false\n    wheel_names:\n    - l\n    - r\n\n')

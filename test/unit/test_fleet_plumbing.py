@@ -1,0 +1,177 @@
+# Copyright 2026 The amr_description Authors
+# Licensed under the Apache License, Version 2.0
+
+"""The fleet stack's description, the main job's robot table and the benchmark's plumbing."""
+
+import math
+import re
+
+from amr_description.core.course import square_course
+from amr_description.launch import stacks
+from amr_description.launch.actions import LaunchError
+from amr_description.launch.actions import Node
+from amr_description.launch.actions import OnProcessExit
+from amr_description.nodes import create
+from amr_description.nodes import drive_square
+from amr_description.sim import benchmark
+import pytest
+
+
+def test_fleet_grid_fills_rows_of_ceil_sqrt():
+    assert stacks.fleet_grid(1, 2.0) == [(0.0, 0.0)]
+    assert stacks.fleet_grid(4, 2.0) == [(0.0, 0.0), (2.0, 0.0), (0.0, 2.0), (2.0, 2.0)]
+    grid = stacks.fleet_grid(5, 1.5)
+    assert len(grid) == 5 and grid[3] == (0.0, 1.5) and grid[4] == (1.5, 1.5)
+    assert len(set(stacks.fleet_grid(32, 2.0))) == 32
+
+
+def _actions(argv):
+    return stacks.describe('fleet', argv)
+
+
+def test_fleet_stack_namespaces_every_robot():
+    actions = _actions(['robots:=3', 'spacing:=3.0', 'rtf:=0'])
+    nodes = [a for a in actions if isinstance(a, Node)]
+    sim = [n for n in nodes if n.executable == 'mujoco_sim']
+    assert len(sim) == 1
+    cmd = sim[0].build_cmd()
+    for ns in ('r1', 'r2', 'r3'):
+        assert f'/{ns}/diff_drive_controller/odom:=/{ns}/odom' in cmd
+    rsp = [n for n in nodes if n.executable == 'robot_state_publisher']
+    assert [n.namespace for n in rsp] == ['/r1', '/r2', '/r3']
+    assert [n.parameters[0]['frame_prefix'] for n in rsp] == ['r1/', 'r2/', 'r3/']
+    creates = [n for n in nodes if n.executable == 'create']
+    assert creates[1].arguments == ['-topic', '/r2/robot_description', '-name', 'r2',
+                                    '-robot_namespace', 'r2', '-x', '3.0', '-y', '0.0',
+                                    '-z', '0.2']
+    handlers = [a for a in actions if isinstance(a, OnProcessExit)]
+    assert len(handlers) == 3
+    spawner = handlers[2].on_exit[0]
+    assert spawner.arguments == ['-c', '/r3/controller_manager', 'joint_state_broadcaster',
+                                 'diff_drive_controller']
+
+
+@pytest.mark.parametrize('argv,field', [(['robots:=0'], 'robots'), (['robots:=two'], 'robots'),
+                                        (['spacing:=0'], 'spacing'), (['rtf:=-1'], 'rtf')])
+def test_fleet_stack_rejects_bad_arguments(argv, field):
+    with pytest.raises(LaunchError, match=f"'{field}'"):
+        _actions(argv)
+
+
+def test_sim_stack_keeps_the_robot_without_namespace():
+    nodes = [a for a in stacks.describe('sim', []) if isinstance(a, Node)]
+    assert all(n.namespace in (None, '', '/') for n in nodes)
+    create_node = [n for n in nodes if n.executable == 'create'][0]
+    assert '-robot_namespace' not in create_node.arguments
+
+
+def test_create_accepts_robot_namespace():
+    opts = create.build_parser().parse_args(['-topic', '/r1/robot_description',
+                                             '-robot_namespace', 'r1', '-x', '2'])
+    assert opts.robot_namespace == 'r1' and opts.x == 2.0
+    assert create.build_parser().parse_args(['-file', 'a.urdf']).robot_namespace == ''
+
+
+def test_robot_namespaces():
+    assert drive_square.robot_namespaces(1) == ['']
+    assert drive_square.robot_namespaces(3) == ['r1', 'r2', 'r3']
+    with pytest.raises(ValueError):
+        drive_square.robot_namespaces(0)
+
+
+def _square_marks(origin, side=1.0, error=0.0):
+    """Poses at the start and after each leg of a square, from ``origin``."""
+    x, y, yaw = origin
+    marks = [(x, y, yaw)]
+    for _ in range(4):
+        x, y = x + side * math.cos(yaw), y + side * math.sin(yaw)
+        marks.append((x, y, yaw))
+        yaw += math.pi / 2
+        marks.append((x, y, yaw))
+    last = marks[-1]
+    marks[-1] = (last[0] + error, last[1], last[2])
+    return marks
+
+
+def test_robot_table_one_row_per_robot_and_leg_summary():
+    legs = square_course(1.0)
+    robots = [('r1', _square_marks((0, 0, 0)), _square_marks((0, 0, 0), error=0.01), 0),
+              ('r2', _square_marks((2, 0, 0)), _square_marks((2, 0, 0), error=0.03), 2)]
+    text = drive_square.format_robot_table(legs, robots)
+    rows = [line.split() for line in text.splitlines() if re.match(r'r\d', line)]
+    assert [r[0] for r in rows] == ['r1', 'r2']
+    assert float(rows[0][1]) == pytest.approx(0.0, abs=1e-9)
+    assert float(rows[0][5]) == pytest.approx(0.01, abs=1e-3)
+    assert float(rows[1][5]) == pytest.approx(0.03, abs=1e-3) and rows[1][-1] == '2'
+    legs_rows = [line.split() for line in text.splitlines()
+                 if line.strip()[:1].isdigit()]
+    assert len(legs_rows) == 8
+    assert legs_rows[0][1] == 'straight' and float(legs_rows[0][4]) == pytest.approx(1.0)
+    assert legs_rows[1][1] == 'turn' and float(legs_rows[1][4]) == pytest.approx(90.0)
+
+
+def test_fleet_plot_draws_every_robot(tmp_path):
+    robots = []
+    for i, (x, y) in enumerate(stacks.fleet_grid(2, 2.0)):
+        marks = _square_marks((x, y, 0.0))
+        robots.append({'name': f'r{i + 1}', 'odom_path': [(m[0] - x, m[1] - y) for m in marks],
+                       'truth_path': [m[:2] for m in marks], 'odom_origin': (0.0, 0.0, 0.0),
+                       'truth_origin': (x, y, 0.0)})
+    path = tmp_path / 'path.png'
+    drive_square.write_fleet_plot(str(path), robots, 1.0)
+    assert path.read_bytes()[:8] == b'\x89PNG\r\n\x1a\n'
+
+
+def test_benchmark_wheel_speeds_closed_form(tmp_path):
+    config = tmp_path / 'controllers.yaml'
+    config.write_text('diff_drive_controller:\n  ros__parameters:\n    wheel_separation: 0.3\n'
+                      '    wheel_separation_multiplier: 4.2\n    wheel_radius: 0.1\n')
+    left, right = benchmark.wheel_speeds((0.3, 0.5), str(config))
+    assert left == pytest.approx((0.3 - 0.5 * 1.26 / 2) / 0.1)
+    assert right == pytest.approx((0.3 + 0.5 * 1.26 / 2) / 0.1)
+
+
+def test_benchmark_report_keeps_text_outside_the_markers(tmp_path):
+    doc = tmp_path / 'benchmark.md'
+    doc.write_text('# notes\nkept\n')
+    benchmark.write_report(str(doc), 'first')
+    assert doc.read_text().count('first') == 1 and 'kept' in doc.read_text()
+    benchmark.write_report(str(doc), 'second')
+    text = doc.read_text()
+    assert 'first' not in text and text.count('second') == 1 and 'kept' in text
+
+
+def test_benchmark_failure_is_not_a_figure(tmp_path, monkeypatch, capsys):
+    doc = tmp_path / 'benchmark.md'
+    doc.write_text('untouched\n')
+
+    def failing_run(*args, **kwargs):
+        raise benchmark.BenchmarkError('start-up, 2 robots, rtf 0',
+                                       'create-3 exited with code 1',
+                                       '[create-3] Failed request to create entity: boom')
+    monkeypatch.setattr(benchmark, 'run', failing_run)
+    assert benchmark.main(['--robots', '2', '--output', str(doc)]) == 1
+    err = capsys.readouterr().err
+    assert 'FAILED at start-up, 2 robots, rtf 0: create-3 exited with code 1' in err
+    assert 'boom' in err
+    assert doc.read_text() == 'untouched\n'
+
+
+def test_benchmark_robot_list_argument():
+    assert benchmark._robot_list('1,2,4') == [1, 2, 4]
+    for bad in ('', '0', 'a,b'):
+        with pytest.raises(Exception):
+            benchmark._robot_list(bad)
+
+
+def test_benchmark_targets_only_for_counts_run():
+    rows = [{'robots': 1, 'rtf': 1.0, 'fast': 60.0, 'raw': 100.0, 'startup': 1.5,
+             'cost_rel': 1.0},
+            {'robots': 16, 'rtf': 0.8, 'fast': 3.0, 'raw': 6.0, 'startup': 12.0,
+             'cost_rel': 1.25}]
+    result = {d: ok for d, _, ok in benchmark.targets(rows)}
+    assert result['1 robot, fast: >= 60 % of raw mj_step'] is True
+    assert result['16 robots, real time: rtf >= 1.0'] is False
+    assert result['16 robots, fast: cost per robot-second <= 1.3x linear'] is True
+    assert result['16 robots: all controllers active < 10 s'] is False
+    assert benchmark.targets(rows[:1])[0][0].startswith('1 robot')

@@ -1,0 +1,102 @@
+# Copyright 2026 The amr_description Authors
+# Licensed under the Apache License, Version 2.0
+
+"""The shared start/stop pattern: signals never raise inside rclpy, whole numbers for floats."""
+
+import os
+import signal
+
+import pytest
+
+rclpy = pytest.importorskip('rclpy')
+
+from amr_description.nodes import shutdown  # noqa: E402, I100 - after the skip
+from conftest import next_domain_id  # noqa: E402
+from conftest import release_domain_id  # noqa: E402
+
+
+@pytest.fixture
+def pattern(monkeypatch):
+    """Run the pattern in this process on a private domain; restore signals afterwards."""
+    domain = next_domain_id()
+    monkeypatch.setenv('ROS_DOMAIN_ID', str(domain))
+    monkeypatch.setenv('ROS_AUTOMATIC_DISCOVERY_RANGE', 'LOCALHOST')
+    handlers = {signum: signal.getsignal(signum) for signum in (signal.SIGINT, signal.SIGTERM)}
+    shutdown._interrupted.clear()
+    yield shutdown
+    rclpy.try_shutdown()
+    shutdown._interrupted.clear()
+    for signum, handler in handlers.items():
+        signal.signal(signum, handler)
+    release_domain_id(domain)
+
+
+def test_signal_inside_a_callback_stops_spin_after_it(pattern):
+    pattern.init(['test_shutdown'])
+    node = pattern.create(pattern.Node, 'test_shutdown')
+    steps = []
+
+    def callback():
+        steps.append('signal')
+        os.kill(os.getpid(), signal.SIGINT)
+        # Python code after the signal, as in a message's conversion inside take_message: the
+        # handler must not raise here
+        steps.extend(str(i) for i in range(1000))
+        steps.append('done')
+
+    node.create_timer(0.01, callback)
+    with pytest.raises(KeyboardInterrupt):
+        pattern.spin(node)
+    assert steps[0] == 'signal' and steps[-1] == 'done' and steps.count('signal') == 1
+    assert pattern.interrupted()
+    pattern.shutdown(node)
+
+
+def test_signal_outside_spin_raises_at_once(pattern):
+    pattern.init(['test_shutdown'])
+    with pytest.raises(KeyboardInterrupt):
+        os.kill(os.getpid(), signal.SIGTERM)
+        for _ in range(10 ** 7):  # the handler runs between these bytecodes
+            pass
+    os.kill(os.getpid(), signal.SIGINT)  # a second signal during the cleanup: ignored
+    pattern.shutdown()
+
+
+def test_whole_number_for_a_float_parameter(pattern):
+    pattern.init(['test_shutdown', '--ros-args', '-p', 'rate:=0', '-p', 'count:=2',
+                  '-p', 'ratio:=3'])
+    node = pattern.create(pattern.Node, 'test_shutdown')
+    assert node.declare_parameter('rate', 1.5).value == 0.0
+    assert isinstance(node.get_parameter('rate').value, float)
+    assert node.declare_parameter('count', 1).value == 2  # integers stay integers
+    assert node.declare_parameter(
+        'ratio', rclpy.Parameter.Type.DOUBLE).value == 3.0
+    pattern.shutdown(node)
+
+
+def test_wrong_type_is_one_line_and_exit_1(pattern, capfd):
+    pattern.init(['test_shutdown', '--ros-args', '-p', 'rate:=fast'])
+
+    class Rated(pattern.Node):
+
+        def __init__(self):
+            super().__init__('test_shutdown')
+            self.declare_parameter('rate', 1.5)
+
+    with pytest.raises(SystemExit) as info:
+        pattern.create(Rated)
+    assert info.value.code == 1
+    err = capfd.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "'rate'" in err[0] and "expecting type 'DOUBLE'" in err[0]
+
+
+def test_rcl_argument_error_is_one_line_and_exit_1(pattern, capfd):
+    with pytest.raises(SystemExit) as info:
+        pattern.init(['my_node', '--ros-args', '-p', 'robot_description:=<not xml: [>'])
+    assert info.value.code == 1
+    err = capfd.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and '[my_node]' in err[0]
+    assert "Couldn't parse parameter override rule" in err[0]
+    with pytest.raises(SystemExit):
+        pattern.remove_ros_args(['my_node', '--ros-args', '-p', 'x:='])
+    assert len(capfd.readouterr().err.strip().splitlines()) == 1
