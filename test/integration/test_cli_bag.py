@@ -102,9 +102,11 @@ def test_sim_stack_round_trip_is_byte_identical(ros_env, procs, exe, tmp_path):
     assert counts.get('/odom', 0) >= 50 and counts.get('/joint_states', 0) >= 100, counts
     assert counts.get('/tf_static') == 1 and counts.get('/robot_description') == 1, counts
     stamps = [t for _, t, _ in recorded]
-    # --max-duration counts 5 s of sim time from the recorder's first /clock; the first message
+    # with --use-sim-time nothing is written before the recorder's first /clock (no stamp 0,
+    # as rosbag2); --max-duration counts 5 s of sim time from it, and the first message
     # comes once discovery matched the publishers, which can take a while on a loaded machine
     # (seen: 0.5 s), so the bag spans a little under 5 s
+    assert stamps[0] > 0, stamps[:5]
     assert stamps == sorted(stamps) and 2.5e9 <= stamps[-1] - stamps[0] <= 5.5e9, stamps[::50]
     odom = next(d for t, _, _, _, d in independent if t == '/odom')
     assert (odom.header.frame_id, odom.child_frame_id) == ('odom', 'base_link')

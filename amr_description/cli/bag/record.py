@@ -132,10 +132,11 @@ class Recorder:
         return time.time_ns()
 
     def _write(self, connection, data):
-        if self.error is not None:
+        stamp = self.now_ns()
+        if self.error is not None or stamp <= 0:
             return
         try:
-            self.writer.write(connection, self.now_ns(), data)
+            self.writer.write(connection, stamp, data)
             self.count += 1
         except Exception as exc:  # noqa: B902 - OSError, or the database's own error kinds
             self.error = exc
@@ -245,12 +246,15 @@ def _record(args):
         try:
             while node.context.ok() and recorder.error is None and not stop:
                 now = time.monotonic()
-                if now >= next_poll:
-                    recorder.discover()
-                    next_poll = now + args.polling_interval / 1000.0
                 if started is None and recorder.now_ns() > 0:
                     started = recorder.now_ns()
                     node.get_logger().info('Recording...')
+                # with --use-sim-time nothing is subscribed before the first /clock, as
+                # rosbag2 (ros2/rosbag2#1378): a message stamped 0 would make the bag span
+                # from 1970 to the simulation's time
+                if now >= next_poll and started is not None:
+                    recorder.discover()
+                    next_poll = now + args.polling_interval / 1000.0
                 if args.max_duration and started is not None and \
                         recorder.now_ns() - started >= args.max_duration * 1e9:
                     break
@@ -317,7 +321,8 @@ def add_verbs(verbs):
                         '(default: 0, record until Ctrl-C).')
     p.add_argument('--use-sim-time', action='store_true',
                    help='Use simulation time for message timestamps by subscribing to the '
-                        '/clock topic.')
+                        '/clock topic. Until first /clock message is received, no messages '
+                        'will be written to bag.')
     p.add_argument('-p', '--polling-interval', type=int, default=100, metavar='MS',
                    help='Time in ms to wait between querying available topics for recording.')
     p.set_defaults(main=_record)
