@@ -104,6 +104,29 @@ def ros_env():
     release_domain_id(domain)
 
 
+def run_until(argv, env, check, timeout=90.0, **kwargs):
+    """
+    Run a command again and again until its result passes ``check`` (for graph queries).
+
+    A fresh ``ros2`` process answers from what its own discovery found in its spin time; on a
+    loaded machine that can miss a node or an endpoint that exists. This waits for the
+    observed answer instead of trusting one snapshot.
+
+    :param argv: command line, a list of str.
+    :param env: environment dict.
+    :param check: callable ``check(completed_process) -> bool``.
+    :param timeout: seconds to keep trying.
+    :param kwargs: extra :func:`subprocess.run` arguments.
+    :returns: the last :class:`subprocess.CompletedProcess` (``check`` may be false on it).
+    """
+    deadline = time.monotonic() + timeout
+    while True:
+        result = subprocess.run(argv, env=env, capture_output=True, text=True,
+                                timeout=max(60.0, timeout), **kwargs)
+        if check(result) or time.monotonic() >= deadline:
+            return result
+
+
 class Proc:
     """A started child process whose combined stdout/stderr goes to a temporary file."""
 
@@ -128,7 +151,7 @@ class Proc:
         with open(self._log.name, 'r', errors='replace') as f:
             return f.read()
 
-    def wait_for_output(self, text, timeout=20.0):
+    def wait_for_output(self, text, timeout=60.0):
         """
         Wait until ``text`` appears in the output.
 
@@ -152,7 +175,7 @@ class Proc:
         except subprocess.TimeoutExpired:
             return None
 
-    def interrupt(self, timeout=10.0):
+    def interrupt(self, timeout=30.0):
         """Send SIGINT (Ctrl-C) to the process group and return the exit code (None on timeout)."""
         if self.popen.poll() is None:
             os.killpg(self.popen.pid, signal.SIGINT)

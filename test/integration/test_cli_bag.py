@@ -186,7 +186,7 @@ def test_killed_recorder_leaves_a_readable_bag(ros_env, procs, exe, tmp_path):
     output = tmp_path / 'killed'
     rec = _record_talker(procs, exe, ros_env, output)
     os.killpg(rec.popen.pid, signal.SIGKILL)
-    rec.wait(10.0)
+    rec.wait(60.0)
     # the first reader closes the unfinished MCAP file after its last complete record
     info = _ros2(exe, ros_env, 'bag', 'info', str(output))
     assert info.returncode == 0, info.stderr
@@ -243,8 +243,8 @@ def test_play_options_topics_offset_rate_loop(ros_env, procs, exe, tmp_path):
     # at rate 4 the replay takes a quarter of the bag's span (plus the 3 s delay and 0.5 s
     # drain), far less than the span itself when the span is long enough to tell
     span = (stamps[-1] - stamps[2]) / 1e9
-    assert elapsed < 3.5 + span / 4 + 10.0
-    deadline = time.monotonic() + 20.0
+    assert elapsed < 3.5 + span / 4 + 30.0
+    deadline = time.monotonic() + 60.0
     while time.monotonic() < deadline and echo.output.count('---') < len(recorded) - 2:
         time.sleep(0.2)
     from std_msgs.msg import String
@@ -260,4 +260,4 @@ def test_play_options_topics_offset_rate_loop(ros_env, procs, exe, tmp_path):
     while time.monotonic() < deadline and echo.output.count(f"data: '{expected[0]}'") < 3:
         time.sleep(0.2)
     assert echo.output.count(f"data: '{expected[0]}'") >= 3, echo.output
-    assert loop.interrupt(timeout=20.0) == 0, loop.output
+    assert loop.interrupt(timeout=60.0) == 0, loop.output

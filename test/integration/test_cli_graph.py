@@ -25,8 +25,12 @@ def _ros2(exe, env, *argv, timeout=60):
 
 
 def test_node_info_of_talker(ros_env, procs, exe):
+    from conftest import run_until
     procs.start([exe('talker')], ros_env)
-    result = _ros2(exe, ros_env, 'node', 'info', '/minimal_publisher')
+    # a fresh process's discovery may miss endpoints on a loaded machine: ask until complete
+    result = run_until([exe('ros2'), 'node', 'info', '/minimal_publisher'], ros_env, lambda r: (
+        '    /topic: std_msgs/msg/String\n' in r.stdout
+        and '/minimal_publisher/list_parameters:' in r.stdout))
     assert result.returncode == 0, result.stderr
     out = result.stdout
     assert out.startswith('/minimal_publisher\n  Subscribers:\n\n  Publishers:\n'), out
@@ -42,12 +46,17 @@ def test_node_info_of_talker(ros_env, procs, exe):
 
 
 def test_topic_list_verbose_find_and_service_find(ros_env, procs, exe):
+    from conftest import run_until
     procs.start([exe('talker')], ros_env)
     listener = procs.start([exe('listener')], ros_env)
     # both nodes are up and matched once the listener hears the talker (a loaded machine
     # takes seconds to start two Python processes)
     assert listener.wait_for_output('I heard', timeout=90.0), listener.output
-    result = _ros2(exe, ros_env, 'topic', 'list', '-v')
+    # each query is a fresh process whose discovery may still be incomplete after its spin
+    # time: ask again until the answer holds what the graph has (or the deadline passes)
+    result = run_until([exe('ros2'), 'topic', 'list', '-v'], ros_env, lambda r: (
+        ' * /topic [std_msgs/msg/String] 1 publisher' in r.stdout.splitlines()
+        and ' * /topic [std_msgs/msg/String] 1 subscriber' in r.stdout.splitlines()))
     assert result.returncode == 0, result.stderr
     published, subscribed = result.stdout.split('\n\n')[:2]
     assert published.startswith('Published topics:\n')
@@ -55,15 +64,18 @@ def test_topic_list_verbose_find_and_service_find(ros_env, procs, exe):
     assert subscribed.startswith('Subscribed topics:\n')
     assert ' * /topic [std_msgs/msg/String] 1 subscriber' in subscribed.splitlines()
 
-    result = _ros2(exe, ros_env, 'topic', 'find', 'std_msgs/msg/String')
+    result = run_until([exe('ros2'), 'topic', 'find', 'std_msgs/msg/String'], ros_env,
+                       lambda r: r.stdout == '/topic\n')
     assert result.stdout == '/topic\n', result.stdout
-    result = _ros2(exe, ros_env, 'topic', 'find', '-c', 'std_msgs/msg/String')
+    result = run_until([exe('ros2'), 'topic', 'find', '-c', 'std_msgs/msg/String'], ros_env,
+                       lambda r: r.stdout == '1\n')
     assert result.stdout == '1\n'
 
-    result = _ros2(exe, ros_env, 'service', 'find', 'rcl_interfaces/srv/ListParameters')
+    expected = {'/minimal_publisher/list_parameters', '/minimal_subscriber/list_parameters'}
+    result = run_until([exe('ros2'), 'service', 'find', 'rcl_interfaces/srv/ListParameters'],
+                       ros_env, lambda r: expected <= set(r.stdout.splitlines()))
     lines = result.stdout.splitlines()
-    assert '/minimal_publisher/list_parameters' in lines
-    assert '/minimal_subscriber/list_parameters' in lines
+    assert expected <= set(lines), result.stdout
     assert all(line.endswith('/list_parameters') for line in lines)
 
 

@@ -8,7 +8,7 @@ import subprocess
 
 def test_interface_show_twist_stamped(ros_env, exe):
     result = subprocess.run([exe('ros2'), 'interface', 'show', 'geometry_msgs/msg/TwistStamped'],
-                            env=ros_env, capture_output=True, text=True, timeout=10)
+                            env=ros_env, capture_output=True, text=True, timeout=60)
     assert result.returncode == 0, result.stderr
     assert result.stdout.endswith(
         'std_msgs/Header header\n\tbuiltin_interfaces/Time stamp\n\t\tint32 sec\n'
@@ -19,5 +19,5 @@ def test_interface_show_twist_stamped(ros_env, exe):
 
 def test_interface_show_unknown_is_one_line_error(ros_env, exe):
     result = subprocess.run([exe('ros2'), 'interface', 'show', 'nope_msgs/msg/X'],
-                            env=ros_env, capture_output=True, text=True, timeout=10)
+                            env=ros_env, capture_output=True, text=True, timeout=60)
     assert (result.returncode, result.stderr) == (1, "Unknown package 'nope_msgs'\n")

@@ -49,7 +49,9 @@ def test_param_verbs_on_robot_state_publisher(ros_env, procs, exe, tmp_path):
                    '--param-prefixes', 'publish_frequency', 'frame')
     assert result.stdout == '  publish_frequency (type: double)\n', result.stdout
 
-    result = _ros2(exe, ros_env, 'param', 'list')
+    from conftest import run_until  # every node: a discovery snapshot, asked until complete
+    result = run_until([exe('ros2'), 'param', 'list'], ros_env,
+                       lambda r: '/robot_state_publisher:\n' in r.stdout)
     assert '/robot_state_publisher:\n' in result.stdout, result.stdout
 
     result = _ros2(exe, ros_env, 'param', 'get', '/robot_state_publisher', 'publish_frequency')

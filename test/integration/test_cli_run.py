@@ -13,7 +13,7 @@ import pytest
 
 def test_run_talker_through_ament_index(ros_env, procs, exe):
     run = procs.start([exe('ros2'), 'run', 'amr_description', 'talker'], ros_env)
-    assert run.wait_for_output('Publishing: "Hello World: 0"', timeout=10.0), run.output
+    assert run.wait_for_output('Publishing: "Hello World: 0"', timeout=60.0), run.output
     assert run.interrupt() == 0
     assert 'Traceback' not in run.output
 
@@ -21,22 +21,22 @@ def test_run_talker_through_ament_index(ros_env, procs, exe):
 def test_run_passes_arguments_and_ros_args(ros_env, procs, exe):
     run = procs.start([exe('ros2'), 'run', 'amr_description', 'talker', '--ros-args',
                        '-r', '__node:=renamed'], ros_env)
-    assert run.wait_for_output('[renamed]: Publishing', timeout=10.0), run.output
+    assert run.wait_for_output('[renamed]: Publishing', timeout=60.0), run.output
     assert run.interrupt() == 0
 
 
 def test_run_errors_in_upstream_wording(ros_env, exe):
     result = subprocess.run([exe('ros2'), 'run', 'no_such_pkg', 'x'], env=ros_env,
-                            capture_output=True, text=True, timeout=10)
+                            capture_output=True, text=True, timeout=60)
     assert (result.returncode, result.stderr) == (1, "Package 'no_such_pkg' not found\n")
     result = subprocess.run([exe('ros2'), 'run', 'amr_description', 'nope'], env=ros_env,
-                            capture_output=True, text=True, timeout=10)
+                            capture_output=True, text=True, timeout=60)
     assert (result.returncode, result.stderr) == (1, 'No executable found\n')
 
 
 def test_pkg_executables_lists_talker(ros_env, exe):
     result = subprocess.run([exe('ros2'), 'pkg', 'executables', 'amr_description'],
-                            env=ros_env, capture_output=True, text=True, timeout=10)
+                            env=ros_env, capture_output=True, text=True, timeout=60)
     lines = result.stdout.splitlines()
     assert 'amr_description talker' in lines and lines == sorted(lines)
 
@@ -75,12 +75,12 @@ def _gone(pid, timeout=15.0):
 @pytest.mark.parametrize('signum', [signal.SIGINT, signal.SIGTERM, signal.SIGKILL])
 def test_run_leaves_no_orphan_whatever_signal_reaches_it_alone(ros_env, procs, exe, signum):
     run = procs.start([exe('ros2'), 'run', 'amr_description', 'talker'], ros_env)
-    assert run.wait_for_output('Publishing: "Hello World: 0"', timeout=20.0), run.output
+    assert run.wait_for_output('Publishing: "Hello World: 0"', timeout=60.0), run.output
     children = _children(run.popen.pid)
     assert len(children) == 1, children
     os.kill(run.popen.pid, signum)  # to ros2 run alone, not to its process group
     assert _gone(children[0]), f'talker {children[0]} outlived ros2 run after {signum!r}'
-    code = run.wait(15.0)
+    code = run.wait(60.0)
     if signum == signal.SIGKILL:
         assert code == -signal.SIGKILL
     else:
@@ -91,6 +91,6 @@ def test_run_leaves_no_orphan_whatever_signal_reaches_it_alone(ros_env, procs, e
 
 def test_run_terminal_ctrl_c_reaches_child_once(ros_env, procs, exe):
     run = procs.start([exe('ros2'), 'run', 'amr_description', 'talker'], ros_env)
-    assert run.wait_for_output('Publishing: "Hello World: 0"', timeout=20.0), run.output
+    assert run.wait_for_output('Publishing: "Hello World: 0"', timeout=60.0), run.output
     assert run.interrupt() == 0  # SIGINT to the whole process group, as a terminal does
     assert 'Traceback' not in run.output

@@ -131,7 +131,7 @@ def test_controller_ros_args_remap(cm_proc, ros_env, procs, exe):
     deadline = time.monotonic() + 60.0
     while time.monotonic() < deadline:
         code, topics = _ros2(procs, exe, ros_env, 'topic', 'list')
-        if '/cmd_vel_remapped' in topics:
+        if '/cmd_vel_remapped' in topics and '/diff_drive_controller/odom' in topics:
             break
     assert '/cmd_vel_remapped' in topics
     assert '/diff_drive_controller/cmd_vel' not in topics

@@ -43,6 +43,6 @@ def test_display_stack_forms_one_tf_tree(ros_env, procs, exe):
             {f for f in FRAMES if f.startswith('wheel_')}
     finally:
         peer.close()
-    assert stack.interrupt(timeout=20.0) == 0, stack.output[-3000:]
+    assert stack.interrupt(timeout=60.0) == 0, stack.output[-3000:]
     assert 'Traceback' not in stack.output, stack.output[-3000:]
     assert 'process has died' not in stack.output, stack.output[-3000:]

@@ -42,7 +42,7 @@ def _alive(pid):
         return False
 
 
-def _run(actions, timeout=10.0, **kwargs):
+def _run(actions, timeout=60.0, **kwargs):
     out = io.StringIO()
     orch = Orchestrator(actions, stream=out, **kwargs).start()
     finished = orch.wait(timeout)
@@ -78,7 +78,8 @@ def test_required_exit_shuts_the_stack_down():
     short = _py('import time; time.sleep(0.3)', 'short', required=True)
     start = time.monotonic()
     orch, out, finished = _run([sleeper, short])
-    assert finished and time.monotonic() - start < 5.0, out
+    # well before the sleeper's own 30 s: the required process's exit stopped it
+    assert finished and time.monotonic() - start < 20.0, out
     record = orch.find('sleeper')[0]
     assert record.returncode == -signal.SIGINT, out
     assert not _alive(record.pid)
@@ -89,11 +90,15 @@ def test_respawn_with_delay(tmp_path):
     code = f'import time; open({str(stamps)!r}, "a").write(f"{{time.monotonic()}}\\n")'
     orch = Orchestrator([_py(code, 'flaky', respawn=True, respawn_delay=0.5)],
                         stream=io.StringIO()).start()
-    time.sleep(2.2)
+    # wait for three starts (a loaded machine takes a while to start each interpreter)
+    deadline = time.monotonic() + 60.0
+    while time.monotonic() < deadline and (
+            not stamps.exists() or len(stamps.read_text().split()) < 3):
+        time.sleep(0.05)
     orch.shutdown()
-    assert orch.wait(10)
+    assert orch.wait(30)
     times = [float(t) for t in stamps.read_text().split()]
-    assert 3 <= len(times) <= 5, times
+    assert len(times) >= 3, times
     gaps = [b - a for a, b in zip(times, times[1:])]
     assert all(g >= 0.5 for g in gaps), gaps
     record = orch.find('flaky')[0]
@@ -106,7 +111,7 @@ def test_context_manager_stops_everything():
     code = 'import time; print("ready", flush=True); time.sleep(30)'
     with Orchestrator([_py(code, 'a'), _py(code, 'b')], stream=io.StringIO(),
                       line_callback=lambda label, line: ready.append(label)) as orch:
-        deadline = time.monotonic() + 5
+        deadline = time.monotonic() + 60
         while len(ready) < 2 and time.monotonic() < deadline:
             time.sleep(0.05)
         assert sorted(ready) == ['a-1', 'b-2']
@@ -128,9 +133,9 @@ def _start_driver(procs, ros_env, tmp_path):
     sleeper = 'import time; print("ready", flush=True); time.sleep(60)'
     script.write_text(DRIVER.format(stubborn=STUBBORN, sleeper=sleeper))
     proc = procs.start([PY, str(script)], ros_env)
-    assert proc.wait_for_output('[stubborn-1] ready', timeout=10), proc.output
-    assert proc.wait_for_output('[sleeper-2] ready', timeout=10), proc.output
-    deadline = time.monotonic() + 5
+    assert proc.wait_for_output('[stubborn-1] ready', timeout=60), proc.output
+    assert proc.wait_for_output('[sleeper-2] ready', timeout=60), proc.output
+    deadline = time.monotonic() + 60
     while len(_pids(proc.output)) < 2 and time.monotonic() < deadline:
         time.sleep(0.05)
     pids = _pids(proc.output)
@@ -144,9 +149,11 @@ def test_sigint_escalates_to_sigterm_then_sigkill(procs, ros_env, tmp_path):
     os.kill(proc.popen.pid, signal.SIGINT)
     time.sleep(0.2)
     os.kill(proc.popen.pid, signal.SIGINT)  # a second Ctrl-C changes nothing
-    assert proc.wait(10) == 0, proc.output
+    assert proc.wait(60) == 0, proc.output
     elapsed = time.monotonic() - start
-    assert 1.1 <= elapsed < 4.0, (elapsed, proc.output)
+    # 0.6 s to SIGTERM plus 0.6 s to SIGKILL; the upper bound leaves room for a loaded
+    # machine and still fails if the stubborn process were waited for (its own 60 s)
+    assert 1.1 <= elapsed < 20.0, (elapsed, proc.output)
     out = proc.output
     assert '[WARNING] [launch]: user interrupted with ctrl-c (SIGINT)\n' in out
     assert 'user interrupted with ctrl-c (SIGINT) again, ignoring...' in out
@@ -164,8 +171,8 @@ def test_sigint_escalates_to_sigterm_then_sigkill(procs, ros_env, tmp_path):
 def test_no_orphans_when_orchestrator_is_sigkilled(procs, ros_env, tmp_path):
     proc, pids = _start_driver(procs, ros_env, tmp_path)
     os.kill(proc.popen.pid, signal.SIGKILL)  # only the orchestrator, not its group
-    proc.wait(5)
-    deadline = time.monotonic() + 3
+    proc.wait(30)
+    deadline = time.monotonic() + 30
     while any(_alive(pid) for pid in pids.values()) and time.monotonic() < deadline:
         time.sleep(0.05)
     assert not any(_alive(pid) for pid in pids.values())

@@ -53,7 +53,7 @@ class Peer:
         """Return the latest /clock time in s (None before the first message)."""
         return self.clock[-1] if self.clock else None
 
-    def spin_until(self, predicate, timeout=10.0):
+    def spin_until(self, predicate, timeout=60.0):
         deadline = time.monotonic() + timeout
         while time.monotonic() < deadline:
             if predicate():
@@ -64,7 +64,7 @@ class Peer:
     def spin_for(self, seconds):
         self.spin_until(lambda: False, timeout=seconds)
 
-    def call(self, name, request, timeout=10.0):
+    def call(self, name, request, timeout=60.0):
         client = self.clients[name]
         assert client.wait_for_service(timeout_sec=timeout), f'no service {name}'
         future = client.call_async(request)
@@ -99,14 +99,14 @@ def _sim(procs, exe, ros_env, *params):
 def test_clock_spawn_settle_pause_step_reset(procs, exe, ros_env, peer):
     sim = _sim(procs, exe, ros_env)
     # /clock runs before any robot exists, fast-forward
-    assert peer.spin_until(lambda: peer.now is not None and peer.now > 1.0, 15), sim.output
+    assert peer.spin_until(lambda: peer.now is not None and peer.now > 1.0, 60), sim.output
     create = procs.start([exe('create'), '-file', URDF_PATH, '-name', 'amr', '-z', '0.2'],
                          ros_env)
     assert create.wait(40) == 0, create.output + sim.output
     assert 'OK creation of entity [amr].' in create.output
     # dropped from 0.2 m, comes to rest on its wheels: base_footprint on the ground
     spawned_at = peer.now
-    assert peer.spin_until(lambda: peer.odom and peer.now > spawned_at + 3.0, 20)
+    assert peer.spin_until(lambda: peer.odom and peer.now > spawned_at + 3.0, 60)
     rest = peer.odom[-1]
     assert rest.header.frame_id == 'world' and rest.child_frame_id == 'base_footprint'
     assert abs(rest.pose.pose.position.z) < 0.005
@@ -130,15 +130,15 @@ def test_clock_spawn_settle_pause_step_reset(procs, exe, ros_env, peer):
     step = peer.srv.StepSimulation.Request()
     step.steps = 250
     assert peer.call('step', step).result.result == peer.msg.Result.RESULT_OK
-    assert peer.spin_until(lambda: peer.now >= paused_at + 0.25 - 1e-9, 5)
+    assert peer.spin_until(lambda: peer.now >= paused_at + 0.25 - 1e-9, 60)
     assert peer.now == pytest.approx(paused_at + 0.25, abs=1e-6)
 
     assert peer.call('reset', peer.srv.ResetSimulation.Request()).result.result == \
         peer.msg.Result.RESULT_OK
-    assert peer.spin_until(lambda: peer.now == 0.0, 5)
-    assert peer.spin_until(lambda: peer.odom[-1].pose.pose.position.z > 0.19, 5)
+    assert peer.spin_until(lambda: peer.now == 0.0, 60)
+    assert peer.spin_until(lambda: peer.odom[-1].pose.pose.position.z > 0.19, 60)
     assert peer.set_state(PLAYING).result == peer.msg.Result.RESULT_OK
-    assert peer.spin_until(lambda: peer.now > 1.0, 10)
+    assert peer.spin_until(lambda: peer.now > 1.0, 60)
     step.steps = 1
     assert peer.call('step', step).result.result == peer.msg.Result.RESULT_OPERATION_FAILED
     assert sim.popen.poll() is None
@@ -146,7 +146,7 @@ def test_clock_spawn_settle_pause_step_reset(procs, exe, ros_env, peer):
 
 def test_bad_input_keeps_simulator_running(procs, exe, ros_env, peer, tmp_path):
     sim = _sim(procs, exe, ros_env)
-    assert peer.spin_until(lambda: peer.now is not None, 15), sim.output
+    assert peer.spin_until(lambda: peer.now is not None, 60), sim.output
     with open(URDF_PATH) as f:
         good = f.read()
     cases = [
@@ -164,7 +164,7 @@ def test_bad_input_keeps_simulator_running(procs, exe, ros_env, peer, tmp_path):
         assert len(errors) == 1 and message in errors[0], create.output
         assert 'Traceback' not in sim.output
     before = peer.now
-    assert peer.spin_until(lambda: peer.now > before + 0.5, 10)
+    assert peer.spin_until(lambda: peer.now > before + 0.5, 60)
     # the simulator is still usable: the good robot spawns, a second one with that name not
     create = procs.start([exe('create'), '-file', URDF_PATH], ros_env)
     assert create.wait(40) == 0, create.output + sim.output
@@ -173,7 +173,7 @@ def test_bad_input_keeps_simulator_running(procs, exe, ros_env, peer, tmp_path):
     assert again.wait(40) == 1
     assert 'already exists' in again.output
     missing = procs.start([exe('create'), '-file', str(tmp_path / 'none.urdf')], ros_env)
-    assert missing.wait(20) == 1
+    assert missing.wait(60) == 1
     assert 'cannot read -file' in missing.output
     assert sim.interrupt(10) == 0
     assert 'Traceback' not in sim.output
@@ -198,7 +198,7 @@ def test_create_from_topic_with_pose(procs, exe, ros_env, peer):
     create = procs.start([exe('create'), '-topic', 'robot_description', '-x', '1.0', '-y',
                           '-2.0', '-z', '0.2', '-Y', '1.5707963'], ros_env)
     # the latched description reaches create while the test spins its publisher
-    assert peer.spin_until(lambda: create.popen.poll() is not None, 40), create.output
+    assert peer.spin_until(lambda: create.popen.poll() is not None, 60), create.output
     assert create.popen.returncode == 0, create.output + sim.output
     assert 'Waiting messages on topic [robot_description].' in create.output
     assert peer.spin_until(lambda: peer.odom and peer.now > 2.0 and
@@ -214,11 +214,11 @@ def test_create_from_topic_with_pose(procs, exe, ros_env, peer):
 
 def test_start_paused_clock_and_step(procs, exe, ros_env, peer):
     sim = _sim(procs, exe, ros_env, 'paused:=true', 'physics_step:=0.002')
-    assert peer.spin_until(lambda: len(peer.clock) >= 3, 15), sim.output
+    assert peer.spin_until(lambda: len(peer.clock) >= 3, 60), sim.output
     assert set(peer.clock) == {0.0}
     step = peer.srv.StepSimulation.Request()
     step.steps = 5
     assert peer.call('step', step).result.result == peer.msg.Result.RESULT_OK
-    assert peer.spin_until(lambda: peer.now == pytest.approx(0.01, abs=1e-9), 5)
+    assert peer.spin_until(lambda: peer.now == pytest.approx(0.01, abs=1e-9), 60)
     peer.spin_for(0.3)
     assert peer.now == pytest.approx(0.01, abs=1e-9)

@@ -58,7 +58,7 @@ class Peer:
         self.topics[topic] = []
         self.node.create_subscription(Odometry, topic, self.topics[topic].append, 100)
 
-    def spin_until(self, predicate, timeout=10.0):
+    def spin_until(self, predicate, timeout=60.0):
         deadline = time.monotonic() + timeout
         while time.monotonic() < deadline:
             if predicate():

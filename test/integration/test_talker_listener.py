@@ -14,8 +14,8 @@ def _heard(listener):
 def test_listener_hears_talker(ros_env, procs, exe):
     listener = procs.start([exe('listener')], ros_env)
     talker = procs.start([exe('talker')], ros_env)
-    assert talker.wait_for_output('Publishing: "Hello World: 0"', timeout=10.0), talker.output
-    assert listener.wait_for_output('I heard: "Hello World: ', timeout=10.0), listener.output
+    assert talker.wait_for_output('Publishing: "Hello World: 0"', timeout=60.0), talker.output
+    assert listener.wait_for_output('I heard: "Hello World: ', timeout=60.0), listener.output
     deadline = time.monotonic() + 5.0  # the talker publishes every 0.5 s
     while len(_heard(listener)) < 3 and time.monotonic() < deadline:
         time.sleep(0.05)
@@ -28,6 +28,6 @@ def test_listener_hears_talker(ros_env, procs, exe):
 
 def test_talker_ctrl_c_exits_zero_without_traceback(ros_env, procs, exe):
     talker = procs.start([exe('talker')], ros_env)
-    assert talker.wait_for_output('Publishing: "Hello World: 1"', timeout=10.0), talker.output
+    assert talker.wait_for_output('Publishing: "Hello World: 1"', timeout=60.0), talker.output
     assert talker.interrupt() == 0
     assert 'Traceback' not in talker.output

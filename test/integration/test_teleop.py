@@ -38,7 +38,7 @@ class _Receiver:
         with self._lock:
             self.messages.append(msg)
 
-    def wait_count(self, count, timeout=8.0):
+    def wait_count(self, count, timeout=60.0):
         deadline = time.monotonic() + timeout
         while time.monotonic() < deadline:
             with self._lock:
@@ -78,7 +78,7 @@ def _start_teleop(procs, exe, ros_env, extra=()):
     return proc, master
 
 
-def _wait_matched(receiver, proc, master, timeout=8.0):
+def _wait_matched(receiver, proc, master, timeout=60.0):
     """
     Wait until the teleop's messages reach ``receiver``, then forget what was received.
 
@@ -102,7 +102,7 @@ def _wait_matched(receiver, proc, master, timeout=8.0):
 def test_keys_to_twist_stamped_and_zero_on_exit(procs, exe, ros_env, receiver):
     proc, master = _start_teleop(procs, exe, ros_env)
     try:
-        assert proc.wait_for_output('currently:\tspeed 0.5\tturn 1.0', timeout=10), proc.output
+        assert proc.wait_for_output('currently:\tspeed 0.5\tturn 1.0', timeout=60), proc.output
         _wait_matched(receiver, proc, master)
         os.write(master, b'i')
         msgs = receiver.wait_count(1)
@@ -115,9 +115,9 @@ def test_keys_to_twist_stamped_and_zero_on_exit(procs, exe, ros_env, receiver):
         got = [v for m in msgs[1:] for v in _values(m)]
         assert got == pytest.approx([0.55, 0.0, 0.0, 0.0, 0.0, 0.55, 0.0, 0.0,
                                      0.55, 0.0, 0.0, 1.1])
-        assert proc.wait_for_output('currently:\tspeed 0.55', timeout=5), proc.output
+        assert proc.wait_for_output('currently:\tspeed 0.55', timeout=60), proc.output
         os.write(master, b'\x03')  # Ctrl-C in raw mode
-        assert proc.wait(10) == 0, proc.output
+        assert proc.wait(60) == 0, proc.output
         msgs = receiver.wait_count(5)
         assert len(msgs) == 5
         assert _values(msgs[-1]) == (0.0, 0.0, 0.0, 0.0)
@@ -129,17 +129,17 @@ def test_keys_to_twist_stamped_and_zero_on_exit(procs, exe, ros_env, receiver):
 def test_key_timeout_publishes_zero(procs, exe, ros_env, receiver):
     proc, master = _start_teleop(procs, exe, ros_env, ('-p', 'key_timeout:=0.3'))
     try:
-        assert proc.wait_for_output('currently:', timeout=10), proc.output
+        assert proc.wait_for_output('currently:', timeout=60), proc.output
         _wait_matched(receiver, proc, master)
         os.write(master, b'l')
-        msgs = receiver.wait_count(2, timeout=5)
+        msgs = receiver.wait_count(2, timeout=60)
         assert [_values(m) for m in msgs] == [(0.0, 0.0, 0.0, -1.0), (0.0, 0.0, 0.0, 0.0)]
         stamps = [m.header.stamp.sec + m.header.stamp.nanosec * 1e-9 for m in msgs]
         assert 0.25 <= stamps[1] - stamps[0] < 1.5
         time.sleep(0.8)  # only one zero per idle period
         assert len(receiver.wait_count(3, timeout=0.1)) == 2
         proc.interrupt()   # SIGINT also ends it cleanly
-        assert proc.wait(10) == 0, proc.output
+        assert proc.wait(60) == 0, proc.output
         assert 'Traceback' not in proc.output
     finally:
         os.close(master)
@@ -147,7 +147,7 @@ def test_key_timeout_publishes_zero(procs, exe, ros_env, receiver):
 
 def test_stdin_not_a_terminal(exe, ros_env):
     result = subprocess.run([exe('teleop_twist_keyboard')], env=ros_env, stdin=subprocess.PIPE,
-                            capture_output=True, text=True, timeout=15)
+                            capture_output=True, text=True, timeout=60)
     assert result.returncode == 1
     lines = result.stderr.strip().splitlines()
     assert len(lines) == 1 and 'stdin is not a terminal' in lines[0]
@@ -159,7 +159,7 @@ def test_frame_id_needs_stamped(procs, exe, ros_env):
     try:
         proc = procs.start([exe('teleop_twist_keyboard'), '--ros-args', '-p',
                             'frame_id:=base_link'], ros_env, stdin=slave)
-        assert proc.wait(15) == 1
+        assert proc.wait(60) == 1
         assert "'frame_id' can only be set when 'stamped' is true" in proc.output
         assert 'Traceback' not in proc.output
     finally:

@@ -198,7 +198,7 @@ def test_gui_slider_moves_joint_states_and_tf(ros_env, procs, exe, tmp_path):
                                                            atol=1e-6), 30.0), wheel_tf()
     finally:
         peer.close()
-    assert gui.interrupt(timeout=20.0) == 0, gui.output
+    assert gui.interrupt(timeout=60.0) == 0, gui.output
     assert not port_open(port)
 
 
