@@ -13,8 +13,12 @@ import pytest
 def test_pub_once_echo_once_twist_stamped(ros_env, procs, exe):
     echo = procs.start([exe('ros2'), 'topic', 'echo', '--once', '/cmd',
                         'geometry_msgs/msg/TwistStamped'], ros_env)
+    # the publisher may see the echo's subscription before the echo has matched the
+    # publisher; --keep-alive keeps the writer up until reliable delivery repairs that (the
+    # default 0.1 s is upstream's, too short on a loaded machine)
     pub = subprocess.run(
-        [exe('ros2'), 'topic', 'pub', '--once', '/cmd', 'geometry_msgs/msg/TwistStamped',
+        [exe('ros2'), 'topic', 'pub', '--once', '--keep-alive', '5', '/cmd',
+         'geometry_msgs/msg/TwistStamped',
          '{header: {frame_id: base_link}, twist: {linear: {x: 0.5}, angular: {z: -1.5}}}'],
         env=ros_env, capture_output=True, text=True, timeout=60)
     assert pub.returncode == 0, pub.stderr
