@@ -94,23 +94,35 @@ class CourseFollower:
     """
     Closed-loop follower of a list of legs, fed with odometry poses.
 
-    Straight legs drive at the leg speed and slow down linearly within ``slow_zone`` of the
-    target (never below ``min_fraction`` of the cruise speed); turns do the same in angle.
-    Each leg ends when its progress reaches the target within ``tolerance``.
+    Each leg follows a trapezoidal speed profile in its own progress (distance along the start
+    heading, or heading change): the speed is
+    ``min(cruise, sqrt(v0^2 + 2 a done), sqrt(v0^2 + 2 a remaining))``, never below
+    ``v0 = min_fraction * cruise``, so it ramps up and down at the constant ``acceleration``
+    ``a`` (m/s^2 or rad/s^2) without a clock. Each leg ends when its progress reaches the
+    target within ``tolerance``.
+
+    Gentle ramps are part of the accuracy: in the MuJoCo world the yaw a skid-steer turn gains
+    or loses against the Coulomb model grows with how fast the wheel speeds change
+    (docs/simulation.md, "Closing the square").
     """
 
-    def __init__(self, legs, slow_zone=(0.15, 0.3), min_fraction=0.15,
-                 tolerance=(0.002, 0.005)):
+    def __init__(self, legs, acceleration=(0.5, 0.5), min_fraction=0.1,
+                 tolerance=(0.001, 0.001)):
         """
         Create the follower.
 
         :param legs: list of :class:`Leg`.
-        :param slow_zone: ``(metres, radians)`` before the target where the speed ramps down.
+        :param acceleration: ``(m/s^2, rad/s^2)`` of the speed ramps, both > 0.
         :param min_fraction: lowest speed as a fraction of the cruise speed, in (0, 1].
         :param tolerance: ``(metres, radians)`` within which a leg counts as done.
+        :raises ValueError: when an acceleration is not > 0 or ``min_fraction`` not in (0, 1].
         """
+        if not all(a > 0.0 for a in acceleration):
+            raise ValueError(f'acceleration must be > 0, got {acceleration}')
+        if not 0.0 < min_fraction <= 1.0:
+            raise ValueError(f'min_fraction must be in (0, 1], got {min_fraction}')
         self.legs = list(legs)
-        self.slow_zone = slow_zone
+        self.acceleration = acceleration
         self.min_fraction = min_fraction
         self.tolerance = tolerance
         self.index = 0
@@ -120,6 +132,20 @@ class CourseFollower:
     def done(self):
         """Return True once every leg is finished."""
         return self.index >= len(self.legs)
+
+    def speed(self, leg, done, remaining):
+        """
+        Return the profile speed of a leg (unsigned, the leg's units per second).
+
+        :param leg: the :class:`Leg`.
+        :param done: progress so far, >= 0 counts (m or rad, towards the target).
+        :param remaining: what is left to the target (m or rad).
+        :returns: float in ``[min_fraction * leg.speed, leg.speed]``.
+        """
+        a = self.acceleration[0 if leg.kind == 'straight' else 1]
+        floor = self.min_fraction * leg.speed
+        ramp = math.sqrt(floor * floor + 2.0 * a * max(0.0, min(done, remaining)))
+        return max(floor, min(leg.speed, ramp))
 
     def step(self, pose):
         """
@@ -134,17 +160,15 @@ class CourseFollower:
         leg = self.legs[self.index]
         if self.start is None:
             self.start = pose
-        remaining = abs(leg.target) - math.copysign(1.0, leg.target) * leg_progress(
-            leg, self.start, pose)
+        done = math.copysign(1.0, leg.target) * leg_progress(leg, self.start, pose)
+        remaining = abs(leg.target) - done
         straight = leg.kind == 'straight'
         if remaining <= self.tolerance[0 if straight else 1]:
             finished = self.index
             self.index += 1
             self.start = pose
             return 0.0, 0.0, finished
-        zone = self.slow_zone[0 if straight else 1]
-        fraction = max(self.min_fraction, min(1.0, remaining / zone))
-        value = math.copysign(leg.speed * fraction, leg.target)
+        value = math.copysign(self.speed(leg, done, remaining), leg.target)
         return (value, 0.0, None) if straight else (0.0, value, None)
 
 

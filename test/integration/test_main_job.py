@@ -32,8 +32,8 @@ def _alive(pid):
 
 def test_main_job_drives_closed_square(ros_env, procs, exe, tmp_path):
     out = tmp_path / 'out'
-    # the job's own tolerances (3 cm, 2.5 deg): the ground truth turns 0.3-0.4 deg less than
-    # odometry per corner (measured 0.019-0.024 m, 1.5-1.9 deg; docs/simulation.md)
+    # the job's own tolerances (1 cm, 1 deg; measured 0.002 m and 0.1 deg in ground truth,
+    # docs/simulation.md "Closing the square")
     proc = procs.start([exe('drive_square'), '--rtf', '0', '--output-dir', str(out),
                         '--timeout', '400', '--viewer-port', '0'],
                        ros_env)
@@ -51,14 +51,14 @@ def test_main_job_drives_closed_square(ros_env, procs, exe, tmp_path):
         else:
             assert odom_h == pytest.approx(90.0, abs=3.0), row
             # skid-steer: the geometric wheel_separation_multiplier (a^2 + b^2) / b^2 keeps
-            # the real turn close to what odometry reports (measured: within 0.8 deg)
-            assert true_h == pytest.approx(odom_h, abs=1.5), row
+            # the real turn close to what odometry reports (measured: within 0.2 deg)
+            assert true_h == pytest.approx(odom_h, abs=0.5), row
 
     match = CLOSURE.search(text)
     assert match, text
     odom_m, odom_deg, true_m, true_deg = (float(v) for v in match.groups())
     assert odom_m < 0.05 and odom_deg < 3.0, match.group(0)
-    assert true_m <= 0.03 and true_deg <= 2.5, match.group(0)
+    assert true_m <= 0.01 and true_deg <= 1.0, match.group(0)
     assert 'lock-step' in text and 'dropped' not in text
 
     for name in ('path.png', 'scene.png'):
@@ -85,7 +85,7 @@ def test_main_job_two_robots(ros_env, procs, exe, tmp_path):
     assert set(rows) == {'r1', 'r2'}, text
     for row in rows.values():
         true_m, true_deg, dropped = float(row[5]), float(row[7]), int(row[9])
-        assert true_m <= 0.03 and true_deg <= 2.5 and dropped == 0, row
+        assert true_m <= 0.01 and true_deg <= 1.0 and dropped == 0, row
     legs = [line for line in text.splitlines() if re.match(r'\s+\d\s+(straight|turn)\s', line)]
     assert len(legs) == 8, text
     data = (out / 'path.png').read_bytes()

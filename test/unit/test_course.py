@@ -69,13 +69,22 @@ def test_follower_closes_square_on_ideal_robot():
     assert follower.step(ends[-1]) == (0.0, 0.0, None)
 
 
-def test_follower_slows_down_near_target():
-    follower = CourseFollower([Leg('straight', 1.0, 0.5)], slow_zone=(0.2, 0.3),
+def test_follower_ramps_up_and_down_at_constant_acceleration():
+    follower = CourseFollower([Leg('straight', 1.0, 0.5)], acceleration=(0.5, 1.0),
                               min_fraction=0.1)
-    assert follower.step((0.0, 0.0, 0.0))[0] == pytest.approx(0.5)
-    assert follower.step((0.9, 0.0, 0.0))[0] == pytest.approx(0.25)
-    assert follower.step((0.99, 0.0, 0.0))[0] == pytest.approx(0.05)
-    assert follower.step((0.999, 0.0, 0.0)) == (0.0, 0.0, 0)
+    # v = min(cruise, sqrt(v0^2 + 2 a done), sqrt(v0^2 + 2 a remaining)), v0 = 0.05 m/s
+    assert follower.step((0.0, 0.0, 0.0))[0] == pytest.approx(0.05)
+    assert follower.step((0.09, 0.0, 0.0))[0] == pytest.approx(math.sqrt(0.0025 + 0.09))
+    assert follower.step((0.5, 0.0, 0.0))[0] == pytest.approx(0.5)
+    assert follower.step((0.96, 0.0, 0.0))[0] == pytest.approx(math.sqrt(0.0025 + 0.04))
+    assert follower.step((0.9985, 0.0, 0.0))[0] == pytest.approx(math.sqrt(0.0025 + 0.0015))
+    assert follower.step((-0.1, 0.0, 0.0))[0] == pytest.approx(0.05)  # never below v0
+    assert follower.step((0.9995, 0.0, 0.0)) == (0.0, 0.0, 0)
+    turn = CourseFollower([Leg('turn', -math.pi / 2, 0.5)], acceleration=(0.5, 1.0))
+    assert turn.step((0.0, 0.0, 0.0))[1] == pytest.approx(-0.05)
+    assert turn.step((0.0, 0.0, -0.06))[1] == pytest.approx(-math.sqrt(0.0025 + 0.12))
+    with pytest.raises(ValueError, match='acceleration'):
+        CourseFollower([], acceleration=(0.0, 1.0))
 
 
 def test_leg_delta_and_table():
