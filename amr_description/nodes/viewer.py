@@ -80,6 +80,8 @@ TRAIL_MAX_POINTS = 20000
 TRAIL_CHUNK = 200
 TRAIL_RATE = 10.0
 STATUS_PERIOD = 0.5
+POSE_TOLERANCE = 1e-5  # largest change of a pose matrix entry (m, or rotation entry) not sent
+TRAIL_TOLERANCE = 1e-4
 
 
 def _stamp(header):
@@ -90,6 +92,11 @@ def _frame_prefix(topic):
     """Return ``r1/`` for ``/r1/robot_description``, '' for ``/robot_description``."""
     namespace = topic.strip('/').rpartition('/')[0]
     return namespace + '/' if namespace else ''
+
+
+def _moved(last, T, tolerance):
+    """Return True when ``last`` is None or a 4x4 pose entry differs by more than tolerance."""
+    return last is None or float(np.max(np.abs(last - T))) > tolerance
 
 
 class _Rate:
@@ -357,6 +364,12 @@ class Viewer(Node):
     def _update_scene(self):
         if not self._server.get_clients():
             return  # nobody looks: the scene is brought up to date when a page connects
+        # one batch of messages per update: viser wakes its event loop once per batch, not
+        # once per changed value (that wake-up was the largest single cost of an update)
+        with self._server.atomic():
+            self._draw()
+
+    def _draw(self):
         fixed, note = self._choose_fixed_frame()
         missing = []
         for topic, robot in self._robots.items():
@@ -369,7 +382,7 @@ class Viewer(Node):
                     missing.append(robot.frame_id(link))
                     continue
                 last = self._link_poses.get((topic, link))
-                if last is None or not np.allclose(last, T, atol=1e-5):
+                if _moved(last, T, POSE_TOLERANCE):
                     robot.set_pose(link, T)
                     self._link_poses[(topic, link)] = T
         self._update_tf_axes(fixed)
@@ -398,7 +411,7 @@ class Viewer(Node):
                 if node.visible:
                     node.visible = False
                 continue
-            if node.last is None or not np.allclose(node.last, T, atol=1e-5):
+            if _moved(node.last, T, POSE_TOLERANCE):
                 from amr_description.web.robot_scene import wxyz_position
                 node.wxyz, node.position = wxyz_position(T)
                 node.last = T
@@ -426,7 +439,7 @@ class Viewer(Node):
                         T, _ = self._buffer.lookup(fixed, trail['frame'])
                     except TransformException:
                         trail['in_tf'] = False
-                moved = trail['T'] is None or not np.allclose(trail['T'], T, atol=1e-4)
+                moved = _moved(trail['T'], T, TRAIL_TOLERANCE)
                 if moved or trail['reset'] or trail['fixed'] != fixed:
                     for node in trail['chunks']:
                         node.remove()
