@@ -99,6 +99,14 @@ def _moved(last, T, tolerance):
     return last is None or float(np.max(np.abs(last - T))) > tolerance
 
 
+def _wxyzs_positions(stack):
+    """Return viser's batched ``(wxyzs (N, 4), positions (N, 3))`` of poses (N, 4, 4)."""
+    from amr_description.web.robot_scene import wxyz_position
+    pairs = [wxyz_position(T) for T in stack]
+    return (np.array([q for q, _ in pairs], dtype=np.float32),
+            np.array([p for _, p in pairs], dtype=np.float32))
+
+
 class _Rate:
     """Arrival rate of a topic over the last RATE_WINDOW seconds (wall clock)."""
 
@@ -149,7 +157,9 @@ class Viewer(Node):
         self._robots = {}  # topic -> RobotScene
         self._robot_errors = {}  # topic -> message
         self._link_poses = {}  # (topic, link) -> last pose sent
-        self._tf_nodes = {}
+        self._tf_axes = None  # one batched-axes scene node for every TF frame
+        self._tf_frames = []  # the frames it draws, in order
+        self._tf_last = None  # their poses sent last, shape (N, 4, 4)
         self._trails = {}  # topic -> {'frame': str, 'points': list, 'dirty': bool}
         self._rates = {name: _Rate() for name in ('/clock', '/joint_states', '/odom', '/tf')}
         self._clock_samples = collections.deque()  # (wall, sim)
@@ -371,12 +381,12 @@ class Viewer(Node):
 
     def _draw(self):
         fixed, note = self._choose_fixed_frame()
+        poses = {}  # frame -> its pose in the fixed frame (None: no transform), this update
         missing = []
         for topic, robot in self._robots.items():
             for link in robot.model.links:
-                try:
-                    T, _ = self._buffer.lookup(fixed, robot.frame_id(link))
-                except TransformException:
+                T = self._pose_in(fixed, robot.frame_id(link), poses)
+                if T is None:
                     robot.hide(link)
                     self._link_poses.pop((topic, link), None)
                     missing.append(robot.frame_id(link))
@@ -385,38 +395,56 @@ class Viewer(Node):
                 if _moved(last, T, POSE_TOLERANCE):
                     robot.set_pose(link, T)
                     self._link_poses[(topic, link)] = T
-        self._update_tf_axes(fixed)
+        self._update_tf_axes(fixed, poses)
         self._update_trails(fixed)
         now = time.monotonic()
         if now >= self._next_status:
             self._next_status = now + STATUS_PERIOD
             self._update_status(fixed, note, missing)
 
-    def _update_tf_axes(self, fixed):
-        show = self._show_tf.value
-        for frame in self._buffer.frames():
-            node = self._tf_nodes.get(frame)
-            if node is None:
-                node = self._server.scene.add_frame(
-                    f'/tf/{frame}', axes_length=0.12, axes_radius=0.006, visible=False)
-                self._tf_nodes[frame] = node
-                node.last = None
-            T = None
-            if show:
-                try:
-                    T, _ = self._buffer.lookup(fixed, frame)
-                except TransformException:
-                    T = None
-            if T is None:
-                if node.visible:
-                    node.visible = False
-                continue
-            if _moved(node.last, T, POSE_TOLERANCE):
-                from amr_description.web.robot_scene import wxyz_position
-                node.wxyz, node.position = wxyz_position(T)
-                node.last = T
+    def _pose_in(self, fixed, frame, poses):
+        """Return the pose of ``frame`` in ``fixed`` (4x4) or None, looked up once per update."""
+        if frame not in poses:
+            try:
+                poses[frame] = self._buffer.lookup(fixed, frame)[0]
+            except TransformException:
+                poses[frame] = None
+        return poses[frame]
+
+    def _update_tf_axes(self, fixed, poses):
+        """
+        Draw the axes of every frame that has a pose in the fixed frame, as one scene node.
+
+        One batched-axes node (instanced on the page) holds every frame's axes, so an update
+        sends at most two arrays instead of two messages per frame; the node is rebuilt only
+        when the set of frames drawn changes.
+        """
+        frames, stack = [], []
+        if self._show_tf.value:
+            for frame in sorted(self._buffer.frames()):
+                T = self._pose_in(fixed, frame, poses)
+                if T is not None:
+                    frames.append(frame)
+                    stack.append(T)
+        node = self._tf_axes
+        if not frames:
+            if node is not None and node.visible:
+                node.visible = False
+            return
+        stack = np.stack(stack)
+        if node is not None and frames == self._tf_frames:
+            if _moved(self._tf_last, stack, POSE_TOLERANCE):
+                node.batched_wxyzs, node.batched_positions = _wxyzs_positions(stack)
+                self._tf_last = stack
             if not node.visible:
                 node.visible = True
+            return
+        if node is not None:
+            node.remove()
+        wxyzs, positions = _wxyzs_positions(stack)
+        self._tf_axes = self._server.scene.add_batched_axes(
+            '/tf', wxyzs, positions, axes_length=0.12, axes_radius=0.006)
+        self._tf_frames, self._tf_last = frames, stack
 
     def _update_trails(self, fixed):
         """
@@ -521,7 +549,8 @@ def main(args=None):
     :param args: command-line arguments for rclpy (default ``sys.argv``).
     :returns: 0 on a clean shutdown, 1 on a port in use or a bad parameter (one line).
     """
-    return run_web_node(Viewer, NODE_NAME, args)
+    from rclpy.experimental import EventsExecutor
+    return run_web_node(Viewer, NODE_NAME, args, executor_class=EventsExecutor)
 
 
 if __name__ == '__main__':
