@@ -185,14 +185,15 @@ class TransformBuffer:
         if parent == child:
             raise ValueError(f"transform '{parent}' -> '{child}': a frame cannot be its own "
                              'parent')
+        # plain floats, not numpy: this runs for every transform of every /tf message
         translation = tuple(float(v) for v in translation)
-        rotation = np.asarray(rotation, dtype=float)
-        norm = float(np.linalg.norm(rotation))
+        rotation = tuple(float(v) for v in rotation)
+        norm = math.sqrt(sum(v * v for v in rotation))
         if not all(math.isfinite(v) for v in translation) or not math.isfinite(norm) or \
                 norm == 0.0:
             raise ValueError(f"transform '{parent}' -> '{child}': non-finite translation or "
                              'rotation, or a zero quaternion')
-        rotation = rotation / norm
+        rotation = np.array([v / norm for v in rotation])
         frame = self._frames.get(child)
         if frame is None or frame.parent != parent or (frame.static is not None) != static:
             frame = _Frame(parent)

@@ -41,6 +41,7 @@ error on the page and in the log, the node keeps running. Prints
 """
 
 import collections
+import math
 import sys
 import threading
 import time
@@ -184,9 +185,10 @@ class Viewer(Node):
         self.create_subscription(TFMessage, '/tf', self._on_tf, 100)
         self.create_subscription(TFMessage, '/tf_static', self._on_tf_static, static_qos)
         self.create_subscription(ClockMsg, '/clock', self._on_clock, 10)
+        # only counted (status rate): taken raw, never converted to a Python message
         self.create_subscription(JointState, '/joint_states',
                                  lambda msg: self._tick('/joint_states'),
-                                 qos_profile_sensor_data)
+                                 qos_profile_sensor_data, raw=True)
         for topic in self.get_parameter('odometry_topics').value:
             if topic:
                 self._add_trail(topic)
@@ -323,7 +325,7 @@ class Viewer(Node):
             self._tick('/odom')
         p = msg.pose.pose.position
         point = (p.x, p.y, p.z)
-        if not all(np.isfinite(point)):
+        if not all(math.isfinite(v) for v in point):
             return
         trail = self._trails[topic]
         frame = msg.header.frame_id.lstrip('/')
@@ -332,7 +334,7 @@ class Viewer(Node):
             trail['points'] = []
             trail['reset'] = True
         points = trail['points']
-        if points and np.linalg.norm(np.subtract(point, points[-1])) < TRAIL_MIN_STEP:
+        if points and math.dist(point, points[-1]) < TRAIL_MIN_STEP:
             return
         points.append(point)
         trail['dirty'] = True
@@ -450,9 +452,10 @@ class Viewer(Node):
         """
         Draw the odometry trails in the fixed frame, at most TRAIL_RATE times a second.
 
-        A trail is drawn in chunks of TRAIL_CHUNK points: only the newest chunk is sent again
-        when points arrive; every chunk is redrawn when the trail's frame moved in the fixed
-        frame, the fixed frame changed or the trail was cleared.
+        A trail is drawn in chunks of TRAIL_CHUNK points: only the newest chunk's points are
+        sent again when points arrive (as new points of its scene node, not as a new node);
+        every chunk is redrawn when the trail's frame moved in the fixed frame, the fixed frame
+        changed or the trail was cleared.
         """
         now = time.monotonic()
         if now < self._next_trails:
@@ -488,13 +491,13 @@ class Viewer(Node):
                     chunk = np.asarray(points[start:start + TRAIL_CHUNK + 1], dtype=float)
                     chunk = chunk @ T[:3, :3].T + T[:3, 3]
                     index = start // TRAIL_CHUNK
-                    if index < len(trail['chunks']):
-                        trail['chunks'][index].remove()
-                        trail['chunks'][index:] = []
                     segments = np.stack([chunk[:-1], chunk[1:]], axis=1).astype(np.float32)
-                    trail['chunks'].append(self._server.scene.add_line_segments(
-                        f'/trails/{name}/{index}', segments, trail['rgb'], thickness=3.0,
-                        thickness_units='screen', visible=show))
+                    if index < len(trail['chunks']):  # the growing chunk: replace its points
+                        trail['chunks'][index].points = segments
+                    else:
+                        trail['chunks'].append(self._server.scene.add_line_segments(
+                            f'/trails/{name}/{index}', segments, trail['rgb'], thickness=3.0,
+                            thickness_units='screen', visible=show))
                     if len(chunk) < TRAIL_CHUNK + 1:
                         break  # the newest chunk, still growing
                     trail['chunk_start'] = start + TRAIL_CHUNK
