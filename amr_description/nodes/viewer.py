@@ -50,6 +50,7 @@ from amr_description.core import teleop_pad
 from amr_description.core.tf_buffer import TransformBuffer
 from amr_description.core.tf_buffer import TransformException
 from amr_description.nodes.shutdown import Node
+from amr_description.web.robot_scene import wxyzs_positions
 from amr_description.web.server import page_url
 from amr_description.web.server import run_web_node
 from amr_description.web.server import start_server
@@ -98,14 +99,6 @@ def _frame_prefix(topic):
 def _moved(last, T, tolerance):
     """Return True when ``last`` is None or a 4x4 pose entry differs by more than tolerance."""
     return last is None or float(np.max(np.abs(last - T))) > tolerance
-
-
-def _wxyzs_positions(stack):
-    """Return viser's batched ``(wxyzs (N, 4), positions (N, 3))`` of poses (N, 4, 4)."""
-    from amr_description.web.robot_scene import wxyz_position
-    pairs = [wxyz_position(T) for T in stack]
-    return (np.array([q for q, _ in pairs], dtype=np.float32),
-            np.array([p for _, p in pairs], dtype=np.float32))
 
 
 class _Rate:
@@ -436,14 +429,14 @@ class Viewer(Node):
         stack = np.stack(stack)
         if node is not None and frames == self._tf_frames:
             if _moved(self._tf_last, stack, POSE_TOLERANCE):
-                node.batched_wxyzs, node.batched_positions = _wxyzs_positions(stack)
+                node.batched_wxyzs, node.batched_positions = wxyzs_positions(stack)
                 self._tf_last = stack
             if not node.visible:
                 node.visible = True
             return
         if node is not None:
             node.remove()
-        wxyzs, positions = _wxyzs_positions(stack)
+        wxyzs, positions = wxyzs_positions(stack)
         self._tf_axes = self._server.scene.add_batched_axes(
             '/tf', wxyzs, positions, axes_length=0.12, axes_radius=0.006)
         self._tf_frames, self._tf_last = frames, stack
