@@ -169,6 +169,21 @@ def test_quaternion_is_normalized_and_infinite_rotation_rejected():
     assert buffer.frames() == {'a', 'b'}
 
 
+def test_a_value_replaced_is_seen_by_the_next_lookup():
+    buffer = robot_buffer()
+    np.testing.assert_allclose(buffer.lookup('odom', 'wheel')[0][:3, 3], [2.5, 2.0, 0.0])
+    # same stamp as the newest sample: replaces it
+    buffer.set_transform('odom', 'base_link', 3.0, (4.0, 2.0, 0.0), yaw(math.pi / 2))
+    np.testing.assert_allclose(buffer.lookup('odom', 'wheel')[0][:3, 3], [3.5, 2.0, 0.0])
+    buffer.set_transform('base_link', 'wheel', 0.0, (0.0, 1.0, 0.0), IDENTITY, static=True)
+    np.testing.assert_allclose(buffer.lookup('odom', 'wheel')[0][:3, 3], [3.0, 2.0, 0.0])
+    buffer.set_transform('odom', 'base_link', 4.0, (0.0, 0.0, 0.0), IDENTITY)
+    T, time = buffer.lookup('wheel', 'odom')
+    assert time == 4.0
+    np.testing.assert_allclose(T[:3, 3], [0.0, -1.0, 0.0])
+    np.testing.assert_allclose(T @ buffer.lookup('odom', 'wheel')[0], np.eye(4), atol=1e-12)
+
+
 def test_slerp_endpoints_and_shorter_arc():
     q0, q1 = np.array(yaw(0.0)), np.array(yaw(1.0))
     np.testing.assert_allclose(slerp(q0, q1, 0.0), q0, atol=1e-12)
