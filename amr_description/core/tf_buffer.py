@@ -100,7 +100,9 @@ class _Frame:
     def __init__(self, parent):
         self.parent = parent
         self.static = None  # (translation, rotation) when static
+        self.static_T = None  # its 4x4 matrix, built once
         self.samples = []  # [(time, translation, rotation)], ascending time
+        self.newest_T = None  # (time, 4x4 matrix) of the newest sample, built on demand
 
     def newest(self):
         return self.samples[-1][0] if self.samples else None
@@ -111,10 +113,14 @@ class _Frame:
     def at(self, time, frame):
         """Return the 4x4 transform parent -> frame at ``time`` (0: the newest)."""
         if self.static is not None:
-            return pose_matrix(*self.static)
+            if self.static_T is None:
+                self.static_T = pose_matrix(*self.static)
+            return self.static_T
         samples = self.samples
-        if time == 0.0:
-            return pose_matrix(samples[-1][1], samples[-1][2])
+        if time == 0.0 or time == samples[-1][0]:  # the newest: built once per sample
+            if self.newest_T is None or self.newest_T[0] != samples[-1][0]:
+                self.newest_T = (samples[-1][0], pose_matrix(samples[-1][1], samples[-1][2]))
+            return self.newest_T[1]
         if len(samples) == 1:
             if time == samples[0][0]:
                 return pose_matrix(samples[0][1], samples[0][2])
@@ -160,10 +166,12 @@ class TransformBuffer:
         """Create an empty buffer."""
         self.cache_time = float(cache_time)
         self._frames = {}  # child frame -> _Frame
+        self._known = None  # every frame id (children and parents), rebuilt when one is added
 
     def clear(self):
         """Forget every transform (tf2's ``clear``; e.g. after the simulation was reset)."""
         self._frames = {}
+        self._known = None
 
     def set_transform(self, parent, child, time, translation, rotation, static=False):
         """
@@ -185,26 +193,30 @@ class TransformBuffer:
         if parent == child:
             raise ValueError(f"transform '{parent}' -> '{child}': a frame cannot be its own "
                              'parent')
+        # plain floats, not numpy: this runs for every transform of every /tf message
         translation = tuple(float(v) for v in translation)
-        rotation = np.asarray(rotation, dtype=float)
-        norm = float(np.linalg.norm(rotation))
+        rotation = tuple(float(v) for v in rotation)
+        norm = math.sqrt(sum(v * v for v in rotation))
         if not all(math.isfinite(v) for v in translation) or not math.isfinite(norm) or \
                 norm == 0.0:
             raise ValueError(f"transform '{parent}' -> '{child}': non-finite translation or "
                              'rotation, or a zero quaternion')
-        rotation = rotation / norm
+        rotation = np.array([v / norm for v in rotation])
         frame = self._frames.get(child)
         if frame is None or frame.parent != parent or (frame.static is not None) != static:
             frame = _Frame(parent)
             self._frames[child] = frame
+            self._known = None
         if static:
             frame.static = (translation, rotation)
+            frame.static_T = None
             return
         time = float(time)
         samples = frame.samples
         if samples and time < samples[-1][0] - self.cache_time:
             return  # older than the cache: dropped, as tf2 does (TF_OLD_DATA)
         entry = (time, translation, rotation)
+        frame.newest_T = None
         if not samples or time > samples[-1][0]:
             samples.append(entry)
         else:
@@ -221,9 +233,12 @@ class TransformBuffer:
 
     def frames(self):
         """Return every known frame id, parents included (a set)."""
-        names = set(self._frames)
-        names.update(f.parent for f in self._frames.values())
-        return names
+        return set(self._known_frames())
+
+    def _known_frames(self):
+        if self._known is None:
+            self._known = frozenset(self._frames).union(f.parent for f in self._frames.values())
+        return self._known
 
     def parent(self, frame):
         """Return the parent of ``frame`` or None for a root or an unknown frame."""
@@ -255,7 +270,7 @@ class TransformBuffer:
 
     def _path(self, target, source):
         """Return (frames from source up to the common ancestor, from target up to it)."""
-        known = self.frames()
+        known = self._known_frames()
         for name, argument in ((target, 'target_frame'), (source, 'source_frame')):
             if name not in known:
                 raise LookupException(
@@ -283,7 +298,9 @@ class TransformBuffer:
         source = strip_frame(source)
         if target == source:
             return 0.0
-        up_source, up_target = self._path(target, source)
+        return self._common_time(*self._path(target, source))
+
+    def _common_time(self, up_source, up_target):
         edges = [self._frames[f] for f in up_source[:-1] + up_target[:-1]]
         dynamic = [e for e in edges if e.static is None]
         if not dynamic:
@@ -306,7 +323,7 @@ class TransformBuffer:
         target = strip_frame(target)
         source = strip_frame(source)
         if target == source:
-            if target not in self.frames():
+            if target not in self._known_frames():
                 raise LookupException(
                     f'"{target}" passed to lookupTransform argument target_frame does not '
                     'exist. ')
@@ -314,15 +331,21 @@ class TransformBuffer:
         up_source, up_target = self._path(target, source)
         time = float(time)
         if time == 0.0:
-            time = self.latest_common_time(target, source)
-        # ancestor <- source
-        T_anc_source = np.eye(4)
-        for frame in up_source[:-1]:
-            T_anc_source = self._frames[frame].at(time, frame) @ T_anc_source
-        T_anc_target = np.eye(4)
-        for frame in up_target[:-1]:
-            T_anc_target = self._frames[frame].at(time, frame) @ T_anc_target
-        return np.linalg.inv(T_anc_target) @ T_anc_source, time
+            time = self._common_time(up_source, up_target)
+        T_anc_source = self._compose(up_source, time)  # common ancestor <- source
+        T_anc_target = self._compose(up_target, time)
+        # the inverse of a rigid transform: [R^T | -R^T t]
+        T_target_anc = np.eye(4)
+        T_target_anc[:3, :3] = T_anc_target[:3, :3].T
+        T_target_anc[:3, 3] = -T_anc_target[:3, :3].T @ T_anc_target[:3, 3]
+        return T_target_anc @ T_anc_source, time
+
+    def _compose(self, chain, time):
+        """Return ``chain[-1] <- chain[0]`` (4x4) at ``time``; a new array, never a cached one."""
+        T = np.eye(4)
+        for frame in chain[:-1]:
+            T = self._frames[frame].at(time, frame) @ T
+        return T
 
     def can_transform(self, target, source, time=0.0):
         """Return True when :meth:`lookup` would succeed."""

@@ -41,6 +41,7 @@ error on the page and in the log, the node keeps running. Prints
 """
 
 import collections
+import math
 import sys
 import threading
 import time
@@ -49,6 +50,7 @@ from amr_description.core import teleop_pad
 from amr_description.core.tf_buffer import TransformBuffer
 from amr_description.core.tf_buffer import TransformException
 from amr_description.nodes.shutdown import Node
+from amr_description.web.robot_scene import wxyzs_positions
 from amr_description.web.server import page_url
 from amr_description.web.server import run_web_node
 from amr_description.web.server import start_server
@@ -80,6 +82,8 @@ TRAIL_MAX_POINTS = 20000
 TRAIL_CHUNK = 200
 TRAIL_RATE = 10.0
 STATUS_PERIOD = 0.5
+POSE_TOLERANCE = 1e-5  # largest change of a pose matrix entry (m, or rotation entry) not sent
+TRAIL_TOLERANCE = 1e-4
 
 
 def _stamp(header):
@@ -90,6 +94,11 @@ def _frame_prefix(topic):
     """Return ``r1/`` for ``/r1/robot_description``, '' for ``/robot_description``."""
     namespace = topic.strip('/').rpartition('/')[0]
     return namespace + '/' if namespace else ''
+
+
+def _moved(last, T, tolerance):
+    """Return True when ``last`` is None or a 4x4 pose entry differs by more than tolerance."""
+    return last is None or float(np.max(np.abs(last - T))) > tolerance
 
 
 class _Rate:
@@ -142,7 +151,9 @@ class Viewer(Node):
         self._robots = {}  # topic -> RobotScene
         self._robot_errors = {}  # topic -> message
         self._link_poses = {}  # (topic, link) -> last pose sent
-        self._tf_nodes = {}
+        self._tf_axes = None  # one batched-axes scene node for every TF frame
+        self._tf_frames = []  # the frames it draws, in order
+        self._tf_last = None  # their poses sent last, shape (N, 4, 4)
         self._trails = {}  # topic -> {'frame': str, 'points': list, 'dirty': bool}
         self._rates = {name: _Rate() for name in ('/clock', '/joint_states', '/odom', '/tf')}
         self._clock_samples = collections.deque()  # (wall, sim)
@@ -167,9 +178,10 @@ class Viewer(Node):
         self.create_subscription(TFMessage, '/tf', self._on_tf, 100)
         self.create_subscription(TFMessage, '/tf_static', self._on_tf_static, static_qos)
         self.create_subscription(ClockMsg, '/clock', self._on_clock, 10)
+        # only counted (status rate): taken raw, never converted to a Python message
         self.create_subscription(JointState, '/joint_states',
                                  lambda msg: self._tick('/joint_states'),
-                                 qos_profile_sensor_data)
+                                 qos_profile_sensor_data, raw=True)
         for topic in self.get_parameter('odometry_topics').value:
             if topic:
                 self._add_trail(topic)
@@ -306,7 +318,7 @@ class Viewer(Node):
             self._tick('/odom')
         p = msg.pose.pose.position
         point = (p.x, p.y, p.z)
-        if not all(np.isfinite(point)):
+        if not all(math.isfinite(v) for v in point):
             return
         trail = self._trails[topic]
         frame = msg.header.frame_id.lstrip('/')
@@ -315,7 +327,7 @@ class Viewer(Node):
             trail['points'] = []
             trail['reset'] = True
         points = trail['points']
-        if points and np.linalg.norm(np.subtract(point, points[-1])) < TRAIL_MIN_STEP:
+        if points and math.dist(point, points[-1]) < TRAIL_MIN_STEP:
             return
         points.append(point)
         trail['dirty'] = True
@@ -357,61 +369,86 @@ class Viewer(Node):
     def _update_scene(self):
         if not self._server.get_clients():
             return  # nobody looks: the scene is brought up to date when a page connects
+        # one batch of messages per update: viser wakes its event loop once per batch, not
+        # once per changed value (that wake-up was the largest single cost of an update)
+        with self._server.atomic():
+            self._draw()
+
+    def _draw(self):
         fixed, note = self._choose_fixed_frame()
+        poses = {}  # frame -> its pose in the fixed frame (None: no transform), this update
         missing = []
         for topic, robot in self._robots.items():
             for link in robot.model.links:
-                try:
-                    T, _ = self._buffer.lookup(fixed, robot.frame_id(link))
-                except TransformException:
+                T = self._pose_in(fixed, robot.frame_id(link), poses)
+                if T is None:
                     robot.hide(link)
                     self._link_poses.pop((topic, link), None)
                     missing.append(robot.frame_id(link))
                     continue
                 last = self._link_poses.get((topic, link))
-                if last is None or not np.allclose(last, T, atol=1e-5):
+                if _moved(last, T, POSE_TOLERANCE):
                     robot.set_pose(link, T)
                     self._link_poses[(topic, link)] = T
-        self._update_tf_axes(fixed)
+        self._update_tf_axes(fixed, poses)
         self._update_trails(fixed)
         now = time.monotonic()
         if now >= self._next_status:
             self._next_status = now + STATUS_PERIOD
             self._update_status(fixed, note, missing)
 
-    def _update_tf_axes(self, fixed):
-        show = self._show_tf.value
-        for frame in self._buffer.frames():
-            node = self._tf_nodes.get(frame)
-            if node is None:
-                node = self._server.scene.add_frame(
-                    f'/tf/{frame}', axes_length=0.12, axes_radius=0.006, visible=False)
-                self._tf_nodes[frame] = node
-                node.last = None
-            T = None
-            if show:
-                try:
-                    T, _ = self._buffer.lookup(fixed, frame)
-                except TransformException:
-                    T = None
-            if T is None:
-                if node.visible:
-                    node.visible = False
-                continue
-            if node.last is None or not np.allclose(node.last, T, atol=1e-5):
-                from amr_description.web.robot_scene import wxyz_position
-                node.wxyz, node.position = wxyz_position(T)
-                node.last = T
+    def _pose_in(self, fixed, frame, poses):
+        """Return the pose of ``frame`` in ``fixed`` (4x4) or None, looked up once per update."""
+        if frame not in poses:
+            try:
+                poses[frame] = self._buffer.lookup(fixed, frame)[0]
+            except TransformException:
+                poses[frame] = None
+        return poses[frame]
+
+    def _update_tf_axes(self, fixed, poses):
+        """
+        Draw the axes of every frame that has a pose in the fixed frame, as one scene node.
+
+        One batched-axes node (instanced on the page) holds every frame's axes, so an update
+        sends at most two arrays instead of two messages per frame; the node is rebuilt only
+        when the set of frames drawn changes.
+        """
+        frames, stack = [], []
+        if self._show_tf.value:
+            for frame in sorted(self._buffer.frames()):
+                T = self._pose_in(fixed, frame, poses)
+                if T is not None:
+                    frames.append(frame)
+                    stack.append(T)
+        node = self._tf_axes
+        if not frames:
+            if node is not None and node.visible:
+                node.visible = False
+            return
+        stack = np.stack(stack)
+        if node is not None and frames == self._tf_frames:
+            if _moved(self._tf_last, stack, POSE_TOLERANCE):
+                node.batched_wxyzs, node.batched_positions = wxyzs_positions(stack)
+                self._tf_last = stack
             if not node.visible:
                 node.visible = True
+            return
+        if node is not None:
+            node.remove()
+        wxyzs, positions = wxyzs_positions(stack)
+        self._tf_axes = self._server.scene.add_batched_axes(
+            '/tf', wxyzs, positions, axes_length=0.12, axes_radius=0.006)
+        self._tf_frames, self._tf_last = frames, stack
 
     def _update_trails(self, fixed):
         """
         Draw the odometry trails in the fixed frame, at most TRAIL_RATE times a second.
 
-        A trail is drawn in chunks of TRAIL_CHUNK points: only the newest chunk is sent again
-        when points arrive; every chunk is redrawn when the trail's frame moved in the fixed
-        frame, the fixed frame changed or the trail was cleared.
+        A trail is drawn in chunks of TRAIL_CHUNK points: only the newest chunk's points are
+        sent again when points arrive (as new points of its scene node, not as a new node);
+        every chunk is redrawn when the trail's frame moved in the fixed frame, the fixed frame
+        changed or the trail was cleared.
         """
         now = time.monotonic()
         if now < self._next_trails:
@@ -426,7 +463,7 @@ class Viewer(Node):
                         T, _ = self._buffer.lookup(fixed, trail['frame'])
                     except TransformException:
                         trail['in_tf'] = False
-                moved = trail['T'] is None or not np.allclose(trail['T'], T, atol=1e-4)
+                moved = _moved(trail['T'], T, TRAIL_TOLERANCE)
                 if moved or trail['reset'] or trail['fixed'] != fixed:
                     for node in trail['chunks']:
                         node.remove()
@@ -447,13 +484,13 @@ class Viewer(Node):
                     chunk = np.asarray(points[start:start + TRAIL_CHUNK + 1], dtype=float)
                     chunk = chunk @ T[:3, :3].T + T[:3, 3]
                     index = start // TRAIL_CHUNK
-                    if index < len(trail['chunks']):
-                        trail['chunks'][index].remove()
-                        trail['chunks'][index:] = []
                     segments = np.stack([chunk[:-1], chunk[1:]], axis=1).astype(np.float32)
-                    trail['chunks'].append(self._server.scene.add_line_segments(
-                        f'/trails/{name}/{index}', segments, trail['rgb'], thickness=3.0,
-                        thickness_units='screen', visible=show))
+                    if index < len(trail['chunks']):  # the growing chunk: replace its points
+                        trail['chunks'][index].points = segments
+                    else:
+                        trail['chunks'].append(self._server.scene.add_line_segments(
+                            f'/trails/{name}/{index}', segments, trail['rgb'], thickness=3.0,
+                            thickness_units='screen', visible=show))
                     if len(chunk) < TRAIL_CHUNK + 1:
                         break  # the newest chunk, still growing
                     trail['chunk_start'] = start + TRAIL_CHUNK
@@ -508,7 +545,8 @@ def main(args=None):
     :param args: command-line arguments for rclpy (default ``sys.argv``).
     :returns: 0 on a clean shutdown, 1 on a port in use or a bad parameter (one line).
     """
-    return run_web_node(Viewer, NODE_NAME, args)
+    from rclpy.experimental import EventsExecutor
+    return run_web_node(Viewer, NODE_NAME, args, executor_class=EventsExecutor)
 
 
 if __name__ == '__main__':

@@ -31,6 +31,18 @@ def wxyz_position(T):
     return np.array([w, x, y, z]), np.asarray(T, dtype=float)[:3, 3].copy()
 
 
+def wxyzs_positions(poses):
+    """
+    Return viser's batched pose arguments (``add_batched_axes``) of N 4x4 poses.
+
+    :param poses: homogeneous matrices, shape (N, 4, 4).
+    :returns: ``(wxyzs, positions)``, float32 arrays of shape (N, 4) and (N, 3).
+    """
+    pairs = [wxyz_position(T) for T in poses]
+    return (np.array([q for q, _ in pairs], dtype=np.float32).reshape(-1, 4),
+            np.array([p for _, p in pairs], dtype=np.float32).reshape(-1, 3))
+
+
 def _resolve(filename):
     """Return a mesh file path for ``package://PKG/...`` or ``file://...`` or a plain path."""
     if filename.startswith('package://'):

@@ -95,7 +95,7 @@ def stop_server(server):
         server.stop()
 
 
-def run_web_node(node_class, node_name, args=None):
+def run_web_node(node_class, node_name, args=None, executor_class=None):
     """
     Run a node that serves a page until Ctrl-C or SIGTERM (``main`` of the web nodes).
 
@@ -106,16 +106,22 @@ def run_web_node(node_class, node_name, args=None):
     :param node_class: the Node class; its instances have ``url`` and ``stop_server()``.
     :param node_name: the node's name, used in the URL line and the error line.
     :param args: command-line arguments for rclpy (default ``sys.argv``).
+    :param executor_class: rclpy executor class (called with ``context=``) that spins the
+        node; default a ``SingleThreadedExecutor``.
     :returns: 0 on a clean shutdown, 1 on a port in use or a bad parameter (one line).
     """
     import rclpy
     from amr_description.nodes import shutdown
     shutdown.init(args)
     node = None
+    executor = None
     try:
         node = shutdown.create(node_class)
         print(f'{node_name}: open {node.url} in a browser', flush=True)
-        shutdown.spin(node)
+        if executor_class is not None:
+            executor = executor_class(context=node.context)
+            executor.add_node(node)
+        shutdown.spin(node if executor is None else executor)
     except (PortInUse, ValueError) as exc:
         if node is not None:
             raise
@@ -126,5 +132,7 @@ def run_web_node(node_class, node_name, args=None):
     finally:
         if node is not None:
             node.stop_server()
-        shutdown.shutdown(node)
+        if executor is not None:
+            executor.remove_node(node)
+        shutdown.shutdown(node, executor=executor)
     return 0

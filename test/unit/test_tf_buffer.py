@@ -156,6 +156,34 @@ def test_bad_transforms_rejected():
     assert buffer.frames() == set()
 
 
+def test_quaternion_is_normalized_and_infinite_rotation_rejected():
+    buffer = TransformBuffer()
+    # (0, 0, 2, 2) is a quarter turn about z scaled by 2 * sqrt(2)
+    buffer.set_transform('a', 'b', 1.0, (1, 2, 3), (0, 0, 2, 2))
+    T, _ = buffer.lookup('a', 'b')
+    expected = np.array([[0.0, -1.0, 0.0, 1.0], [1.0, 0.0, 0.0, 2.0], [0.0, 0.0, 1.0, 3.0],
+                         [0.0, 0.0, 0.0, 1.0]])
+    np.testing.assert_allclose(T, expected, atol=1e-12)
+    with pytest.raises(ValueError, match='non-finite'):
+        buffer.set_transform('a', 'c', 1.0, (0, 0, 0), (0, 0, math.inf, 1))
+    assert buffer.frames() == {'a', 'b'}
+
+
+def test_a_value_replaced_is_seen_by_the_next_lookup():
+    buffer = robot_buffer()
+    np.testing.assert_allclose(buffer.lookup('odom', 'wheel')[0][:3, 3], [2.5, 2.0, 0.0])
+    # same stamp as the newest sample: replaces it
+    buffer.set_transform('odom', 'base_link', 3.0, (4.0, 2.0, 0.0), yaw(math.pi / 2))
+    np.testing.assert_allclose(buffer.lookup('odom', 'wheel')[0][:3, 3], [3.5, 2.0, 0.0])
+    buffer.set_transform('base_link', 'wheel', 0.0, (0.0, 1.0, 0.0), IDENTITY, static=True)
+    np.testing.assert_allclose(buffer.lookup('odom', 'wheel')[0][:3, 3], [3.0, 2.0, 0.0])
+    buffer.set_transform('odom', 'base_link', 4.0, (0.0, 0.0, 0.0), IDENTITY)
+    T, time = buffer.lookup('wheel', 'odom')
+    assert time == 4.0
+    np.testing.assert_allclose(T[:3, 3], [0.0, -1.0, 0.0])
+    np.testing.assert_allclose(T @ buffer.lookup('odom', 'wheel')[0], np.eye(4), atol=1e-12)
+
+
 def test_slerp_endpoints_and_shorter_arc():
     q0, q1 = np.array(yaw(0.0)), np.array(yaw(1.0))
     np.testing.assert_allclose(slerp(q0, q1, 0.0), q0, atol=1e-12)
