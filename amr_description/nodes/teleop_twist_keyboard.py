@@ -7,8 +7,9 @@ Keyboard teleoperation: keys in the terminal -> velocity commands on ``cmd_vel``
 Behaves as the upstream ROS 2 ``teleop_twist_keyboard`` (jazzy): parameters ``stamped``
 (false: ``geometry_msgs/Twist``; true: ``geometry_msgs/TwistStamped`` stamped with the node's
 clock), ``frame_id`` ('' -- only allowed with ``stamped``), ``speed`` (0.5 m/s) and ``turn``
-(1.0 rad/s); one message per key press; a zero twist and the terminal restored on exit. The key
-map is in :mod:`amr_description.core.teleop_keys`.
+(1.0 rad/s); one message per key press; a zero twist and the terminal restored on exit (the
+zero waits up to 2 s for reliable subscriptions to acknowledge it, so that it is not lost with
+the process's writer). The key map is in :mod:`amr_description.core.teleop_keys`.
 
 Added: ``key_timeout`` (seconds, 0 = off, default 0): when no key arrives for that long after a
 key press, one zero twist is published (a dead-man stop).
@@ -37,7 +38,11 @@ from amr_description.nodes.shutdown import Node
 from geometry_msgs.msg import Twist
 from geometry_msgs.msg import TwistStamped
 from rcl_interfaces.msg import ParameterDescriptor
+from rclpy.duration import Duration
 from rclpy.executors import SingleThreadedExecutor
+
+STOP_ACK_TIMEOUT = 2.0
+"""Seconds the zero twist sent on exit may wait for reliable subscriptions' acknowledgement."""
 
 
 class TeleopTwistKeyboard(Node):
@@ -168,6 +173,9 @@ def main(args=None):
         if node is not None:
             try:
                 node.publish_twist(0.0, 0.0, 0.0, 0.0)
+                # the stop must reach the robot: wait (briefly) until every reliable
+                # subscription acknowledged it, or it may die with this process's writer
+                node.publisher.wait_for_all_acked(Duration(seconds=STOP_ACK_TIMEOUT))
             except Exception:  # noqa: B902 - the context may already be gone
                 pass
         termios.tcsetattr(fd, termios.TCSADRAIN, settings)
