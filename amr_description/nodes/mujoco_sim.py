@@ -47,6 +47,7 @@ import os
 import threading
 import time
 
+from amr_description.control.controller_interface import heard
 from amr_description.nodes import shutdown
 from amr_description.nodes.shutdown import Node
 from amr_description.sim.simulation import IDLE_RATE
@@ -128,11 +129,13 @@ class SimTime:
     def set_time(self, t):
         """Set every adopted clock to sim time ``t`` (s), as ``TimeSource.clock_callback``."""
         now = Time(nanoseconds=int(round(t * 1e9)))
-        with self._lock:
+        handle = now._time_handle
+        with self._lock:  # a node is dropped (under this lock) before it is destroyed
             for source in self._snapshot:
                 source._last_time_set = now
                 for clock in source._associated_clocks:
-                    clock.set_ros_time_override(now)
+                    # Clock.set_ros_time_override without its type check and handle guard
+                    clock.handle.set_ros_time_override(handle)
 
 
 class SimTimeExecutor(SingleThreadedExecutor):
@@ -407,8 +410,8 @@ class MujocoSim(Node):
         world = self.sim.world
         for entity in self.sim.active:
             publisher = entity.user.get('ground_truth')
-            if publisher is None:
-                continue
+            if publisher is None or not heard(publisher):
+                continue  # volatile: unheard messages reach nobody
             position, quat, linear, angular = world.ground_truth(entity.name)
             msg = entity.user['ground_truth_msg']
             msg.header.stamp = stamp

@@ -257,7 +257,7 @@ class Stack:
                                          env=env, line_callback=self._line)
         self.started = time.monotonic()
         self.orchestrator.start()
-        self.spawners = count if count > 1 else 2  # the sim stack spawns one per controller
+        self.spawners = count  # one spawner per robot, for both controllers
 
     def _line(self, label, line):
         self.lines.setdefault(label, []).append(line)
