@@ -23,7 +23,7 @@ from rclpy.lifecycle import TransitionCallbackReturn
 from rclpy.parameter import Parameter
 
 __all__ = ['ControllerInterface', 'TransitionCallbackReturn', 'time_to_msg', 'msg_to_time',
-           'set_stamp']
+           'set_stamp', 'heard']
 
 
 def time_to_msg(time):
@@ -51,6 +51,22 @@ def set_stamp(stamp, time):
         sec, nanosec = sec + 1, nanosec - 1_000_000_000
     stamp.sec = int(sec)
     stamp.nanosec = nanosec
+
+
+def heard(publisher):
+    """
+    Return True when a volatile ``publisher`` has at least one matched subscription.
+
+    For the realtime ``update`` of controllers: a message published on a volatile topic that
+    no subscription has matched yet is delivered to nobody (DDS keeps no history for late
+    joiners), so skipping its conversion and publication changes nothing any subscriber
+    sees, while it saves the rclpy message conversion (the largest Python cost per robot of a
+    fleet whose topics nobody listens to). Not for ``transient_local`` publishers.
+
+    :param publisher: an rclpy publisher.
+    :returns: bool.
+    """
+    return publisher.get_subscription_count() > 0
 
 
 def msg_to_time(msg):

@@ -33,6 +33,7 @@ before each publication.
 import math
 
 from amr_description.control.controller_interface import ControllerInterface
+from amr_description.control.controller_interface import heard
 from amr_description.control.controller_interface import msg_to_time
 from amr_description.control.controller_interface import set_stamp
 from amr_description.control.controller_interface import time_to_msg
@@ -405,6 +406,10 @@ class DiffDriveController(ControllerInterface):
             self._previous_publish = previous
         else:
             return
+        odom_heard = heard(self._odom_pub)
+        tf_heard = self._tf_msg is not None and heard(self._tf_pub)
+        if not (odom_heard or tf_heard):
+            return  # volatile topics nobody has matched: nothing to deliver
         odom = self.odometry
         half_heading = 0.5 * odom.heading
         qz, qw = math.sin(half_heading), math.cos(half_heading)
@@ -418,8 +423,9 @@ class DiffDriveController(ControllerInterface):
         orientation.w = qw
         self._odom_linear.x = odom.linear
         self._odom_angular.z = odom.angular
-        self._odom_pub.publish(self._odom_msg)
-        if self._tf_msg is not None:
+        if odom_heard:
+            self._odom_pub.publish(self._odom_msg)
+        if tf_heard:
             set_stamp(self._tf_stamp, time)
             translation = self._tf_translation
             translation.x = x

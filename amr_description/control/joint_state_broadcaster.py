@@ -23,6 +23,7 @@ import math
 import xml.etree.ElementTree as ET
 
 from amr_description.control.controller_interface import ControllerInterface
+from amr_description.control.controller_interface import heard
 from amr_description.control.controller_interface import set_stamp
 from amr_description.control.controller_interface import TransitionCallbackReturn
 from rclpy.qos import QoSProfile
@@ -140,7 +141,9 @@ class JointStateBroadcaster(ControllerInterface):
         return TransitionCallbackReturn.SUCCESS
 
     def update(self, time, period):
-        """Publish one JointState stamped ``time``; returns True."""
+        """Publish one JointState stamped ``time`` (when subscribed, see heard); True."""
+        if not heard(self._publisher):
+            return True
         for column, index, handle in self._slots:
             column[index] = handle.value
         set_stamp(self._stamp, time)

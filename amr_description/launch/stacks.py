@@ -163,9 +163,11 @@ def sim(args):
     mujoco_sim (``real_time_factor``, ``headless``, ``/diff_drive_controller/odom`` remapped
     to ``/odom``); robot_state_publisher with ``use_sim_time``; ``create -topic
     robot_description -name ROBOT -x X -y Y -z Z -Y YAW``; when ``create`` exits successfully
-    ``spawner joint_state_broadcaster``, and when that exits ``spawner diff_drive_controller``
-    (the tutorial's ``OnProcessExit`` chain); the viewer (Fixed Frame ``odom``, port
-    ``viewer_port``) unless ``viewer:=false``.
+    ``spawner joint_state_broadcaster diff_drive_controller`` (the tutorial chains two
+    spawners with ``OnProcessExit``; upstream's spawner takes several names and activates
+    them in that order, and one process instead of two started one after the other saves a
+    Python start-up, ~0.3 s of CPU, from the critical path); the viewer (Fixed Frame
+    ``odom``, port ``viewer_port``) unless ``viewer:=false``.
 
     :param args: dict of launch-argument values (see ``SIM_ARGUMENTS``; missing ones take
         their declared defaults).
@@ -196,16 +198,14 @@ def sim(args):
         arguments=['-topic', 'robot_description', '-name', robot,
                    '-x', repr(pose['x']), '-y', repr(pose['y']), '-z', repr(pose['z']),
                    '-Y', repr(pose['yaw'])])
-    joint_state_broadcaster = Node(
-        PACKAGE, 'spawner', output='screen', arguments=['joint_state_broadcaster'])
-    diff_drive_controller = Node(
-        PACKAGE, 'spawner', output='screen', arguments=['diff_drive_controller'])
+    spawner = Node(
+        PACKAGE, 'spawner', output='screen',
+        arguments=['joint_state_broadcaster', 'diff_drive_controller'])
     actions = [
         mujoco_sim,
         robot_state_publisher,
         create,
-        OnProcessExit(create, [joint_state_broadcaster], only_on_success=True),
-        OnProcessExit(joint_state_broadcaster, [diff_drive_controller]),
+        OnProcessExit(create, [spawner], only_on_success=True),
     ]
     if viewer:
         actions.append(Node(PACKAGE, 'viewer', output='screen',

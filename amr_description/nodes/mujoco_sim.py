@@ -36,7 +36,9 @@ state; removing spawned entities is unsupported), ``~/set_simulation_state``
 ``~/step_simulation`` (StepSimulation: N physics steps while paused; answers when done).
 
 Threads: the rclpy executor runs in the main thread and is the only thread that creates or
-destroys rclpy entities (spawn builds the controller manager in the service callback). The
+destroys rclpy entities (spawn builds the controller manager in the service callback, a
+coroutine that awaits the simulation thread's world change, so that the executor serves the
+other robots' controller-manager services meanwhile). The
 simulation thread publishes /clock and the ground truth and sets the controller nodes' clocks;
 their /clock subscriptions are removed before the executor ever sees them
 (:class:`SimTimeExecutor`).
@@ -47,6 +49,7 @@ import os
 import threading
 import time
 
+from amr_description.control.controller_interface import heard
 from amr_description.nodes import shutdown
 from amr_description.nodes.shutdown import Node
 from amr_description.sim.simulation import IDLE_RATE
@@ -56,6 +59,7 @@ from amr_description.sim.urdf_to_mjcf import resolve_uri
 from nav_msgs.msg import Odometry
 import rclpy.clock
 from rclpy.executors import SingleThreadedExecutor
+from rclpy.task import Future
 from rclpy.time import Time
 from rosgraph_msgs.msg import Clock
 
@@ -128,11 +132,13 @@ class SimTime:
     def set_time(self, t):
         """Set every adopted clock to sim time ``t`` (s), as ``TimeSource.clock_callback``."""
         now = Time(nanoseconds=int(round(t * 1e9)))
-        with self._lock:
+        handle = now._time_handle
+        with self._lock:  # a node is dropped (under this lock) before it is destroyed
             for source in self._snapshot:
                 source._last_time_set = now
                 for clock in source._associated_clocks:
-                    clock.set_ros_time_override(now)
+                    # Clock.set_ros_time_override without its type check and handle guard
+                    clock.handle.set_ros_time_override(handle)
 
 
 class SimTimeExecutor(SingleThreadedExecutor):
@@ -407,8 +413,8 @@ class MujocoSim(Node):
         world = self.sim.world
         for entity in self.sim.active:
             publisher = entity.user.get('ground_truth')
-            if publisher is None:
-                continue
+            if publisher is None or not heard(publisher):
+                continue  # volatile: unheard messages reach nobody
             position, quat, linear, angular = world.ground_truth(entity.name)
             msg = entity.user['ground_truth_msg']
             msg.header.stamp = stamp
@@ -432,7 +438,40 @@ class MujocoSim(Node):
         result.error_message = message
         return result
 
-    def _on_spawn(self, request, response):
+    def _in_sim(self, function):
+        """Return an rclpy Future of ``function()``, run by the simulation thread (no wait)."""
+        future = Future(executor=self._executor)
+        future.add_done_callback(lambda _: None)  # its completion then wakes the executor
+
+        def done(result, error):  # simulation thread
+            if error is None:
+                future.set_result(result)
+            else:
+                future.set_exception(error)
+        self.sim.submit(function, done)
+        return future
+
+    async def _spawn(self, *args, **kwargs):
+        """
+        Run :meth:`Simulation.spawn` in the executor without blocking it.
+
+        While the simulation thread changes the world, the executor serves other callbacks,
+        e.g. the controller-manager services of the robots spawned before (with a fleet
+        started at once, a spawner otherwise waits behind every later robot's spawn).
+        """
+        stages = self.sim.spawn_stages(*args, **kwargs)
+        result, error = None, None
+        while True:
+            try:
+                function = stages.send(result) if error is None else stages.throw(error)
+            except StopIteration as stop:
+                return stop.value
+            try:
+                result, error = await self._in_sim(function), None
+            except Exception as exc:  # noqa: B902 - thrown into the stages (spawn_stages)
+                result, error = None, exc
+
+    async def _on_spawn(self, request, response):
         R = self._result_type
         _, srv = _sim_msgs()
         Response = srv.SpawnEntity.Response
@@ -457,11 +496,12 @@ class MujocoSim(Node):
         except ValueError as exc:
             return self._spawn_failed(response, Response.NAMESPACE_INVALID, str(exc))
         try:
-            # this callback runs on the executor's thread: the controller manager and the
+            # this coroutine runs on the executor's thread: the controller manager and the
             # publishers are created here, the world is changed by the simulation thread
-            entity = self.sim.spawn(urdf, request.name, values, request.entity_namespace,
-                                    request.allow_renaming, setup=self._setup_entity)
-        except (ValueError, TimeoutError) as exc:
+            # (awaited: the executor serves other nodes' callbacks meanwhile)
+            entity = await self._spawn(urdf, request.name, values, request.entity_namespace,
+                                       request.allow_renaming, setup=self._setup_entity)
+        except (ValueError, TimeoutError, RuntimeError) as exc:
             text = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
             code = R.RESULT_OPERATION_FAILED
             if 'already exists' in text or 'already used' in text:

@@ -119,13 +119,19 @@ class Entity:
 class _Request:
     """A function to run in the simulation thread and its outcome."""
 
-    __slots__ = ('function', 'done', 'result', 'error')
+    __slots__ = ('function', 'done', 'result', 'error', 'callback')
 
-    def __init__(self, function):
+    def __init__(self, function, callback=None):
         self.function = function
         self.done = threading.Event()
         self.result = None
         self.error = None
+        self.callback = callback
+
+    def finish(self):
+        self.done.set()
+        if self.callback is not None:
+            self.callback(self.result, self.error)
 
 
 class Simulation:
@@ -251,15 +257,46 @@ class Simulation:
             raise request.error
         return request.result
 
+    def submit(self, function, callback):
+        """
+        Queue ``function()`` for the simulation thread without waiting for it.
+
+        ``callback(result, error)`` is called on the simulation thread once it ran (``error``
+        the exception it raised, or None), or with a ``RuntimeError`` when the thread stops
+        first. Both run directly on the caller's thread when no simulation thread is running.
+        An event-driven caller (an rclpy coroutine) can go on serving other requests meanwhile.
+        """
+        request = _Request(function, callback)
+        if self._thread is None or threading.current_thread() is self._thread:
+            self._run_request(request)
+            return
+        self._requests.append(request)
+        self._wake.set()
+        if self._thread is None:  # stopped meanwhile: nobody else will answer it
+            self._fail_requests()
+
+    @staticmethod
+    def _run_request(request):
+        try:
+            request.result = request.function()
+        except Exception as exc:  # noqa: B902 - reported to the caller, loop goes on
+            request.error = exc
+        request.finish()
+
     def _process_requests(self):
         requests = self._requests
         while requests:
-            request = requests.popleft()
+            self._run_request(requests.popleft())
+
+    def _fail_requests(self):
+        requests = self._requests
+        while requests:
             try:
-                request.result = request.function()
-            except Exception as exc:  # noqa: B902 - reported to the caller, loop goes on
-                request.error = exc
-            request.done.set()
+                request = requests.popleft()
+            except IndexError:
+                break
+            request.error = RuntimeError('the simulation thread stopped')
+            request.finish()
 
     # ------------------------------------------------------------------ spawn
     def spawn(self, urdf, name='', pose=None, namespace='', allow_renaming=False, setup=None):
@@ -279,6 +316,28 @@ class Simulation:
             namespace, a robot MuJoCo cannot compile, a controller manager that fails. The
             world and every other robot are left as they were.
         """
+        stages = self.spawn_stages(urdf, name, pose, namespace, allow_renaming, setup)
+        result, error = None, None
+        while True:
+            try:
+                function = stages.send(result) if error is None else stages.throw(error)
+            except StopIteration as stop:
+                return stop.value
+            try:
+                result, error = self.call(function), None
+            except Exception as exc:  # noqa: B902 - thrown into the stages, as spawn_stages says
+                result, error = None, exc
+
+    def spawn_stages(self, urdf, name='', pose=None, namespace='', allow_renaming=False,
+                     setup=None):
+        """
+        Return :meth:`spawn` as a generator, for a caller that must not block while it runs.
+
+        The generator yields functions to run on the simulation thread and is sent their
+        results (``send``); it returns the :class:`Entity` (``StopIteration.value``). The rest
+        (controller manager, ``setup``) runs on the driving thread. Same arguments and errors
+        as :meth:`spawn`; an error of a yielded function must be thrown into the generator.
+        """
         from amr_description.core.ros2_control_info import parse_ros2_control
         namespace = normalize_namespace(namespace)
         name = self._entity_name(name, urdf)
@@ -286,7 +345,7 @@ class Simulation:
             has_control = bool(parse_ros2_control(urdf))
         except ValueError as exc:
             raise ValueError(str(exc).splitlines()[0]) from None
-        entity = self.call(lambda: self._add(urdf, name, pose, namespace, allow_renaming))
+        entity = yield lambda: self._add(urdf, name, pose, namespace, allow_renaming)
         cm = None
         try:
             if has_control and self._factory is not None:
@@ -302,10 +361,10 @@ class Simulation:
                     self._release(cm)
                 except Exception:  # noqa: B902 - the original error is what matters
                     pass
-            self.call(lambda: self._remove(entity))
+            yield lambda: self._remove(entity)
             text = str(exc).splitlines()[0] if str(exc) else repr(exc)
             raise ValueError(text) from None
-        self.call(lambda: self._activate(entity))
+        yield lambda: self._activate(entity)
         return entity
 
     def _entity_name(self, name, urdf):
@@ -597,6 +656,7 @@ class Simulation:
                 self.thread_error = exc
                 self.logger.error(f'simulation thread stopped: {exc!r}')
         finally:
+            self._fail_requests()
             for _, event in self._step_waiters:
                 event.set()
 

@@ -176,12 +176,30 @@ def test_joint_state_broadcaster_order_and_values(cm):
     assert [row[0] for row in jsb._rows] == list(WHEELS)
     received = []
     jsb._publisher.publish = received.append
+    jsb._publisher.get_subscription_count = lambda: 1  # as if subscribed (see heard)
     cm.cycle(0.5, 0.01)
     msg = received[-1]
     assert list(msg.name) == list(WHEELS)
     assert msg.header.stamp.sec == 0 and msg.header.stamp.nanosec == 500_000_000
     assert all(math.isnan(e) for e in msg.effort)
     assert list(msg.position) == [0.0] * 4
+
+
+def test_controllers_skip_unheard_publications(cm):
+    _activate(cm, 'joint_state_broadcaster', 'diff_drive_controller')
+    jsb = cm.controllers['joint_state_broadcaster']
+    ddc = cm.controllers['diff_drive_controller']
+    sent = []
+    for publisher in (jsb._publisher, ddc._odom_pub, ddc._tf_pub):
+        publisher.publish = sent.append
+        publisher.get_subscription_count = lambda: 0
+    for i in range(1, 11):
+        cm.cycle(0.01 * i, 0.01)
+    assert sent == []  # volatile topics nobody subscribes to: nothing converted or sent
+    ddc._odom_pub.get_subscription_count = lambda: 1
+    for i in range(11, 21):
+        cm.cycle(0.01 * i, 0.01)
+    assert sent and all(type(m).__name__ == 'Odometry' for m in sent)  # odom only
 
 
 def test_configure_fails_without_wheels(cm, tmp_path):
@@ -261,6 +279,7 @@ def test_controller_update_rate_decimates_its_updates(cm):
     assert jsb.update_rate == 25
     received = []
     jsb._publisher.publish = received.append
+    jsb._publisher.get_subscription_count = lambda: 1  # as if subscribed (see heard)
     for k in range(1, 101):  # 1 s at 100 Hz
         cm.cycle(k * 0.01, 0.01)
     assert len(received) == 25

@@ -105,7 +105,7 @@ def test_stack_names():
 def test_sim_stack_layout(monkeypatch):
     monkeypatch.setattr(stacks, 'read_urdf', lambda path=None: '<robot name="amr"/>')
     args = stacks.resolve('sim', ['rtf:=0', 'robot:=r2', 'x:=1', 'yaw:=1.57', 'viewer:=false'])
-    mujoco_sim, rsp, create, on_create, on_jsb = stacks.sim(args)
+    mujoco_sim, rsp, create, on_create = stacks.sim(args)
     assert mujoco_sim.executable == 'mujoco_sim'
     assert mujoco_sim.parameters == [{'real_time_factor': 0.0, 'headless': True}]
     assert mujoco_sim.remappings == [('/diff_drive_controller/odom', '/odom')]
@@ -115,10 +115,9 @@ def test_sim_stack_layout(monkeypatch):
                                 '-y', '0.0', '-z', '0.2', '-Y', '1.57']
     assert isinstance(on_create, OnProcessExit) and on_create.target_action is create
     assert on_create.only_on_success
-    jsb = on_create.on_exit[0]
-    assert jsb.executable == 'spawner' and jsb.arguments == ['joint_state_broadcaster']
-    assert on_jsb.target_action is jsb
-    assert on_jsb.on_exit[0].arguments == ['diff_drive_controller']
+    spawner = on_create.on_exit[0]
+    assert spawner.executable == 'spawner'
+    assert spawner.arguments == ['joint_state_broadcaster', 'diff_drive_controller']
     with pytest.raises(LaunchError, match="launch argument 'rtf': expected a number"):
         stacks.sim(stacks.resolve('sim', ['rtf:=fast']))
     with pytest.raises(LaunchError, match="launch argument 'headless': expected true or false"):
