@@ -454,7 +454,8 @@ def targets(rows):
     out = []
     if 16 in by_n:
         r = by_n[16]
-        out.append(('16 robots, real time: rtf >= 1.0 (paced to 1.0, 1 % tolerance)', f'{r["rtf"]:.3f}',
+        out.append(('16 robots, real time: rtf >= 1.0 (paced to 1.0, 1 % tolerance)',
+                    f'{r["rtf"]:.3f}',
                     r['rtf'] >= 0.99 * TARGETS['rtf16']))
         if r['cost_rel'] is not None:
             out.append(('16 robots, fast: cost per robot-second <= 1.3x linear',
