@@ -485,6 +485,14 @@ def _check_diff_drive(model, components, name, params):
         findings.append(Finding(ERROR, element, 'base_frame_id is not a URDF link',
                                 'a link name', repr(base)))
         base = model.root
+    elif params.get('enable_odom_tf', True):
+        parents = [j.parent for j in model.joints.values() if j.child == base]
+        if parents:
+            findings.append(Finding(
+                WARNING, element,
+                f'base_frame_id has a parent in the URDF ({parents[0]}): the odometry TF '
+                f"odom -> {base} and robot_state_publisher's {parents[0]} -> {base} give it "
+                'two parents (REP 105: odom -> the URDF root)', f'{model.root!r}', repr(base)))
     if sides['left'] and sides['right']:
         left_y = np.mean([joint_position_in_frame(model, w, base)[1] for w in sides['left']])
         right_y = np.mean([joint_position_in_frame(model, w, base)[1] for w in sides['right']])

@@ -109,7 +109,7 @@ def test_sim_stack_round_trip_is_byte_identical(ros_env, procs, exe, tmp_path):
     assert stamps[0] > 0, stamps[:5]
     assert stamps == sorted(stamps) and 2.5e9 <= stamps[-1] - stamps[0] <= 5.5e9, stamps[::50]
     odom = next(d for t, _, _, _, d in independent if t == '/odom')
-    assert (odom.header.frame_id, odom.child_frame_id) == ('odom', 'base_link')
+    assert (odom.header.frame_id, odom.child_frame_id) == ('odom', 'base_footprint')
     meta = yaml.safe_load((first / 'metadata.yaml').read_text())['rosbag2_bagfile_information']
     assert meta['version'] == 9 and meta['ros_distro'] == 'jazzy'
     by_name = {t['topic_metadata']['name']: t['topic_metadata']

@@ -139,16 +139,18 @@ def test_two_namespaced_robots_drive_independently(procs, exe, ros_env, fleet_pe
 
     # TF: two separate trees, every frame prefixed with its robot's namespace
     assert peer.spin_until(lambda: all((f'{ns}/base_footprint', f'{ns}/base_link') in peer.edges
-                                       for ns in ROBOTS), 20), peer.edges
+                                       for ns in ROBOTS), 60), peer.edges
     edges = set(peer.edges)
     for ns in ROBOTS:
-        assert (f'{ns}/odom', f'{ns}/base_link') in edges, edges
+        # REP 105: odometry to the URDF root; base_link has one parent
+        assert (f'{ns}/odom', f'{ns}/base_footprint') in edges, edges
+        assert (f'{ns}/odom', f'{ns}/base_link') not in edges, edges
         assert (f'{ns}/base_link', f'{ns}/wheel_front_left') in edges, edges
     for parent, child in edges:
         assert re.match(r'r[12]/', child) and child[:3] == parent[:3], (parent, child)
     # the controller's odometry frames too
     assert peer.odom_of['r2'][-1].header.frame_id == 'r2/odom'
-    assert peer.odom_of['r2'][-1].child_frame_id == 'r2/base_link'
+    assert peer.odom_of['r2'][-1].child_frame_id == 'r2/base_footprint'
 
 
 def test_fleet_stack_comes_up(procs, exe, ros_env, tmp_path):

@@ -284,3 +284,21 @@ def test_unknown_hardware_plugin(urdf_xml):
     assert found[0].element.startswith('ros2_control ')
     assert 'unknown hardware plugin' in found[0].message
     assert found[0].found == 'gz_ros2_control/GazeboSimSystem'
+
+
+@pytest.mark.parametrize('base, odom_tf, warned', [
+    ('base_link', True, True), ('base_link', False, False), ('base_footprint', True, False)])
+def test_odometry_frame_with_a_urdf_parent_is_a_warning(urdf_xml, controllers, base, odom_tf,
+                                                        warned):
+    # the tutorial's base_frame_id: base_link under a base_footprint root gives base_link two
+    # TF parents (odom from diff_drive_controller, base_footprint from robot_state_publisher)
+    data = yaml.safe_load(yaml.safe_dump(controllers))
+    params = data['/**/diff_drive_controller']['ros__parameters']
+    params['base_frame_id'] = base
+    params['enable_odom_tf'] = odom_tf
+    found = [f for f in warnings(run(urdf_xml, data)) if 'two parents' in f.message]
+    assert len(found) == int(warned), [str(f) for f in found]
+    if warned:
+        assert found[0].found == "'base_link'" and found[0].expected == "'base_footprint'"
+        assert 'odom -> base_link' in found[0].message
+        assert 'base_footprint -> base_link' in found[0].message
