@@ -157,6 +157,30 @@ def _cpu_seconds(pid):
     return (int(fields[11]) + int(fields[12])) / os.sysconf('SC_CLK_TCK')
 
 
+def sample_clock(node, executor, timeout):
+    """
+    Return ``(wall, sim)`` of one /clock message from a short-lived subscription.
+
+    Receiving every /clock message would load the 2-core machine with the observer's own
+    callbacks in fast-forward mode.
+
+    :param node: the observer's rclpy node.
+    :param executor: the executor spinning ``node``.
+    :param timeout: seconds to wait.
+    :returns: monotonic wall s and sim s, or None when no /clock came within ``timeout``.
+    """
+    from rosgraph_msgs.msg import Clock
+    sample = []
+    sub = node.create_subscription(
+        Clock, '/clock', lambda m: sample.append(
+            (time.monotonic(), m.clock.sec + m.clock.nanosec * 1e-9)), 1)
+    end = time.monotonic() + timeout
+    while not sample and time.monotonic() < end:
+        executor.spin_once(timeout_sec=0.005)
+    node.destroy_subscription(sub)
+    return sample[0] if sample else None
+
+
 class Observer:
     """A node in its own context: samples /clock and publishes every robot's cmd_vel."""
 
@@ -186,24 +210,8 @@ class Observer:
         self.twist.twist.linear.x, self.twist.twist.angular.z = TURN_TWIST
 
     def clock_sample(self, timeout=10.0):
-        """
-        Return ``(wall, sim)`` of one /clock message from a short-lived subscription.
-
-        Receiving every /clock message would load the 2-core machine with the observer's own
-        callbacks in fast-forward mode.
-
-        :returns: monotonic wall s and sim s, or None when no /clock came within ``timeout``.
-        """
-        from rosgraph_msgs.msg import Clock
-        sample = []
-        sub = self.node.create_subscription(
-            Clock, '/clock', lambda m: sample.append(
-                (time.monotonic(), m.clock.sec + m.clock.nanosec * 1e-9)), 1)
-        end = time.monotonic() + timeout
-        while not sample and time.monotonic() < end:
-            self.executor.spin_once(timeout_sec=0.005)
-        self.node.destroy_subscription(sub)
-        return sample[0] if sample else None
+        """Return ``(wall, sim)`` of one /clock message, or None (:func:`sample_clock`)."""
+        return sample_clock(self.node, self.executor, timeout)
 
     def drive(self, sim_now):
         """Publish every robot's command, stamped :data:`CMD_LEAD` after ``sim_now`` (s)."""

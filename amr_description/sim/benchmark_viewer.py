@@ -158,22 +158,9 @@ class _Observer:
         return {c.name for c in future.result().controller if c.state == 'active'}
 
     def clock_sample(self, timeout=5.0):
-        """
-        Return (wall, sim) of one /clock message from a short-lived subscription.
-
-        Used in fast-forward mode, where receiving every /clock message would load the
-        2-core machine with the observer's own callbacks.
-        """
-        from rosgraph_msgs.msg import Clock
-        sample = []
-        sub = self.node.create_subscription(
-            Clock, '/clock', lambda m: sample.append(
-                (time.monotonic(), m.clock.sec + m.clock.nanosec * 1e-9)), 1)
-        end = time.monotonic() + timeout
-        while not sample and time.monotonic() < end:
-            self.executor.spin_once(timeout_sec=0.005)
-        self.node.destroy_subscription(sub)
-        return sample[0] if sample else None
+        """Return ``(wall, sim)`` of one /clock message, or None (:func:`sample_clock`)."""
+        from amr_description.sim.benchmark import sample_clock
+        return sample_clock(self.node, self.executor, timeout)
 
     def measure_fast(self, seconds, twist=(FAST_LINEAR, 0.0)):
         """Return the sim/wall speed over ``seconds`` driven by ``twist`` (m/s, rad/s)."""
