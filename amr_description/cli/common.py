@@ -5,7 +5,9 @@
 
 import contextlib
 import os
+import signal
 import sys
+import threading
 import time
 
 
@@ -87,6 +89,45 @@ def add_spin_time_argument(parser, default=3.0):
              f'default: {default})')
 
 
+class _Interrupts:
+    """
+    SIGINT for the CLI: ``KeyboardInterrupt`` at once, except inside :func:`spin_once`.
+
+    A ``KeyboardInterrupt`` raised in the middle of rclpy's executor (while it holds entity
+    handles in its wait set, or inside a subscription callback) leaves the executor and the
+    node half torn down for the cleanup that follows; seen as a Ctrl-C'd ``topic echo`` that
+    did not exit on a loaded machine. Inside ``spin_once`` the signal only sets a flag and
+    ``spin_once`` raises ``KeyboardInterrupt`` once rclpy returned (the nodes' pattern,
+    :mod:`amr_description.nodes.shutdown`). A handler a verb installed itself (``ros2 bag``'s
+    stop flag) is left alone.
+    """
+
+    spinning = False
+    pending = False
+
+    @classmethod
+    def install(cls):
+        """Install the handler when SIGINT still has Python's default (main thread only)."""
+        if threading.current_thread() is not threading.main_thread():
+            return
+        if signal.getsignal(signal.SIGINT) is signal.default_int_handler:
+            signal.signal(signal.SIGINT, cls._handler)
+
+    @classmethod
+    def _handler(cls, signum, frame):
+        if cls.spinning:
+            cls.pending = True
+            return
+        raise KeyboardInterrupt
+
+    @classmethod
+    def raise_pending(cls):
+        """Raise the ``KeyboardInterrupt`` deferred while rclpy was spinning, if any."""
+        if cls.pending:
+            cls.pending = False
+            raise KeyboardInterrupt
+
+
 def spin_once(node, timeout_sec=None):
     """
     Execute at most one callback of ``node`` in the context it was created in.
@@ -94,6 +135,7 @@ def spin_once(node, timeout_sec=None):
     :param node: a node made by :func:`cli_node` (or any node; a private executor is created
         for its context on first use).
     :param timeout_sec: seconds to wait for work (None: forever).
+    :raises KeyboardInterrupt: after ``spin_once`` returned, when SIGINT arrived meanwhile.
     """
     executor = getattr(node, '_cli_executor', None)
     if executor is None:
@@ -101,7 +143,12 @@ def spin_once(node, timeout_sec=None):
         executor = SingleThreadedExecutor(context=node.context)
         executor.add_node(node)
         node._cli_executor = executor
-    executor.spin_once(timeout_sec=timeout_sec)
+    _Interrupts.spinning = True
+    try:
+        executor.spin_once(timeout_sec=timeout_sec)
+    finally:
+        _Interrupts.spinning = False
+    _Interrupts.raise_pending()
 
 
 @contextlib.contextmanager
@@ -116,15 +163,24 @@ def cli_node(name='_ros2cli', args=None):
     import rclpy
     from rclpy.context import Context
 
+    _Interrupts.install()
     context = Context()
     rclpy.init(args=args, context=context)
     node = rclpy.create_node(name, context=context, start_parameter_services=False)
     try:
         yield node
     finally:
-        executor = getattr(node, '_cli_executor', None)
-        if executor is not None:
-            executor.shutdown(timeout_sec=0.1)
-        node.destroy_node()
-        with contextlib.suppress(Exception):
-            rclpy.shutdown(context=context)
+        # a second Ctrl-C must not cut the teardown short (main thread only)
+        main = threading.current_thread() is threading.main_thread()
+        previous = signal.signal(signal.SIGINT, signal.SIG_IGN) if main else None
+        try:
+            executor = getattr(node, '_cli_executor', None)
+            if executor is not None:
+                executor.shutdown(timeout_sec=0.1)
+            node.destroy_node()
+            with contextlib.suppress(Exception):
+                rclpy.shutdown(context=context)
+        finally:
+            _Interrupts.spinning = _Interrupts.pending = False
+            if main:
+                signal.signal(signal.SIGINT, previous)
