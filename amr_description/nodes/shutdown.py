@@ -143,12 +143,20 @@ def init(args=None):
     """
     for signum in _SIGNALS:
         signal.signal(signum, _interrupt)
+    # a signal during rclpy.init is deferred (as inside spin): raised in the middle of rcl's
+    # start-up it would leave an initialised context that nothing shuts down
+    _spinning.set()
     try:
         with _QuietRcl(args):
             rclpy.init(args=args, signal_handler_options=SignalHandlerOptions.NO)
     except RuntimeError as exc:  # rclpy's RCLError: rcl_init failed on the arguments
         rclpy.try_shutdown()
         fail(_program(args), exc)
+    finally:
+        _spinning.clear()
+    if _interrupted.is_set():
+        rclpy.try_shutdown()
+        raise KeyboardInterrupt
 
 
 def remove_ros_args(args=None):
