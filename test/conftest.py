@@ -127,6 +127,17 @@ def run_until(argv, env, check, timeout=90.0, **kwargs):
             return result
 
 
+def _default_sigint():
+    """
+    Give the child SIGINT's default action (run in the child before exec).
+
+    A suite started with SIGINT ignored (``nohup ... &`` in a script) would pass that on to
+    every child; Python then installs no ``KeyboardInterrupt`` handler, and the tests'
+    Ctrl-C would be ignored by every program that relies on it (as upstream ros2cli does).
+    """
+    signal.signal(signal.SIGINT, signal.SIG_DFL)
+
+
 class Proc:
     """A started child process whose combined stdout/stderr goes to a temporary file."""
 
@@ -143,7 +154,7 @@ class Proc:
         self._log = tempfile.NamedTemporaryFile(prefix='amr_test_', suffix='.log', delete=False)
         self.popen = subprocess.Popen(
             self.argv, env=env, cwd=cwd, stdin=stdin, stdout=self._log,
-            stderr=subprocess.STDOUT, start_new_session=True)
+            stderr=subprocess.STDOUT, start_new_session=True, preexec_fn=_default_sigint)
 
     @property
     def output(self):
