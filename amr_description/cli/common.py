@@ -94,9 +94,10 @@ class _Interrupts:
     SIGINT for the CLI: ``KeyboardInterrupt`` at once, except inside :func:`spin_once`.
 
     A ``KeyboardInterrupt`` raised in the middle of rclpy's executor (while it holds entity
-    handles in its wait set, or inside a subscription callback) leaves the executor and the
-    node half torn down for the cleanup that follows; seen as a Ctrl-C'd ``topic echo`` that
-    did not exit on a loaded machine. Inside ``spin_once`` the signal only sets a flag and
+    handles in its wait set, or inside a subscription callback) would reach the cleanup that
+    follows with the executor and the node half torn down (a precaution: the Ctrl-C'd
+    ``topic echo`` that once did not exit came from a test run with SIGINT ignored, see
+    ``test/conftest.py``). Inside ``spin_once`` the signal only sets a flag and
     ``spin_once`` raises ``KeyboardInterrupt`` once rclpy returned (the nodes' pattern,
     :mod:`amr_description.nodes.shutdown`). A handler a verb installed itself (``ros2 bag``'s
     stop flag) is left alone.
