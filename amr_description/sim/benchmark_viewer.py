@@ -213,19 +213,18 @@ def viewer_cost(domain_id, urdf_path, duration, log=print):
     import shutil
     import socket
 
+    from amr_description.sim.benchmark import _cpu_seconds
+
     def cpu_seconds(pgid):
-        total = 0
+        total = 0.0
         for entry in os.listdir('/proc'):
-            if not entry.isdigit():
-                continue
-            try:
-                with open(f'/proc/{entry}/stat') as f:
-                    fields = f.read().rsplit(')', 1)[1].split()
-            except OSError:
-                continue
-            if int(fields[2]) == pgid:  # pgrp; then utime, stime are fields 14, 15 of stat
-                total += int(fields[11]) + int(fields[12])
-        return total / os.sysconf('SC_CLK_TCK')
+            if entry.isdigit():
+                try:
+                    in_group = os.getpgid(int(entry)) == pgid
+                except OSError:  # gone meanwhile
+                    continue
+                total += (_cpu_seconds(entry) or 0.0) if in_group else 0.0
+        return total
 
     result = {'rtf': 0.0, 'viewer_cpu': None, 'rates': {}}
     observer = _Observer(domain_id)
