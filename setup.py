@@ -52,6 +52,11 @@ setup(
             'drive_square = amr_description.nodes.drive_square:main',
             'physics_report = amr_description.sim.physics_report:main',
             'ros2 = amr_description.cli.main:main',
+            'component_container = amr_description.nodes.component_container:main',
+        ],
+        'amr_description.components': [
+            'amr_description::RobotStatePublisher = '
+            'amr_description.nodes.robot_state_publisher:RobotStatePublisher',
         ],
         'amr_description.controllers': [
             'joint_state_broadcaster/JointStateBroadcaster = '

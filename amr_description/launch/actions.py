@@ -229,6 +229,30 @@ def _normalize_namespace(namespace):
     return namespace if namespace.startswith('/') else '/' + namespace
 
 
+def _ros_args(node_name, namespace, parameters, remappings, params_dir, temp_files):
+    """
+    Return ``--ros-args`` and the node's remappings and parameter files (launch_ros order).
+
+    Parameter dicts are written with :func:`write_params_file`; their paths are appended to
+    ``temp_files``.
+    """
+    args = ['--ros-args']
+    if node_name is not None:
+        args += ['-r', f'__node:={node_name}']
+    if namespace is not None:
+        args += ['-r', f'__ns:={namespace}']
+    for params in parameters:
+        if isinstance(params, dict):
+            file_path = write_params_file(params, params_dir)
+            temp_files.append(file_path)
+        else:
+            file_path = os.fspath(params)
+        args += ['--params-file', file_path]
+    for source, target in remappings:
+        args += ['-r', f'{source}:={target}']
+    return args
+
+
 class Node(Process):
     """
     A ROS node to run (like ``launch_ros.actions.Node``).
@@ -279,25 +303,86 @@ class Node(Process):
         :raises LaunchError: when the executable cannot be found.
         """
         path = self.exe_path or find_executable(self.package, self.executable)
-        cmd = [path] + self.arguments + ['--ros-args']
-        if self.node_name is not None:
-            cmd += ['-r', f'__node:={self.node_name}']
-        if self.namespace is not None:
-            cmd += ['-r', f'__ns:={self.namespace}']
-        for params in self.parameters:
-            if isinstance(params, dict):
-                file_path = write_params_file(params, params_dir)
-                self._temp_files.append(file_path)
-            else:
-                file_path = os.fspath(params)
-            cmd += ['--params-file', file_path]
-        for source, target in self.remappings:
-            cmd += ['-r', f'{source}:={target}']
-        return cmd
+        return [path] + self.arguments + _ros_args(
+            self.node_name, self.namespace, self.parameters, self.remappings, params_dir,
+            self._temp_files)
 
     def temp_files(self):
         """Return the parameter files written so far by :meth:`build_cmd`."""
         return list(self._temp_files)
+
+
+class ComposableNode:
+    """
+    A node to load into a container (like ``launch_ros.descriptions.ComposableNode``).
+
+    :param package: package of the plugin (documentation; the plugin name says it).
+    :param plugin: registered plugin name, e.g. ``amr_description::RobotStatePublisher``
+        (:data:`amr_description.nodes.component_container.COMPONENT_GROUP`).
+    :param name: node name (``-r __node:=``), or None to keep the node's own.
+    :param namespace: node namespace (``-r __ns:=``, a leading ``/`` is added), or None.
+    :param parameters: list of dicts and parameter-file paths, as :class:`Node`.
+    :param remappings: list of ``(from, to)`` pairs.
+    """
+
+    def __init__(self, package, plugin, name=None, namespace=None, parameters=None,
+                 remappings=None):
+        """Store the description; see the class docstring for the parameters."""
+        self.package = package
+        self.plugin = plugin
+        self.node_name = name
+        self.namespace = _normalize_namespace(namespace)
+        self.parameters = list(parameters or [])
+        self.remappings = [(str(a), str(b)) for a, b in (remappings or [])]
+        for params in self.parameters:
+            if not isinstance(params, (dict, str, os.PathLike)):
+                raise LaunchError(
+                    f'parameters of {plugin}: expected dicts or file paths, '
+                    f'got {type(params).__name__}')
+
+
+class ComposableNodeContainer(Node):
+    """
+    A container process with nodes loaded into it (like ``launch_ros``'s action).
+
+    The container is ``component_container`` of this package
+    (:mod:`amr_description.nodes.component_container`); the composable nodes are handed to it
+    in a ``launch_components_*`` YAML file (``--nodes FILE``), each with its own ROS
+    arguments, instead of ``LoadNode`` service calls.
+
+    :param name: the container's node name.
+    :param namespace: the container's namespace (``''`` or None: none).
+    :param composable_node_descriptions: list of :class:`ComposableNode`.
+    :param package: package of the container executable (default ``amr_description``).
+    :param executable: container executable (default ``component_container``).
+    :param kwargs: :class:`Node` options (parameters, remappings, output, exe_path...).
+    """
+
+    def __init__(self, name, namespace=None, composable_node_descriptions=None,
+                 package='amr_description', executable='component_container', **kwargs):
+        """Store the description; see the class docstring for the parameters."""
+        self.composable_node_descriptions = list(composable_node_descriptions or [])
+        super().__init__(package, executable, name=name, namespace=namespace or None,
+                         **kwargs)
+
+    def build_cmd(self, params_dir=None):
+        """
+        Return the argv; writes the component list and the nodes' parameter files.
+
+        :param params_dir: directory for the files (default: system temp dir).
+        :returns: list of str.
+        :raises LaunchError: when the executable cannot be found.
+        """
+        entries = [{'plugin': node.plugin,
+                    'ros_args': _ros_args(node.node_name, node.namespace, node.parameters,
+                                          node.remappings, params_dir, self._temp_files)}
+                   for node in self.composable_node_descriptions]
+        with tempfile.NamedTemporaryFile(mode='w', prefix='launch_components_', dir=params_dir,
+                                         suffix='.yaml', delete=False) as f:
+            yaml.safe_dump(entries, f, default_flow_style=False)
+        self._temp_files.append(f.name)
+        self.arguments = ['--nodes', f.name]
+        return super().build_cmd(params_dir)
 
 
 class OnProcessExit:

@@ -18,6 +18,8 @@ str values of ``name:=value`` pairs (see
 import math
 import os
 
+from amr_description.launch.actions import ComposableNode
+from amr_description.launch.actions import ComposableNodeContainer
 from amr_description.launch.actions import DeclareLaunchArgument
 from amr_description.launch.actions import LaunchError
 from amr_description.launch.actions import Node
@@ -95,6 +97,9 @@ FLEET_ARGUMENTS = [
     DeclareLaunchArgument('headless', 'true', 'Run the simulator without a viewer window'),
     DeclareLaunchArgument('robots', '2', 'Number of robots, namespaces r1 ... rN'),
     DeclareLaunchArgument('spacing', '2.0', 'Distance between neighbours on the grid (m)'),
+    DeclareLaunchArgument('use_composition', 'true',
+                          'Whether to run the robot_state_publishers as composed nodes in one '
+                          'container process (one process per robot if false)'),
 ]
 
 
@@ -236,7 +241,10 @@ def fleet(args):
     mujoco_sim (``real_time_factor``, ``headless``; ``/rI/diff_drive_controller/odom``
     remapped to ``/rI/odom`` for every robot). For each robot ``rI`` (I = 1 ... N), in
     namespace ``/rI``: robot_state_publisher with ``frame_prefix`` ``rI/`` (publishes
-    ``/rI/robot_description``, listens to ``/rI/joint_states``); ``create -topic
+    ``/rI/robot_description``, listens to ``/rI/joint_states``), all of them composed in one
+    ``component_container`` process named ``robot_state_publisher_container`` unless
+    ``use_composition:=false`` (one process per robot; a process costs about a second of CPU
+    to start and competes with the simulator for the CPU); ``create -topic
     /rI/robot_description -name rI -robot_namespace rI -x X -y Y -z 0.2`` at its grid
     position (:func:`fleet_grid`); when it exits successfully one ``spawner -c
     /rI/controller_manager joint_state_broadcaster diff_drive_controller`` (one process per
@@ -267,12 +275,25 @@ def fleet(args):
     if not spacing > 0:
         raise LaunchError(f"launch argument 'spacing': expected a number > 0, got "
                           f"'{args['spacing']}'")
+    use_composition = parse_bool(args['use_composition'], 'use_composition')
     description = read_urdf()
     names = [f'r{i}' for i in range(1, count + 1)]
     actions = [Node(
         PACKAGE, 'mujoco_sim', output='screen',
         parameters=[{'real_time_factor': rtf, 'headless': headless}],
         remappings=[(f'/{ns}/diff_drive_controller/odom', f'/{ns}/odom') for ns in names])]
+
+    def rsp_parameters(ns):
+        return [{'robot_description': description, 'use_sim_time': use_sim_time,
+                 'frame_prefix': f'{ns}/'}]
+
+    if use_composition:
+        actions.append(ComposableNodeContainer(
+            'robot_state_publisher_container', output='screen',
+            parameters=[{'use_sim_time': use_sim_time}],
+            composable_node_descriptions=[
+                ComposableNode(PACKAGE, 'amr_description::RobotStatePublisher', namespace=ns,
+                               parameters=rsp_parameters(ns)) for ns in names]))
     for ns, (x, y) in zip(names, fleet_grid(count, spacing)):
         create = Node(
             PACKAGE, 'create', output='screen',
@@ -282,13 +303,10 @@ def fleet(args):
             PACKAGE, 'spawner', output='screen',
             arguments=['-c', f'/{ns}/controller_manager', 'joint_state_broadcaster',
                        'diff_drive_controller'])
-        actions += [
-            Node(PACKAGE, 'robot_state_publisher', namespace=ns, output='screen',
-                 parameters=[{'robot_description': description, 'use_sim_time': use_sim_time,
-                              'frame_prefix': f'{ns}/'}]),
-            create,
-            OnProcessExit(create, [spawner], only_on_success=True),
-        ]
+        if not use_composition:
+            actions.append(Node(PACKAGE, 'robot_state_publisher', namespace=ns,
+                                output='screen', parameters=rsp_parameters(ns)))
+        actions += [create, OnProcessExit(create, [spawner], only_on_success=True)]
     return actions
 
 

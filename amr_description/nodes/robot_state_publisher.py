@@ -55,13 +55,15 @@ TF_QOS = QoSProfile(depth=100)
 class RobotStatePublisher(Node):
     """Node ``robot_state_publisher`` (see the module docstring for its interface)."""
 
-    def __init__(self):
+    def __init__(self, **kwargs):
         """
         Declare the parameters, parse the model and create publishers and subscription.
 
+        :param kwargs: ``rclpy.node.Node`` options (``cli_args``, ``use_global_arguments``...),
+            as :mod:`amr_description.nodes.component_container` passes them.
         :raises ValueError: when ``robot_description`` is empty or not a valid URDF (one line).
         """
-        super().__init__('robot_state_publisher')
+        super().__init__('robot_state_publisher', **kwargs)
         self.declare_parameter('robot_description', '', ParameterDescriptor(
             description='The original description of the robot'))
         self.declare_parameter('publish_frequency', 20.0, ParameterDescriptor(

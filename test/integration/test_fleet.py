@@ -154,7 +154,8 @@ def test_two_namespaced_robots_drive_independently(procs, exe, ros_env, fleet_pe
 
 
 def test_fleet_stack_comes_up(procs, exe, ros_env, tmp_path):
-    # four robots (all 13 processes started at once, as a launch file does) in real time;
+    # four robots (all 10 processes started at once, as a launch file does: the robot state
+    # publishers composed in one container) in real time;
     # every robot's two controllers active (both spawners' log lines), each robot's
     # odometry and ground truth heard at its grid position; deadlines generous for a
     # loaded machine (the fleet benchmark measures the start-up time)

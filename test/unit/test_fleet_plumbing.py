@@ -8,6 +8,7 @@ import re
 
 from amr_description.core.course import square_course
 from amr_description.launch import stacks
+from amr_description.launch.actions import ComposableNodeContainer
 from amr_description.launch.actions import LaunchError
 from amr_description.launch.actions import Node
 from amr_description.launch.actions import OnProcessExit
@@ -37,7 +38,12 @@ def test_fleet_stack_namespaces_every_robot():
     cmd = sim[0].build_cmd()
     for ns in ('r1', 'r2', 'r3'):
         assert f'/{ns}/diff_drive_controller/odom:=/{ns}/odom' in cmd
-    rsp = [n for n in nodes if n.executable == 'robot_state_publisher']
+    # the robot_state_publishers are composed in one container process
+    assert not [n for n in nodes if n.executable == 'robot_state_publisher']
+    containers = [n for n in nodes if isinstance(n, ComposableNodeContainer)]
+    assert len(containers) == 1
+    rsp = containers[0].composable_node_descriptions
+    assert {n.plugin for n in rsp} == {'amr_description::RobotStatePublisher'}
     assert [n.namespace for n in rsp] == ['/r1', '/r2', '/r3']
     assert [n.parameters[0]['frame_prefix'] for n in rsp] == ['r1/', 'r2/', 'r3/']
     creates = [n for n in nodes if n.executable == 'create']
@@ -51,8 +57,34 @@ def test_fleet_stack_namespaces_every_robot():
                                  'diff_drive_controller']
 
 
+def test_fleet_stack_without_composition():
+    nodes = [a for a in _actions(['robots:=2', 'use_composition:=false']) if isinstance(a, Node)]
+    assert not [n for n in nodes if isinstance(n, ComposableNodeContainer)]
+    rsp = [n for n in nodes if n.executable == 'robot_state_publisher']
+    assert [n.namespace for n in rsp] == ['/r1', '/r2']
+
+
+def test_container_command_line(tmp_path):
+    import yaml
+    container = [a for a in _actions(['robots:=2']) if isinstance(a, ComposableNodeContainer)][0]
+    cmd = container.build_cmd(str(tmp_path))
+    assert cmd[1] == '--nodes' and cmd[2] in container.temp_files()
+    assert cmd[3:6] == ['--ros-args', '-r', '__node:=robot_state_publisher_container']
+    with open(cmd[2]) as f:
+        entries = yaml.safe_load(f)
+    assert [e['plugin'] for e in entries] == ['amr_description::RobotStatePublisher'] * 2
+    args = entries[1]['ros_args']
+    assert args[:3] == ['--ros-args', '-r', '__ns:=/r2'] and args[3] == '--params-file'
+    with open(args[4]) as f:
+        params = yaml.safe_load(f)['/**']['ros__parameters']
+    assert params['frame_prefix'] == 'r2/' and '<robot' in params['robot_description']
+    # every file written is handed back for removal
+    assert set(container.temp_files()) == {str(p) for p in tmp_path.iterdir()}
+
+
 @pytest.mark.parametrize('argv,field', [(['robots:=0'], 'robots'), (['robots:=two'], 'robots'),
-                                        (['spacing:=0'], 'spacing'), (['rtf:=-1'], 'rtf')])
+                                        (['spacing:=0'], 'spacing'), (['rtf:=-1'], 'rtf'),
+                                        (['use_composition:=maybe'], 'use_composition')])
 def test_fleet_stack_rejects_bad_arguments(argv, field):
     with pytest.raises(LaunchError, match=f"'{field}'"):
         _actions(argv)

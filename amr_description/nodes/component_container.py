@@ -1,0 +1,171 @@
+# Copyright 2026 The amr_description Authors
+# Licensed under the Apache License, Version 2.0
+
+"""
+``component_container``: several nodes in one process (the role of rclcpp_components').
+
+A fleet runs one robot_state_publisher per robot. As separate processes each one pays a
+Python and rclpy start-up (about a second of CPU, most of it importing the URDF loader's
+yourdfpy and trimesh) and competes with the simulator for the CPU; composed in one
+container the imports are paid once and the nodes share one executor (one thread).
+
+Command line::
+
+    component_container --nodes FILE [--ros-args ...]
+
+``FILE`` is a YAML list, one entry per node, in load order, as the orchestrator's
+:class:`amr_description.launch.actions.ComposableNodeContainer` writes it::
+
+    - plugin: amr_description::RobotStatePublisher
+      ros_args: [--ros-args, -r, __ns:=/r1, --params-file, /tmp/launch_params_x]
+
+``plugin`` names an entry point of group :data:`COMPONENT_GROUP` (the package's
+composable nodes, as rclcpp_components' registry names a class). ``ros_args`` are that node's
+own ROS arguments (node name and namespace remappings, ``--params-file``, other remappings);
+as in rclcpp_components, a component does not take the container's global arguments. The
+container's own node is named ``ComponentManager`` (upstream's default; launch renames it
+with ``-r __node:=NAME``).
+
+A node that cannot be loaded (unknown plugin, a refused parameter or description) is one
+error line, ``Failed to load component 'PLUGIN' (ARGS): REASON``, and the container keeps
+serving the others, as a container does when a ``LoadNode`` request fails. A file that cannot
+be read or is not such a list is one error line and exit code 1. Not offered: the
+``~/_container/load_node``, ``unload_node`` and ``list_nodes`` services (the
+composition_interfaces package is not built here), so ``ros2 component`` does not apply; the
+composed nodes themselves are ordinary nodes to ``ros2 node``, ``ros2 param`` and
+``ros2 topic``.
+"""
+
+import argparse
+from importlib.metadata import entry_points
+import sys
+
+from amr_description.nodes import shutdown
+from amr_description.nodes.shutdown import Node
+from rclpy.exceptions import InvalidParameterTypeException
+from rclpy.exceptions import InvalidParameterValueException
+from rclpy.exceptions import ParameterException
+from rclpy.executors import SingleThreadedExecutor
+import yaml
+
+COMPONENT_GROUP = 'amr_description.components'
+"""Entry-point group of the composable nodes (``amr_description::RobotStatePublisher``...)."""
+
+
+class ComponentError(Exception):
+    """A component list or one of its entries is not usable (one-line message)."""
+
+
+def read_components(path):
+    """
+    Read a component list file (module docstring).
+
+    :param path: YAML file path.
+    :returns: list of ``(plugin, ros_args)``, ``plugin`` a str, ``ros_args`` a list of str.
+    :raises ComponentError: unreadable file, or not a list of ``{plugin, ros_args}`` maps.
+    """
+    try:
+        with open(path) as f:
+            data = yaml.safe_load(f)
+    except (OSError, yaml.YAMLError) as exc:
+        raise ComponentError(f'cannot read --nodes {path}: {" ".join(str(exc).split())}')
+    if not isinstance(data, list):
+        raise ComponentError(f'--nodes {path}: expected a list of components')
+    components = []
+    for index, entry in enumerate(data):
+        plugin = entry.get('plugin') if isinstance(entry, dict) else None
+        ros_args = entry.get('ros_args', []) if isinstance(entry, dict) else None
+        if not isinstance(plugin, str) or not isinstance(ros_args, list):
+            raise ComponentError(f'--nodes {path}: entry {index}: expected a map with a '
+                                 'string plugin and a list ros_args')
+        components.append((plugin, [str(arg) for arg in ros_args]))
+    return components
+
+
+def registry():
+    """Return dict plugin name -> entry point of :data:`COMPONENT_GROUP`."""
+    return {ep.name: ep for ep in entry_points(group=COMPONENT_GROUP)}
+
+
+class ComponentContainer(Node):
+    """The container's own node; loads and owns the composed nodes."""
+
+    def __init__(self):
+        """Create the node ``ComponentManager`` (renamed by the command line)."""
+        super().__init__('ComponentManager')
+        self.components = []
+
+    def load(self, plugin, ros_args, plugins):
+        """
+        Create the node ``plugin`` with its own ``ros_args``; log one line on failure.
+
+        :param plugin: registered plugin name.
+        :param ros_args: the node's ROS arguments (``--ros-args ...``).
+        :param plugins: :func:`registry` result.
+        :returns: the node, or None when it could not be loaded.
+        """
+        try:
+            if plugin not in plugins:
+                known = ', '.join(sorted(plugins)) or 'none'
+                raise ComponentError(f'unknown plugin (registered: {known})')
+            factory = plugins[plugin].load()
+            node = factory(cli_args=ros_args, use_global_arguments=False)
+        except (ComponentError, InvalidParameterTypeException, InvalidParameterValueException,
+                ParameterException, ValueError, ImportError, RuntimeError) as exc:
+            self.get_logger().error(f"Failed to load component '{plugin}' "
+                                    f"({' '.join(ros_args)}): {' '.join(str(exc).split())}")
+            return None
+        self.components.append(node)
+        self.get_logger().info(f"Loaded component '{plugin}' as "
+                               f"'{node.get_fully_qualified_name()}'")
+        return node
+
+
+def build_parser():
+    """Return the argument parser of ``component_container``."""
+    parser = argparse.ArgumentParser(
+        prog='component_container',
+        description='Run several composable nodes of amr_description in one process.')
+    parser.add_argument('--nodes', required=True, metavar='FILE',
+                        help='YAML list of {plugin, ros_args} to load, in order')
+    return parser
+
+
+def main(args=None):
+    """
+    Load the components of ``--nodes`` and spin them in one executor until Ctrl-C.
+
+    :param args: command line without the program name (default ``sys.argv[1:]``).
+    :returns: 0 on a clean shutdown.
+    :raises SystemExit: code 1 after one error line when the ROS arguments cannot be parsed
+        or the component list cannot be read (:mod:`amr_description.nodes.shutdown`).
+    """
+    argv = ['component_container'] + (sys.argv[1:] if args is None else list(args))
+    opts = build_parser().parse_args(shutdown.remove_ros_args(argv)[1:])
+    try:
+        components = read_components(opts.nodes)
+    except ComponentError as exc:
+        shutdown.fail('component_container', exc)
+    shutdown.init(argv)
+    container = None
+    executor = None
+    try:
+        container = shutdown.create(ComponentContainer)
+        executor = SingleThreadedExecutor()
+        executor.add_node(container)
+        plugins = registry()
+        for plugin, ros_args in components:
+            node = container.load(plugin, ros_args, plugins)
+            if node is not None:
+                executor.add_node(node)
+        shutdown.spin(executor)
+    except KeyboardInterrupt:
+        pass
+    finally:
+        nodes = list(container.components) if container is not None else []
+        shutdown.shutdown(*nodes, container, executor=executor)
+    return 0
+
+
+if __name__ == '__main__':
+    sys.exit(main())
