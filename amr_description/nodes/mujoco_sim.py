@@ -52,6 +52,7 @@ import time
 from amr_description.control.controller_interface import heard
 from amr_description.nodes import shutdown
 from amr_description.nodes.shutdown import Node
+from amr_description.nodes.shutdown import take_over_time_source
 from amr_description.sim.simulation import IDLE_RATE
 from amr_description.sim.simulation import normalize_namespace
 from amr_description.sim.simulation import Simulation
@@ -75,28 +76,6 @@ def _sim_msgs():
     from simulation_interfaces import msg
     from simulation_interfaces import srv
     return msg, srv
-
-
-def take_over_time_source(node):
-    """
-    Stop a node's /clock subscription so the caller can drive its sim time directly.
-
-    Only for nodes in this process with ``use_sim_time`` true; the caller then sets the time
-    of the source's clocks at every /clock instant, as rclpy ``TimeSource.clock_callback``
-    does. Call it before the node is added to an executor (or on the executor's thread).
-
-    :param node: an rclpy node.
-    :returns: the node's ``TimeSource``, or None when the node does not use sim time (then it
-        is left alone).
-    """
-    source = getattr(node, '_time_source', None)
-    if source is None or not source.ros_time_is_active:
-        return None
-    subscription = getattr(source, '_clock_sub', None)
-    if subscription is not None:
-        node.destroy_subscription(subscription)
-        source._clock_sub = None
-    return source
 
 
 class SimTime:

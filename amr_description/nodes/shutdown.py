@@ -213,6 +213,28 @@ class Node(rclpy.node.Node):
         return super().declare_parameters(namespace, parameters, ignore_override)
 
 
+def take_over_time_source(node):
+    """
+    Stop a node's /clock subscription so the caller can drive its sim time directly.
+
+    Only for nodes in this process with ``use_sim_time`` true; the caller then sets the time
+    of the source's clocks at every /clock instant, as rclpy ``TimeSource.clock_callback``
+    does. Call it before the node is added to an executor (or on the executor's thread).
+
+    :param node: an rclpy node.
+    :returns: the node's ``TimeSource``, or None when the node does not use sim time (then it
+        is left alone).
+    """
+    source = getattr(node, '_time_source', None)
+    if source is None or not source.ros_time_is_active:
+        return None
+    subscription = getattr(source, '_clock_sub', None)
+    if subscription is not None:
+        node.destroy_subscription(subscription)
+        source._clock_sub = None
+    return source
+
+
 def spin(target, until=None, period=SPIN_PERIOD):
     """
     Spin a node or an executor until a signal, ``until()`` or an external rclpy shutdown.

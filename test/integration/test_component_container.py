@@ -11,6 +11,7 @@ cleanly on Ctrl-C.
 """
 
 import os
+import time
 
 from amr_description.launch.actions import ComposableNode
 from amr_description.launch.actions import ComposableNodeContainer
@@ -83,3 +84,45 @@ def test_unreadable_component_list(procs, exe, ros_env, tmp_path):
     bad = procs.start([exe('component_container'), '--nodes', str(listed)], ros_env)
     assert bad.wait(60) == 1
     assert 'expected a list of components' in bad.output and 'Traceback' not in bad.output
+
+
+def test_composed_nodes_share_the_container_clock(ros_env):
+    # in this process: the container and a composed robot_state_publisher on sim time; the
+    # node's own /clock subscription is gone and its clock follows the container's
+    import rclpy
+    from rclpy.executors import SingleThreadedExecutor
+    from rclpy.parameter import Parameter
+    from rosgraph_msgs.msg import Clock
+
+    from amr_description.nodes.component_container import ComponentContainer
+    from amr_description.nodes.component_container import registry
+
+    with open(URDF_PATH) as f:
+        urdf = f.read()
+    rclpy.init(domain_id=int(ros_env['ROS_DOMAIN_ID']))
+    try:
+        container = ComponentContainer(
+            parameter_overrides=[Parameter('use_sim_time', value=True)])
+        node = container.load(PLUGIN, ['--ros-args', '-r', '__ns:=/r7', '-p',
+                                       'use_sim_time:=true', '-p',
+                                       f'robot_description:={urdf}'], registry())
+        assert node.get_fully_qualified_name() == '/r7/robot_state_publisher'
+        assert node._time_source._clock_sub is None
+        subscribed = [name for name, _ in node.get_subscriber_names_and_types_by_node(
+            'robot_state_publisher', '/r7')]
+        assert '/clock' not in subscribed and '/r7/joint_states' in subscribed
+        feeder = rclpy.create_node('clock_feeder')
+        publisher = feeder.create_publisher(Clock, '/clock', 10)
+        executor = SingleThreadedExecutor()
+        for each in (container, node, feeder):
+            executor.add_node(each)
+        message = Clock()
+        message.clock.sec = 42
+        end = time.monotonic() + 60
+        while node.get_clock().now().nanoseconds != 42_000_000_000 and time.monotonic() < end:
+            publisher.publish(message)
+            executor.spin_once(timeout_sec=0.1)
+        assert node.get_clock().now().nanoseconds == 42_000_000_000
+        executor.shutdown()
+    finally:
+        rclpy.try_shutdown()
