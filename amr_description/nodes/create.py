@@ -19,6 +19,7 @@ one-line error otherwise.
 
 import argparse
 import math
+import re
 import sys
 import time
 
@@ -32,6 +33,12 @@ from rclpy.qos import ReliabilityPolicy
 from std_msgs.msg import String
 
 DEFAULT_SERVICE = '/mujoco_sim/spawn_entity'
+
+
+CALL_TIMEOUT = 10.0
+"""Seconds to wait for the spawn service's answer before sending the request again."""
+CALL_ATTEMPTS = 3
+"""Requests sent at most (as upstream's spawner calls a controller-manager service)."""
 
 
 def build_parser():
@@ -140,17 +147,67 @@ class Create(Node):
         request.allow_renaming = opts.allow_renaming
         request.entity_namespace = opts.robot_namespace
         request.entity_resource.resource_string = urdf
+        match = re.search(r'<robot\s[^>]*name\s*=\s*["\']([^"\']*)', urdf)
+        self._urdf_name = match.group(1) if match else ''
         request.initial_pose = pose_from_rpy(opts.x, opts.y, opts.z, opts.R, opts.P, opts.Y)
         self.get_logger().info('Requested creation of entity.')
-        future = self._client.call_async(request)
-        deadline = time.monotonic() + (opts.timeout + 30.0 if opts.timeout > 0 else math.inf)
-        shutdown.spin(self, until=lambda: future.done() or time.monotonic() > deadline)
-        if not future.done() or future.result() is None:
+        response, note = self._call(request)
+        if response is None:
             return False, f'no answer from {opts.service}'
-        response = future.result()
         if response.result.result != response.result.RESULT_OK:
             return False, f'Failed request to create entity: {response.result.error_message}'
-        return True, f'OK creation of entity [{response.entity_name}].'
+        return True, f'OK creation of entity [{response.entity_name}].{note}'
+
+    def _call(self, request):
+        """
+        Send ``request``; send it again when no answer came within :data:`CALL_TIMEOUT` s.
+
+        A request sent right after the service was discovered can be lost: the client has
+        matched the server, the server not yet the client (DDS discovery is not symmetric in
+        time; on a loaded machine with a fleet starting the gap is seconds), and the volatile
+        request never arrives. Upstream's spawner retries its controller-manager calls for the
+        same reason (3 attempts). A retry is only safe when the request is idempotent: with
+        ``-allow_renaming`` it is never repeated (a lost answer would create a second robot).
+        When a repeated request is refused because the name exists while the first one is
+        still unanswered, the first one created it and its answer was lost.
+
+        :returns: ``(response or None, note)``, note a str appended to the success line.
+        """
+        opts = self.opts
+        overall = time.monotonic() + (opts.timeout + 30.0 if opts.timeout > 0 else math.inf)
+        attempts = 1 if opts.allow_renaming else CALL_ATTEMPTS
+        futures = []
+        for attempt in range(1, attempts + 1):
+            futures.append(self._client.call_async(request))
+            deadline = min(overall, time.monotonic() + CALL_TIMEOUT) \
+                if attempt < attempts else overall
+            shutdown.spin(self, until=lambda: any(f.done() for f in futures) or
+                          time.monotonic() > deadline)
+            answered = [f for f in futures if f.done() and f.result() is not None]
+            if answered:
+                response = answered[0].result()
+                duplicate = response.result.result == self._srv_type.Response.NAME_NOT_UNIQUE
+                if duplicate and answered[0] is not futures[0]:
+                    return self._duplicate_of_lost(futures, response)
+                return response, ''
+            if time.monotonic() > overall:
+                break
+            if attempt < attempts:
+                self.get_logger().warning(
+                    f'Failed getting a result from calling {opts.service} in '
+                    f'{CALL_TIMEOUT:g} s. (Attempt {attempt} of {attempts}.) Sending it again.')
+        return None, ''
+
+    def _duplicate_of_lost(self, futures, refusal):
+        """Wait a little for the first answer after a repeated request found the name taken."""
+        first = futures[0]
+        deadline = time.monotonic() + CALL_TIMEOUT
+        shutdown.spin(self, until=lambda: first.done() or time.monotonic() > deadline)
+        if first.done() and first.result() is not None:
+            return first.result(), ''
+        refusal.result.result = refusal.result.RESULT_OK
+        refusal.entity_name = self.opts.name or self._urdf_name
+        return refusal, ' (the answer to the first request was lost; the entity exists)'
 
 
 def main(args=None):
