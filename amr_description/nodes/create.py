@@ -37,8 +37,6 @@ DEFAULT_SERVICE = '/mujoco_sim/spawn_entity'
 
 CALL_TIMEOUT = 10.0
 """Seconds to wait for the spawn service's answer before sending the request again."""
-CALL_ATTEMPTS = 3
-"""Requests sent at most (as upstream's spawner calls a controller-manager service)."""
 
 
 def build_parser():
@@ -160,27 +158,31 @@ class Create(Node):
 
     def _call(self, request):
         """
-        Send ``request``; send it again when no answer came within :data:`CALL_TIMEOUT` s.
+        Send ``request``; send it again, from a new client, when no answer came in time.
 
-        A request sent right after the service was discovered can be lost: the client has
-        matched the server, the server not yet the client (DDS discovery is not symmetric in
-        time; on a loaded machine with a fleet starting the gap is seconds), and the volatile
-        request never arrives. Upstream's spawner retries its controller-manager calls for the
-        same reason (3 attempts). A retry is only safe when the request is idempotent: with
-        ``-allow_renaming`` it is never repeated (a lost answer would create a second robot).
-        When a repeated request is refused because the name exists while the first one is
-        still unanswered, the first one created it and its answer was lost.
+        A request can be lost when the server has not matched this client's request writer
+        (DDS discovery is not symmetric: the client may see the service first). Seen with
+        fleets of 16-32 robots starting at once: the simulator never received one robot's
+        request, repeated three times from the same client, while new clients were answered.
+        So every :data:`CALL_TIMEOUT` s without an answer the client is replaced (new DDS
+        endpoints, discovered afresh) and the request sent again, until an answer or the
+        deadline (``-timeout`` + 30 s; none when 0). Upstream's spawner repeats its calls for
+        the same reason. With ``-allow_renaming`` the request is never repeated (a lost answer
+        would create a second robot). When a repeated request is refused because the name
+        exists while an earlier one is unanswered, the earlier one created it and its answer
+        was lost.
 
         :returns: ``(response or None, note)``, note a str appended to the success line.
         """
         opts = self.opts
         overall = time.monotonic() + (opts.timeout + 30.0 if opts.timeout > 0 else math.inf)
-        attempts = 1 if opts.allow_renaming else CALL_ATTEMPTS
         futures = []
-        for attempt in range(1, attempts + 1):
+        attempt = 0
+        while True:
+            attempt += 1
             futures.append(self._client.call_async(request))
-            deadline = min(overall, time.monotonic() + CALL_TIMEOUT) \
-                if attempt < attempts else overall
+            deadline = overall if opts.allow_renaming else \
+                min(overall, time.monotonic() + CALL_TIMEOUT)
             shutdown.spin(self, until=lambda: any(f.done() for f in futures) or
                           time.monotonic() > deadline)
             answered = [f for f in futures if f.done() and f.result() is not None]
@@ -191,12 +193,13 @@ class Create(Node):
                     return self._duplicate_of_lost(futures, response)
                 return response, ''
             if time.monotonic() > overall:
-                break
-            if attempt < attempts:
-                self.get_logger().warning(
-                    f'Failed getting a result from calling {opts.service} in '
-                    f'{CALL_TIMEOUT:g} s. (Attempt {attempt} of {attempts}.) Sending it again.')
-        return None, ''
+                return None, ''
+            self.get_logger().warning(
+                f'Failed getting a result from calling {opts.service} in {CALL_TIMEOUT:g} s. '
+                f'(Attempt {attempt}.) Sending it again from a new client.')
+            self._client = self.create_client(self._srv_type, opts.service)
+            shutdown.spin(self, until=lambda: self._client.service_is_ready() or
+                          time.monotonic() > overall)
 
     def _duplicate_of_lost(self, futures, refusal):
         """Wait a little for the first answer after a repeated request found the name taken."""
