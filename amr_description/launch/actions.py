@@ -229,6 +229,18 @@ def _normalize_namespace(namespace):
     return namespace if namespace.startswith('/') else '/' + namespace
 
 
+def _node_identity(owner, label, name, namespace, parameters, remappings):
+    """Set a node description's name, namespace, parameters and remappings (checked)."""
+    owner.node_name = name
+    owner.namespace = _normalize_namespace(namespace)
+    owner.parameters = list(parameters or [])
+    owner.remappings = [(str(a), str(b)) for a, b in (remappings or [])]
+    for params in owner.parameters:
+        if not isinstance(params, (dict, str, os.PathLike)):
+            raise LaunchError(f'parameters of {label}: expected dicts or file paths, '
+                              f'got {type(params).__name__}')
+
+
 def _ros_args(node_name, namespace, parameters, remappings, params_dir, temp_files):
     """
     Return ``--ros-args`` and the node's remappings and parameter files (launch_ros order).
@@ -280,18 +292,10 @@ class Node(Process):
         """Store the description; see the class docstring for the parameters."""
         self.package = package
         self.executable = executable
-        self.node_name = name
-        self.namespace = _normalize_namespace(namespace)
-        self.parameters = list(parameters or [])
-        self.remappings = [(str(a), str(b)) for a, b in (remappings or [])]
+        _node_identity(self, executable, name, namespace, parameters, remappings)
         self.arguments = [str(a) for a in (arguments or [])]
         self.exe_path = exe_path
         self._temp_files = []
-        for params in self.parameters:
-            if not isinstance(params, (dict, str, os.PathLike)):
-                raise LaunchError(
-                    f'parameters of {executable}: expected dicts or file paths, '
-                    f'got {type(params).__name__}')
         super().__init__([exe_path or executable], name=executable, **kwargs)
 
     def build_cmd(self, params_dir=None):
@@ -330,15 +334,7 @@ class ComposableNode:
         """Store the description; see the class docstring for the parameters."""
         self.package = package
         self.plugin = plugin
-        self.node_name = name
-        self.namespace = _normalize_namespace(namespace)
-        self.parameters = list(parameters or [])
-        self.remappings = [(str(a), str(b)) for a, b in (remappings or [])]
-        for params in self.parameters:
-            if not isinstance(params, (dict, str, os.PathLike)):
-                raise LaunchError(
-                    f'parameters of {plugin}: expected dicts or file paths, '
-                    f'got {type(params).__name__}')
+        _node_identity(self, plugin, name, namespace, parameters, remappings)
 
 
 class ComposableNodeContainer(Node):
