@@ -229,6 +229,27 @@ def _check_moving_links(model, source):
                                 f'moved by joint {joint.name!r}, found {inertia[index, index]:g}')
 
 
+def entity_name(name, urdf_xml):
+    """
+    Return the name a simulator gives a spawned robot: ``name``, else the ``<robot>`` name.
+
+    :param name: the requested entity name ('' for none).
+    :param urdf_xml: the URDF, str or bytes (only read when ``name`` is empty).
+    :returns: the name, a non-empty str.
+    :raises ValueError: the URDF is not well-formed XML, or neither names the robot.
+    """
+    if name:
+        return name
+    try:
+        name = etree.fromstring(urdf_xml.encode('utf-8') if isinstance(urdf_xml, str)
+                                else urdf_xml).get('name') or ''
+    except etree.XMLSyntaxError as exc:
+        raise ValueError(f'URDF is not well-formed XML: {exc}') from None
+    if not name:
+        raise ValueError('no entity name given and the URDF <robot> has no name')
+    return name
+
+
 def parse_urdf(urdf_xml, source='robot_description'):
     """
     Parse a URDF document into a :class:`RobotModel`.

@@ -19,7 +19,6 @@ one-line error otherwise.
 
 import argparse
 import math
-import re
 import sys
 import time
 
@@ -145,16 +144,18 @@ class Create(Node):
         request.allow_renaming = opts.allow_renaming
         request.entity_namespace = opts.robot_namespace
         request.entity_resource.resource_string = urdf
-        match = re.search(r'<robot\s[^>]*name\s*=\s*["\']([^"\']*)', urdf)
-        self._urdf_name = match.group(1) if match else ''
         request.initial_pose = pose_from_rpy(opts.x, opts.y, opts.z, opts.R, opts.P, opts.Y)
         self.get_logger().info('Requested creation of entity.')
-        response, note = self._call(request)
+        response, lost_answer = self._call(request)
+        if lost_answer:
+            from amr_description.core.urdf_model import entity_name
+            return True, (f'OK creation of entity [{entity_name(opts.name, urdf)}]. (the answer '
+                          'to the first request was lost; the entity exists)')
         if response is None:
             return False, f'no answer from {opts.service}'
         if response.result.result != response.result.RESULT_OK:
             return False, f'Failed request to create entity: {response.result.error_message}'
-        return True, f'OK creation of entity [{response.entity_name}].{note}'
+        return True, f'OK creation of entity [{response.entity_name}].'
 
     def _call(self, request):
         """
@@ -172,7 +173,9 @@ class Create(Node):
         exists while an earlier one is unanswered, the earlier one created it and its answer
         was lost.
 
-        :returns: ``(response or None, note)``, note a str appended to the success line.
+        :returns: ``(response or None, lost_answer)``; ``lost_answer`` True when the entity
+            was created by an earlier request whose answer was lost (``response`` is then the
+            refusal of the repeated request).
         """
         opts = self.opts
         overall = time.monotonic() + (opts.timeout + 30.0 if opts.timeout > 0 else math.inf)
@@ -190,10 +193,10 @@ class Create(Node):
                 response = answered[0].result()
                 duplicate = response.result.result == self._srv_type.Response.NAME_NOT_UNIQUE
                 if duplicate and answered[0] is not futures[0]:
-                    return self._duplicate_of_lost(futures, response)
-                return response, ''
+                    return self._first_answer(futures[0], response)
+                return response, False
             if time.monotonic() > overall:
-                return None, ''
+                return None, False
             self.get_logger().warning(
                 f'Failed getting a result from calling {opts.service} in {CALL_TIMEOUT:g} s. '
                 f'(Attempt {attempt}.) Sending it again from a new client.')
@@ -201,16 +204,18 @@ class Create(Node):
             shutdown.spin(self, until=lambda: self._client.service_is_ready() or
                           time.monotonic() > overall)
 
-    def _duplicate_of_lost(self, futures, refusal):
-        """Wait a little for the first answer after a repeated request found the name taken."""
-        first = futures[0]
+    def _first_answer(self, first, refusal):
+        """
+        Wait a little for the first request's answer after a repeated one found the name taken.
+
+        :returns: ``(first answer, False)``, or ``(refusal, True)`` when none came: the first
+            request created the entity and its answer was lost.
+        """
         deadline = time.monotonic() + CALL_TIMEOUT
         shutdown.spin(self, until=lambda: first.done() or time.monotonic() > deadline)
         if first.done() and first.result() is not None:
-            return first.result(), ''
-        refusal.result.result = refusal.result.RESULT_OK
-        refusal.entity_name = self.opts.name or self._urdf_name
-        return refusal, ' (the answer to the first request was lost; the entity exists)'
+            return first.result(), False
+        return refusal, True
 
 
 def main(args=None):

@@ -39,6 +39,7 @@ import re
 import threading
 import time
 
+from amr_description.core.urdf_model import entity_name
 from amr_description.sim.world import World
 import mujoco
 
@@ -340,7 +341,7 @@ class Simulation:
         """
         from amr_description.core.ros2_control_info import parse_ros2_control
         namespace = normalize_namespace(namespace)
-        name = self._entity_name(name, urdf)
+        name = entity_name(name, urdf)
         try:
             has_control = bool(parse_ros2_control(urdf))
         except ValueError as exc:
@@ -366,18 +367,6 @@ class Simulation:
             raise ValueError(text) from None
         yield lambda: self._activate(entity)
         return entity
-
-    def _entity_name(self, name, urdf):
-        if name:
-            return name
-        import xml.etree.ElementTree as ET
-        try:
-            name = ET.fromstring(urdf).get('name') or ''
-        except ET.ParseError as exc:
-            raise ValueError(f'URDF is not well-formed XML: {exc}') from None
-        if not name:
-            raise ValueError('no entity name given and the URDF <robot> has no name')
-        return name
 
     def _add(self, urdf, name, pose, namespace, allow_renaming):
         """Add the robot's bodies to the world (simulation thread)."""

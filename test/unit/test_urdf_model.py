@@ -175,3 +175,14 @@ def test_not_a_urdf(xml, words):
 def test_file_errors_name_the_file(tmp_path):
     with pytest.raises(URDFError, match='missing.urdf: cannot read'):
         parse_urdf_file(str(tmp_path / 'missing.urdf'))
+
+
+def test_entity_name():
+    from amr_description.core.urdf_model import entity_name
+    assert entity_name('r1', '<not xml') == 'r1'
+    assert entity_name('', '<robot name="amr"><link name="a"/></robot>') == 'amr'
+    assert entity_name('', b'<?xml version="1.0"?><robot name="b"/>') == 'b'
+    with pytest.raises(ValueError, match='not well-formed XML'):
+        entity_name('', '<robot')
+    with pytest.raises(ValueError, match='has no name'):
+        entity_name('', '<robot/>')
