@@ -17,10 +17,13 @@ odometry message, stamped with that message's stamp (sim time).
 Fast-forward (``--rtf 0``) runs in lock-step: the job pauses the simulator
 (``/mujoco_sim/set_simulation_state``) and advances it ``--lockstep-period`` (0.02 s, one
 odometry period) at a time with ``/mujoco_sim/step_simulation``, answering every odometry
-message before the next step. The simulation can therefore never run ahead of the driver, a
-command is at most one period old in sim time when the controller takes it (far below
-``cmd_vel_timeout``), and the result does not depend on how loaded the machine is. In
-real-time mode (``--rtf`` > 0) the simulator runs free.
+message before the next step. The course starts from odometry stamped at or after the time
+at which the paused simulator stands (two equal values in a row on ``/clock``): messages it
+published while it still ran ahead, maybe queued in this process, are not answered. The
+simulation can therefore never run ahead of the driver, a command is at most one period old
+in sim time when the controller takes it (far below ``cmd_vel_timeout``), and the result does
+not depend on how loaded the machine is. In real-time mode (``--rtf`` > 0) the simulator
+runs free.
 
 The job fails (exit 1, one line on stderr) when a command was dropped as stale (a command
 published when the sim time it observes on ``/clock`` is already ``cmd_vel_timeout`` past its
@@ -33,6 +36,7 @@ render of the final scene), stops the stack and exits 0.
 """
 
 import argparse
+import collections
 import math
 import os
 import sys
@@ -50,6 +54,9 @@ from nav_msgs.msg import Odometry
 from rclpy.executors import ExternalShutdownException
 from rclpy.executors import SingleThreadedExecutor
 from rclpy.node import Node
+from rclpy.qos import QoSProfile
+from rclpy.qos import ReliabilityPolicy
+from rosgraph_msgs.msg import Clock
 
 CMD_TOPIC = '/diff_drive_controller/cmd_vel'
 ODOM_TOPIC = '/odom'
@@ -269,11 +276,19 @@ class SquareDriver(Node):
         """Return True once every robot finished its course."""
         return all(robot.done for robot in self.robots)
 
-    def enable(self):
-        """Start driving every robot, from odometry stamped at or after the current sim time."""
-        now = self.get_clock().now().nanoseconds * 1e-9
+    def enable(self, start=None):
+        """
+        Start driving every robot, from odometry stamped at or after ``start``.
+
+        :param start: sim time in s; None for this node's clock (the last /clock it took).
+            In lock-step give the paused simulator's own time (:meth:`LockStep.sim_time`):
+            odometry the simulator published while it ran ahead may still be queued here, and
+            this node's clock may lag it by more than ``cmd_vel_timeout``.
+        """
+        if start is None:
+            start = self.get_clock().now().nanoseconds * 1e-9
         for robot in self.robots:
-            robot.start_after = now - 1e-6
+            robot.start_after = start - 1e-6
             robot.enabled = True
 
 
@@ -378,6 +393,13 @@ class LockStep:
             physics_step = answer.values[0].double_value
         self.steps = max(1, int(round(period / physics_step)))
         self._step_request.steps = self.steps
+        self._clock_values = collections.deque(maxlen=2)
+        # best effort matches any /clock publisher; a dropped message only delays sim_time
+        node.create_subscription(Clock, '/clock', self._on_clock,
+                                 QoSProfile(depth=10, reliability=ReliabilityPolicy.BEST_EFFORT))
+
+    def _on_clock(self, msg):
+        self._clock_values.append(msg.clock.sec * 1_000_000_000 + msg.clock.nanosec)
 
     def set_paused(self, paused):
         """
@@ -394,6 +416,27 @@ class LockStep:
         if answer.result.result not in (self._ok, self._already):
             raise RuntimeError(f'{SIM_NODE}/set_simulation_state: '
                                f'{answer.result.error_message}')
+
+    def sim_time(self):
+        """
+        Return the time (s) at which the paused simulator stands, read from ``/clock``.
+
+        When the pause is answered, /clock messages of the running simulator may still be in
+        flight; a paused ``mujoco_sim`` repeats its time on /clock every 0.1 s of wall time,
+        so two equal values in a row are that time.
+
+        :raises RuntimeError: one line when /clock does not repeat a value within the
+            time-out (the simulator is not paused or publishes no /clock).
+        """
+        self._clock_values.clear()
+        deadline = time.monotonic() + self.timeout
+        while time.monotonic() < deadline:
+            values = self._clock_values
+            if len(values) == 2 and values[0] == values[1]:
+                return values[1] * 1e-9
+            self.node.spin_once(0.1)
+        raise RuntimeError(f'/clock did not hold still within {self.timeout:g} s of pausing '
+                           f'{SIM_NODE}')
 
     def advance(self):
         """
@@ -424,7 +467,7 @@ def drive(node, deadline, lockstep=None, odom_timeout=10.0):
         (zeros without ``lockstep``).
     :raises RuntimeError: one line when odometry stops arriving in lock-step.
     """
-    node.enable()
+    node.enable(lockstep.sim_time() if lockstep is not None else None)
     advances, in_step, in_wait = 0, 0.0, 0.0
     while not node.done and time.monotonic() < deadline:
         if lockstep is None:

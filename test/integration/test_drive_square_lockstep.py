@@ -1,0 +1,178 @@
+# Copyright 2026 The amr_description Authors
+# Licensed under the Apache License, Version 2.0
+"""
+The main job's lock-step never answers odometry the simulator published before it paused.
+
+A stand-in simulator in this process offers ``mujoco_sim``'s lock-step services and a robot
+that moves exactly as commanded (a unicycle, no physics). When asked to pause it stands one
+second of sim time further on, and the clock, odometry and ground truth of that second reach
+``drive_square`` only after the pause is answered: what happens when the real simulator runs
+ahead at tens of times real time and its messages are still in flight (or queued) while the
+service answer overtakes them (DDS orders messages per topic, not across topics and
+services). Commands that answer them are older than ``cmd_vel_timeout`` when the stand-in
+takes them (a controller drops them), so the test asserts that the first command the job
+sends is stamped at or after the paused time, that no command is stale on arrival, and that
+the job drives the whole square (exit 0).
+"""
+
+import math
+import os
+import threading
+
+import pytest
+
+pytest.importorskip('rclpy')
+
+PERIOD = 0.02  # s of sim time per tick (the odometry period)
+RUN_AHEAD = 50  # ticks published between the pause request and its answer (1 s)
+CMD_VEL_TIMEOUT = 0.5  # s, as config/controllers.yaml
+
+
+class StandInSimulator:
+    """mujoco_sim's clock, pause and step services, one ideal robot and its controllers."""
+
+    def __init__(self, domain_id):
+        import rclpy
+        from controller_manager_msgs.srv import ListControllers
+        from geometry_msgs.msg import TwistStamped
+        from nav_msgs.msg import Odometry
+        from rclpy.executors import SingleThreadedExecutor
+        from rosgraph_msgs.msg import Clock
+        from simulation_interfaces.srv import SetSimulationState
+        from simulation_interfaces.srv import StepSimulation
+
+        self.rclpy, self.Clock, self.Odometry = rclpy, Clock, Odometry
+        self.ListControllers, self.SetSimulationState = ListControllers, SetSimulationState
+        self.context = rclpy.Context()
+        rclpy.init(context=self.context, domain_id=domain_id)
+        node = self.node = rclpy.create_node('mujoco_sim', context=self.context)
+        node.declare_parameter('physics_step', 0.001)
+        self.t = 0.0
+        self.pose = [0.0, 0.0, 0.0]
+        self.cmd = None  # (stamp s, linear m/s, angular rad/s)
+        self.paused = False
+        self.paused_at = None
+        self.stale = []  # ages (s) of commands older than CMD_VEL_TIMEOUT on arrival
+        self.first_stamp = None
+        self.commands = 0
+        self._late = []  # (publisher, message) of the run-ahead, not yet published
+        self._clock = node.create_publisher(Clock, '/clock', 10)
+        self._odom = node.create_publisher(Odometry, '/odom', 10)
+        self._truth = node.create_publisher(Odometry, '/ground_truth/odom', 10)
+        node.create_subscription(TwistStamped, '/diff_drive_controller/cmd_vel', self._on_cmd,
+                                 10)
+        node.create_service(SetSimulationState, '/mujoco_sim/set_simulation_state',
+                            self._on_state)
+        node.create_service(StepSimulation, '/mujoco_sim/step_simulation', self._on_step)
+        node.create_service(ListControllers, '/controller_manager/list_controllers',
+                            self._on_list)
+        node.create_timer(0.01, self._on_timer)
+        node.create_timer(0.1, self._on_paused_tick)
+        self.executor = SingleThreadedExecutor(context=self.context)
+        self.executor.add_node(node)
+        self.thread = threading.Thread(target=self._spin, daemon=True)
+        self.thread.start()
+
+    def _spin(self):
+        while self.context.ok():
+            try:
+                self.executor.spin_once(timeout_sec=0.1)
+            except Exception:  # noqa: B902 - the context shut down
+                break
+
+    def _tick(self, dt, publish=True):
+        linear = angular = 0.0
+        if self.cmd is not None and self.t - self.cmd[0] <= CMD_VEL_TIMEOUT:
+            linear, angular = self.cmd[1], self.cmd[2]
+        x, y, yaw = self.pose
+        self.pose = [x + linear * math.cos(yaw) * dt, y + linear * math.sin(yaw) * dt,
+                     yaw + angular * dt]
+        self.t += dt
+        sec, nanosec = divmod(int(round(self.t * 1e9)), 1_000_000_000)
+        clock = self.Clock()
+        clock.clock.sec, clock.clock.nanosec = sec, nanosec
+        odom = self.Odometry()
+        odom.header.stamp = clock.clock
+        odom.pose.pose.position.x, odom.pose.pose.position.y = self.pose[0], self.pose[1]
+        odom.pose.pose.orientation.z = math.sin(self.pose[2] / 2.0)
+        odom.pose.pose.orientation.w = math.cos(self.pose[2] / 2.0)
+        messages = [(self._clock, clock), (self._odom, odom), (self._truth, odom)]
+        if publish:
+            for publisher, msg in messages:
+                publisher.publish(msg)
+        return messages
+
+    def _on_timer(self):
+        if self._late:  # the run-ahead, delivered after the pause was answered
+            for publisher, msg in self._late:
+                publisher.publish(msg)
+            self._late = []
+        elif not self.paused:
+            self._tick(PERIOD)  # free running at twice real time
+
+    def _on_paused_tick(self):
+        if self.paused and not self._late:  # as mujoco_sim: the unchanged time, at 10 Hz
+            clock = self.Clock()
+            clock.clock.sec, clock.clock.nanosec = divmod(int(round(self.t * 1e9)),
+                                                          1_000_000_000)
+            self._clock.publish(clock)
+
+    def _on_cmd(self, msg):
+        stamp = msg.header.stamp.sec + msg.header.stamp.nanosec * 1e-9
+        if self.first_stamp is None:
+            self.first_stamp = stamp
+        self.commands += 1
+        if self.t - stamp >= CMD_VEL_TIMEOUT:
+            self.stale.append(round(self.t - stamp, 3))
+            return
+        self.cmd = (stamp, msg.twist.linear.x, msg.twist.angular.z)
+
+    def _on_state(self, request, response):
+        paused = request.state.state != request.state.STATE_PLAYING
+        if paused and not self.paused:
+            for _ in range(RUN_AHEAD):
+                self._late += self._tick(PERIOD, publish=False)
+            self.paused_at = self.t
+        self.paused = paused
+        response.result.result = response.result.RESULT_OK
+        return response
+
+    def _on_step(self, request, response):
+        if not self.paused:
+            response.result.result = response.result.OPERATION_FAILED
+            return response
+        self._tick(request.steps * 0.001)
+        response.result.result = response.result.RESULT_OK
+        return response
+
+    def _on_list(self, request, response):
+        from controller_manager_msgs.msg import ControllerState
+        for name in ('joint_state_broadcaster', 'diff_drive_controller'):
+            response.controller.append(ControllerState(name=name, state='active'))
+        return response
+
+    def close(self):
+        self.executor.shutdown(timeout_sec=1.0)
+        self.node.destroy_node()
+        self.rclpy.try_shutdown(context=self.context)
+
+
+def test_lockstep_skips_odometry_from_before_the_pause(procs, exe, ros_env, tmp_path):
+    pytest.importorskip('simulation_interfaces.srv')
+    pytest.importorskip('controller_manager_msgs.srv')
+    sim = StandInSimulator(int(ros_env['ROS_DOMAIN_ID']))
+    try:
+        proc = procs.start([exe('drive_square'), '--no-bringup', '--rtf', '0', '--viewer-port',
+                            '0', '--output-dir', str(tmp_path / 'out'), '--timeout', '300'],
+                           ros_env)
+        assert proc.wait(400) == 0, proc.output
+        assert sim.paused_at is not None and sim.first_stamp is not None, proc.output
+        # the first command answers odometry of the paused simulator, not of its run-ahead
+        assert sim.first_stamp >= sim.paused_at - 1e-6, (sim.first_stamp, sim.paused_at)
+        assert sim.stale == [], sim.stale
+        assert sim.commands > 500, sim.commands
+        assert os.path.exists(tmp_path / 'out' / 'path.png')
+        # --no-bringup: the user's simulator is left playing
+        assert not sim.paused
+    finally:
+        sim.close()
