@@ -11,9 +11,9 @@ note) instead of failing.
 """
 
 import os
-import threading
 
 import pytest
+from stand_in import StandIn  # noqa: I100 - helpers next to this file
 
 pytest.importorskip('rclpy')
 
@@ -22,37 +22,23 @@ URDF_PATH = os.path.join(ROOT, 'urdf', 'amr.urdf')
 SERVICE = '/stand_in/spawn_entity'
 
 
-class StandInSpawner:
+class StandInSpawner(StandIn):
     """A SpawnEntity service that never answers the first request it receives."""
 
     def __init__(self, domain_id, carry_out_first):
-        import rclpy
         from rclpy.callback_groups import ReentrantCallbackGroup
-        from rclpy.executors import SingleThreadedExecutor
         from rclpy.task import Future
         from simulation_interfaces.srv import SpawnEntity
 
-        self.rclpy, self.Future, self.SpawnEntity = rclpy, Future, SpawnEntity
-        self.context = rclpy.Context()
-        rclpy.init(context=self.context, domain_id=domain_id)
-        self.node = rclpy.create_node('stand_in', context=self.context)
+        super().__init__('stand_in', domain_id)
+        self.Future, self.SpawnEntity = Future, SpawnEntity
         self.carry_out_first = carry_out_first
         self.requests = 0
         self.entities = set()
         # reentrant: the unanswered first request must not hold back the next one
         self.node.create_service(SpawnEntity, SERVICE, self._on_spawn,
                                  callback_group=ReentrantCallbackGroup())
-        self.executor = SingleThreadedExecutor(context=self.context)
-        self.executor.add_node(self.node)
-        self.thread = threading.Thread(target=self._spin, daemon=True)
-        self.thread.start()
-
-    def _spin(self):
-        while self.context.ok():
-            try:
-                self.executor.spin_once(timeout_sec=0.1)
-            except Exception:  # noqa: B902 - the context shut down
-                break
+        self.start()
 
     async def _on_spawn(self, request, response):
         self.requests += 1
@@ -69,11 +55,6 @@ class StandInSpawner:
         result.result = result.RESULT_OK
         response.entity_name = request.name
         return response
-
-    def close(self):
-        self.executor.shutdown(timeout_sec=1.0)
-        self.node.destroy_node()
-        self.rclpy.try_shutdown(context=self.context)
 
 
 @pytest.mark.parametrize('carry_out_first, note', [

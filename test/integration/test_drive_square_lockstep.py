@@ -17,9 +17,9 @@ the job drives the whole square (exit 0).
 
 import math
 import os
-import threading
 
 import pytest
+from stand_in import StandIn  # noqa: I100 - helpers next to this file
 
 pytest.importorskip('rclpy')
 
@@ -28,24 +28,20 @@ RUN_AHEAD = 50  # ticks published between the pause request and its answer (1 s)
 CMD_VEL_TIMEOUT = 0.5  # s, as config/controllers.yaml
 
 
-class StandInSimulator:
+class StandInSimulator(StandIn):
     """mujoco_sim's clock, pause and step services, one ideal robot and its controllers."""
 
     def __init__(self, domain_id):
-        import rclpy
         from controller_manager_msgs.srv import ListControllers
         from geometry_msgs.msg import TwistStamped
         from nav_msgs.msg import Odometry
-        from rclpy.executors import SingleThreadedExecutor
         from rosgraph_msgs.msg import Clock
         from simulation_interfaces.srv import SetSimulationState
         from simulation_interfaces.srv import StepSimulation
 
-        self.rclpy, self.Clock, self.Odometry = rclpy, Clock, Odometry
-        self.ListControllers, self.SetSimulationState = ListControllers, SetSimulationState
-        self.context = rclpy.Context()
-        rclpy.init(context=self.context, domain_id=domain_id)
-        node = self.node = rclpy.create_node('mujoco_sim', context=self.context)
+        super().__init__('mujoco_sim', domain_id)
+        self.Clock, self.Odometry = Clock, Odometry
+        node = self.node
         node.declare_parameter('physics_step', 0.001)
         self.t = 0.0
         self.pose = [0.0, 0.0, 0.0]
@@ -68,17 +64,7 @@ class StandInSimulator:
                             self._on_list)
         node.create_timer(0.01, self._on_timer)
         node.create_timer(0.1, self._on_paused_tick)
-        self.executor = SingleThreadedExecutor(context=self.context)
-        self.executor.add_node(node)
-        self.thread = threading.Thread(target=self._spin, daemon=True)
-        self.thread.start()
-
-    def _spin(self):
-        while self.context.ok():
-            try:
-                self.executor.spin_once(timeout_sec=0.1)
-            except Exception:  # noqa: B902 - the context shut down
-                break
+        self.start()
 
     def _tick(self, dt, publish=True):
         linear = angular = 0.0
@@ -150,11 +136,6 @@ class StandInSimulator:
         for name in ('joint_state_broadcaster', 'diff_drive_controller'):
             response.controller.append(ControllerState(name=name, state='active'))
         return response
-
-    def close(self):
-        self.executor.shutdown(timeout_sec=1.0)
-        self.node.destroy_node()
-        self.rclpy.try_shutdown(context=self.context)
 
 
 def test_lockstep_skips_odometry_from_before_the_pause(procs, exe, ros_env, tmp_path):
