@@ -393,13 +393,6 @@ class LockStep:
             physics_step = answer.values[0].double_value
         self.steps = max(1, int(round(period / physics_step)))
         self._step_request.steps = self.steps
-        self._clock_values = collections.deque(maxlen=2)
-        # best effort matches any /clock publisher; a dropped message only delays sim_time
-        node.create_subscription(Clock, '/clock', self._on_clock,
-                                 QoSProfile(depth=10, reliability=ReliabilityPolicy.BEST_EFFORT))
-
-    def _on_clock(self, msg):
-        self._clock_values.append(msg.clock.sec * 1_000_000_000 + msg.clock.nanosec)
 
     def set_paused(self, paused):
         """
@@ -428,13 +421,20 @@ class LockStep:
         :raises RuntimeError: one line when /clock does not repeat a value within the
             time-out (the simulator is not paused or publishes no /clock).
         """
-        self._clock_values.clear()
-        deadline = time.monotonic() + self.timeout
-        while time.monotonic() < deadline:
-            values = self._clock_values
-            if len(values) == 2 and values[0] == values[1]:
-                return values[1] * 1e-9
-            self.node.spin_once(0.1)
+        values = collections.deque(maxlen=2)  # nanoseconds of the last two messages
+        # best effort matches any /clock publisher; a lost message only delays the answer
+        subscription = self.node.create_subscription(
+            Clock, '/clock', lambda msg: values.append(msg.clock.sec * 1_000_000_000 +
+                                                       msg.clock.nanosec),
+            QoSProfile(depth=10, reliability=ReliabilityPolicy.BEST_EFFORT))
+        try:
+            deadline = time.monotonic() + self.timeout
+            while time.monotonic() < deadline:
+                if len(values) == 2 and values[0] == values[1]:
+                    return values[1] * 1e-9
+                self.node.spin_once(0.1)
+        finally:
+            self.node.destroy_subscription(subscription)
         raise RuntimeError(f'/clock did not hold still within {self.timeout:g} s of pausing '
                            f'{SIM_NODE}')
 
