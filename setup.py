@@ -53,10 +53,14 @@ setup(
             'physics_report = amr_description.sim.physics_report:main',
             'ros2 = amr_description.cli.main:main',
             'component_container = amr_description.nodes.component_container:main',
+            'static_transform_publisher = '
+            'amr_description.nodes.static_transform_publisher:main',
         ],
         'amr_description.components': [
             'amr_description::RobotStatePublisher = '
             'amr_description.nodes.robot_state_publisher:RobotStatePublisher',
+            'amr_description::StaticTransformBroadcasterNode = '
+            'amr_description.nodes.static_transform_publisher:StaticTransformBroadcasterNode',
         ],
         'amr_description.controllers': [
             'joint_state_broadcaster/JointStateBroadcaster = '

@@ -98,8 +98,11 @@ FLEET_ARGUMENTS = [
     DeclareLaunchArgument('robots', '2', 'Number of robots, namespaces r1 ... rN'),
     DeclareLaunchArgument('spacing', '2.0', 'Distance between neighbours on the grid (m)'),
     DeclareLaunchArgument('use_composition', 'true',
-                          'Whether to run the robot_state_publishers as composed nodes in one '
-                          'container process (one process per robot if false)'),
+                          'Whether to run the robot_state_publishers and static transform '
+                          'publishers as composed nodes in one container process (one process '
+                          'each if false)'),
+    DeclareLaunchArgument('viewer', 'true', 'Start the viewer (RViz stand-in in the browser)'),
+    DeclareLaunchArgument('viewer_port', '8080', 'TCP port of the viewer page'),
 ]
 
 
@@ -251,7 +254,13 @@ def fleet(args):
     robot rather than two: a Python process start costs about a second of CPU). The
     controllers run in ``/rI`` (diff_drive_controller's default ``tf_frame_prefix_enable``
     gives frames ``rI/odom`` and ``rI/base_link``), cmd_vel is
-    ``/rI/diff_drive_controller/cmd_vel``.
+    ``/rI/diff_drive_controller/cmd_vel``. A static transform ``world -> rI/odom`` per robot,
+    at its grid position (``/rI/static_transform_publisher``, tf2_ros'
+    ``StaticTransformBroadcasterNode``, composed with the robot_state_publishers unless
+    ``use_composition:=false``), joins the robots' TF trees in the simulator's ``world``
+    frame, as a multi-robot launch file does with tf2_ros' static_transform_publisher. The
+    viewer (unless ``viewer:=false``, port ``viewer_port``) shows every robot with Fixed Frame
+    ``world``, each robot's ground-truth trail, and its pad drives ``r1``.
 
     :param args: dict of launch-argument values (see ``FLEET_ARGUMENTS``; missing ones take
         their declared defaults).
@@ -276,8 +285,11 @@ def fleet(args):
         raise LaunchError(f"launch argument 'spacing': expected a number > 0, got "
                           f"'{args['spacing']}'")
     use_composition = parse_bool(args['use_composition'], 'use_composition')
+    viewer = parse_bool(args['viewer'], 'viewer')
+    viewer_port = _port(args, 'viewer_port')
     description = read_urdf()
     names = [f'r{i}' for i in range(1, count + 1)]
+    grid = fleet_grid(count, spacing)
     actions = [Node(
         PACKAGE, 'mujoco_sim', output='screen',
         parameters=[{'real_time_factor': rtf, 'headless': headless}],
@@ -287,14 +299,23 @@ def fleet(args):
         return [{'robot_description': description, 'use_sim_time': use_sim_time,
                  'frame_prefix': f'{ns}/'}]
 
+    def odom_in_world(ns, x, y):
+        return {'translation.x': float(x), 'translation.y': float(y), 'frame_id': 'world',
+                'child_frame_id': f'{ns}/odom', 'use_sim_time': use_sim_time}
+
     if use_composition:
+        composed = [ComposableNode(PACKAGE, 'amr_description::RobotStatePublisher',
+                                   namespace=ns, parameters=rsp_parameters(ns))
+                    for ns in names]
+        composed += [ComposableNode(PACKAGE, 'amr_description::StaticTransformBroadcasterNode',
+                                    name='static_transform_publisher', namespace=ns,
+                                    parameters=[odom_in_world(ns, x, y)])
+                     for ns, (x, y) in zip(names, grid)]
         actions.append(ComposableNodeContainer(
             'robot_state_publisher_container', output='screen',
             parameters=[{'use_sim_time': use_sim_time}],
-            composable_node_descriptions=[
-                ComposableNode(PACKAGE, 'amr_description::RobotStatePublisher', namespace=ns,
-                               parameters=rsp_parameters(ns)) for ns in names]))
-    for ns, (x, y) in zip(names, fleet_grid(count, spacing)):
+            composable_node_descriptions=composed))
+    for ns, (x, y) in zip(names, grid):
         create = Node(
             PACKAGE, 'create', output='screen',
             arguments=['-topic', f'/{ns}/robot_description', '-name', ns,
@@ -306,7 +327,21 @@ def fleet(args):
         if not use_composition:
             actions.append(Node(PACKAGE, 'robot_state_publisher', namespace=ns,
                                 output='screen', parameters=rsp_parameters(ns)))
+            actions.append(Node(PACKAGE, 'static_transform_publisher',
+                                name='static_transform_publisher', namespace=ns,
+                                output='screen',
+                                parameters=[{'use_sim_time': use_sim_time}],
+                                arguments=['--x', repr(float(x)), '--y', repr(float(y)),
+                                           '--frame-id', 'world',
+                                           '--child-frame-id', f'{ns}/odom']))
         actions += [create, OnProcessExit(create, [spawner], only_on_success=True)]
+    if viewer:
+        actions.append(Node(PACKAGE, 'viewer', output='screen', parameters=[{
+            'use_sim_time': use_sim_time, 'fixed_frame': 'world', 'port': viewer_port,
+            'robot_description_topics': [f'/{ns}/robot_description' for ns in names],
+            'odometry_topics': [f'/{ns}/ground_truth/odom' for ns in names],
+            'cmd_vel_topic': f'/{names[0]}/diff_drive_controller/cmd_vel',
+            'frame_id': f'{names[0]}/base_link'}]))
     return actions
 
 

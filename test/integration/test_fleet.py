@@ -162,7 +162,8 @@ def test_fleet_stack_comes_up(procs, exe, ros_env, tmp_path):
     pytest.importorskip('controller_manager_msgs.srv')
     peer = FleetPeer(int(ros_env['ROS_DOMAIN_ID']), STACK_ROBOTS)
     try:
-        proc = procs.start([exe('bringup'), 'fleet', f'robots:={len(STACK_ROBOTS)}'], ros_env)
+        proc = procs.start([exe('bringup'), 'fleet', f'robots:={len(STACK_ROBOTS)}',
+                            'viewer:=false'], ros_env)
 
         def activated():
             return proc.output.count('Configured and activated') == 2 * len(STACK_ROBOTS)

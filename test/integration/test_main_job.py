@@ -78,7 +78,7 @@ def test_main_job_drives_closed_square(ros_env, procs, exe, tmp_path):
 def test_main_job_two_robots(ros_env, procs, exe, tmp_path):
     out = tmp_path / 'out'
     proc = procs.start([exe('drive_square'), '--robots', '2', '--rtf', '0', '--output-dir',
-                        str(out), '--timeout', '500'], ros_env)
+                        str(out), '--timeout', '500', '--viewer-port', '0'], ros_env)
     assert proc.wait(timeout=900) == 0, proc.output[-4000:]
     text = proc.output
     rows = {line.split()[0]: line.split() for line in text.splitlines()

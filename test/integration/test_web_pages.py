@@ -147,6 +147,62 @@ def test_viewer_drives_the_robot_from_the_page(ros_env, procs, exe, tmp_path):
     assert 'Traceback' not in stack.output, stack.output[-3000:]
 
 
+def _row_groups(mask, gap=30):
+    """
+    Return the (first, last) image rows of each band of rows holding mask pixels.
+
+    Bands closer than ``gap`` rows are one (a chassis' lit top and shaded side are apart).
+    """
+    rows = np.flatnonzero(mask.sum(axis=1) >= 3)
+    groups = []
+    for row in rows:
+        if groups and row - groups[-1][1] <= gap:
+            groups[-1][1] = row
+        else:
+            groups.append([row, row])
+    return [tuple(g) for g in groups]
+
+
+def test_fleet_viewer_shows_every_robot(ros_env, procs, exe, tmp_path):
+    # two robots on the fleet grid (r1 at the world origin, r2 2 m along +x, in front of the
+    # camera): both are posed in the Fixed Frame world (each robot's odom joined to world by
+    # the stack's static transforms), and both chassis are drawn, one behind the other
+    port = free_port()
+    stack = procs.start([exe('bringup'), 'fleet', 'robots:=2', f'viewer_port:={port}'],
+                        ros_env)
+    assert stack.wait_for_output(f'viewer: open http://127.0.0.1:{port}/ in a browser', 90.0), \
+        stack.output[-3000:]
+    with open_page(f'http://127.0.0.1:{port}/') as page:
+        assert page.wait_for_text('Fixed Frame: world', 120.0), page.page.inner_text('body')
+        page.page.get_by_text('TF axes', exact=True).click()  # axes are blue too
+        page.close_notifications()
+
+        def both_posed():
+            text = page.page.inner_text('body')
+            return 'Fixed Frame: world' in text and 'does not exist' not in text and \
+                'No transform to' not in text and 'Waiting for' not in text
+        deadline = time.monotonic() + 180.0
+        while time.monotonic() < deadline and not both_posed():
+            page.page.wait_for_timeout(500)
+        assert both_posed(), page.page.inner_text('body')
+        groups = []
+        deadline = time.monotonic() + 120.0
+        while time.monotonic() < deadline and len(groups) < 2:
+            image = page.pixels(str(tmp_path / 'fleet.png'))
+            mask = colour_mask(image, CHASSIS_RGB, 40)
+            h, w = mask.shape
+            mask[int(h - 90):, :90] = False  # viser's axes logo
+            mask[:, int(w / 2):] = False  # the panel (its buttons are a lighter blue)
+            groups = _row_groups(mask)
+            if len(groups) < 2:
+                page.page.wait_for_timeout(500)
+        assert len(groups) == 2, groups
+        text = page.page.inner_text('body')
+        assert '/r1/ground_truth/odom' in text and '/r2/ground_truth/odom' in text, text
+    assert stack.interrupt(timeout=30.0) == 0, stack.output[-3000:]
+    assert 'Traceback' not in stack.output, stack.output[-3000:]
+
+
 def test_gui_slider_moves_joint_states_and_tf(ros_env, procs, exe, tmp_path):
     from amr_description.core.kinematics import joint_transform
     from amr_description.core.kinematics import quaternion_to_matrix

@@ -42,9 +42,18 @@ def test_fleet_stack_namespaces_every_robot():
     assert not [n for n in nodes if n.executable == 'robot_state_publisher']
     containers = [n for n in nodes if isinstance(n, ComposableNodeContainer)]
     assert len(containers) == 1
-    rsp = containers[0].composable_node_descriptions
-    assert {n.plugin for n in rsp} == {'amr_description::RobotStatePublisher'}
+    composed = containers[0].composable_node_descriptions
+    rsp = [n for n in composed if n.plugin == 'amr_description::RobotStatePublisher']
     assert [n.namespace for n in rsp] == ['/r1', '/r2', '/r3']
+    # each robot's odom frame joined to the simulator's world at its grid position
+    static = [n for n in composed if n.plugin == 'amr_description::StaticTransformBroadcasterNode']
+    assert len(rsp) + len(static) == len(composed)
+    assert [(n.namespace, n.node_name) for n in static] == [
+        (f'/r{i}', 'static_transform_publisher') for i in (1, 2, 3)]
+    assert [(p['frame_id'], p['child_frame_id'], p['translation.x'], p['translation.y'])
+            for p in (n.parameters[0] for n in static)] == [
+        ('world', 'r1/odom', 0.0, 0.0), ('world', 'r2/odom', 3.0, 0.0),
+        ('world', 'r3/odom', 0.0, 3.0)]
     assert [n.parameters[0]['frame_prefix'] for n in rsp] == ['r1/', 'r2/', 'r3/']
     creates = [n for n in nodes if n.executable == 'create']
     assert creates[1].arguments == ['-topic', '/r2/robot_description', '-name', 'r2',
@@ -58,10 +67,28 @@ def test_fleet_stack_namespaces_every_robot():
 
 
 def test_fleet_stack_without_composition():
-    nodes = [a for a in _actions(['robots:=2', 'use_composition:=false']) if isinstance(a, Node)]
+    nodes = [a for a in _actions(['robots:=2', 'use_composition:=false', 'spacing:=1.5'])
+             if isinstance(a, Node)]
     assert not [n for n in nodes if isinstance(n, ComposableNodeContainer)]
     rsp = [n for n in nodes if n.executable == 'robot_state_publisher']
     assert [n.namespace for n in rsp] == ['/r1', '/r2']
+    static = [n for n in nodes if n.executable == 'static_transform_publisher']
+    assert [n.namespace for n in static] == ['/r1', '/r2']
+    assert static[1].arguments == ['--x', '1.5', '--y', '0.0', '--frame-id', 'world',
+                                   '--child-frame-id', 'r2/odom']
+
+
+def test_fleet_viewer_shows_every_robot_in_world():
+    nodes = [a for a in _actions(['robots:=3', 'viewer_port:=8099']) if isinstance(a, Node)]
+    viewer = [n for n in nodes if n.executable == 'viewer']
+    assert len(viewer) == 1
+    params = viewer[0].parameters[0]
+    assert params['fixed_frame'] == 'world' and params['port'] == 8099
+    assert params['robot_description_topics'] == [f'/r{i}/robot_description' for i in (1, 2, 3)]
+    assert params['odometry_topics'] == [f'/r{i}/ground_truth/odom' for i in (1, 2, 3)]
+    assert params['cmd_vel_topic'] == '/r1/diff_drive_controller/cmd_vel'
+    no_viewer = [a for a in _actions(['robots:=3', 'viewer:=false']) if isinstance(a, Node)]
+    assert not [n for n in no_viewer if n.executable == 'viewer']
 
 
 def test_container_command_line(tmp_path):
@@ -72,7 +99,8 @@ def test_container_command_line(tmp_path):
     assert cmd[3:6] == ['--ros-args', '-r', '__node:=robot_state_publisher_container']
     with open(cmd[2]) as f:
         entries = yaml.safe_load(f)
-    assert [e['plugin'] for e in entries] == ['amr_description::RobotStatePublisher'] * 2
+    assert [e['plugin'] for e in entries] == ['amr_description::RobotStatePublisher'] * 2 + \
+        ['amr_description::StaticTransformBroadcasterNode'] * 2
     args = entries[1]['ros_args']
     assert args[:3] == ['--ros-args', '-r', '__ns:=/r2'] and args[3] == '--params-file'
     with open(args[4]) as f:
@@ -84,7 +112,9 @@ def test_container_command_line(tmp_path):
 
 @pytest.mark.parametrize('argv,field', [(['robots:=0'], 'robots'), (['robots:=two'], 'robots'),
                                         (['spacing:=0'], 'spacing'), (['rtf:=-1'], 'rtf'),
-                                        (['use_composition:=maybe'], 'use_composition')])
+                                        (['use_composition:=maybe'], 'use_composition'),
+                                        (['viewer:=maybe'], 'viewer'),
+                                        (['viewer_port:=0'], 'viewer_port')])
 def test_fleet_stack_rejects_bad_arguments(argv, field):
     with pytest.raises(LaunchError, match=f"'{field}'"):
         _actions(argv)
