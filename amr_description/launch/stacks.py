@@ -260,7 +260,8 @@ def fleet(args):
     ``use_composition:=false``), joins the robots' TF trees in the simulator's ``world``
     frame, as a multi-robot launch file does with tf2_ros' static_transform_publisher. The
     viewer (unless ``viewer:=false``, port ``viewer_port``) shows every robot with Fixed Frame
-    ``world``, each robot's ground-truth trail, and its pad drives ``r1``.
+    ``world``, each robot's ground-truth trail, and its pad drives ``r1`` (its status counts
+    ``/r1/joint_states``).
 
     :param args: dict of launch-argument values (see ``FLEET_ARGUMENTS``; missing ones take
         their declared defaults).
@@ -341,7 +342,8 @@ def fleet(args):
             'robot_description_topics': [f'/{ns}/robot_description' for ns in names],
             'odometry_topics': [f'/{ns}/ground_truth/odom' for ns in names],
             'cmd_vel_topic': f'/{names[0]}/diff_drive_controller/cmd_vel',
-            'frame_id': f'{names[0]}/base_link'}]))
+            'frame_id': f'{names[0]}/base_link'}],
+            remappings=[('/joint_states', f'/{names[0]}/joint_states')]))
     return actions
 
 

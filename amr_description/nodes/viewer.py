@@ -21,7 +21,7 @@ What RViz's displays of the tutorial show, on a web page served by this node:
   simulator's ``world``) is drawn as if that frame were the fixed frame, and the legend says
   so;
 - a **status** panel: sim time and real-time factor (from ``/clock``), rates of ``/clock``,
-  ``/joint_states``, ``/odom`` and ``/tf``;
+  ``/joint_states`` (as remapped), the first of ``odometry_topics`` and ``/tf``;
 - a **teleop pad** (no RViz peer): hold a button, or a key while the page has focus (arrows or
   ``I J L`` and ``K`` to stop; ``,`` is not available to page hotkeys), to publish
   ``geometry_msgs/TwistStamped`` on ``cmd_vel_topic`` (``/diff_drive_controller/cmd_vel``)
@@ -155,7 +155,7 @@ class Viewer(Node):
         self._tf_frames = []  # the frames it draws, in order
         self._tf_last = None  # their poses sent last, shape (N, 4, 4)
         self._trails = {}  # topic -> {'frame': str, 'points': list, 'dirty': bool}
-        self._rates = {name: _Rate() for name in ('/clock', '/joint_states', '/odom', '/tf')}
+        self._rates = {}  # topic -> _Rate, in the status order (filled below)
         self._clock_samples = collections.deque()  # (wall, sim)
         self._sim_time = None
         self._deadman = teleop_pad.DeadMan(BUTTON_HOLD)
@@ -179,9 +179,15 @@ class Viewer(Node):
         self.create_subscription(TFMessage, '/tf_static', self._on_tf_static, static_qos)
         self.create_subscription(ClockMsg, '/clock', self._on_clock, 10)
         # only counted (status rate): taken raw, never converted to a Python message
-        self.create_subscription(JointState, '/joint_states',
-                                 lambda msg: self._tick('/joint_states'),
-                                 qos_profile_sensor_data, raw=True)
+        joint_states = self.create_subscription(JointState, '/joint_states',
+                                                lambda msg: self._tick(self._joint_states),
+                                                qos_profile_sensor_data, raw=True)
+        self._joint_states = joint_states.topic_name  # as remapped
+        odometry = [t for t in self.get_parameter('odometry_topics').value if t]
+        self._rated_odometry = odometry[0] if odometry else None
+        for name in ('/clock', self._joint_states, self._rated_odometry, '/tf'):
+            if name is not None:
+                self._rates[name] = _Rate()
         for topic in self.get_parameter('odometry_topics').value:
             if topic:
                 self._add_trail(topic)
@@ -314,8 +320,8 @@ class Viewer(Node):
                                'fixed': None, 'reset': False}
 
     def _on_odometry(self, topic, msg):
-        if topic == '/odom':
-            self._tick('/odom')
+        if topic == self._rated_odometry:
+            self._tick(topic)
         p = msg.pose.pose.position
         point = (p.x, p.y, p.z)
         if not all(math.isfinite(v) for v in point):

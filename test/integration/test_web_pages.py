@@ -9,14 +9,17 @@ the tests assert what a user sees and what reaches ROS: (a) the viewer shows the
 the robot drives 1 m forward from the page's teleop pad, with ``/ground_truth/odom`` as the
 judge; (b) a joint_state_publisher_gui slider set to 1.57 reaches ``/joint_states`` and
 robot_state_publisher's TF; (c) the page requests nothing from any other host; (d) killing a
-node closes its port; plus the port-in-use error and a bad description shown on the page.
+node closes its port; (e) the fleet's viewer poses two robots in ``world`` and draws both;
+plus the port-in-use error and a bad description shown on the page.
 Rendering WebGL on the CPU is slow on a shared 2-core machine: deadlines are generous.
 
-Set ``AMR_UPDATE_SCREENSHOTS=1`` to copy the viewer screenshot to ``docs/img/viewer.png``.
+Set ``AMR_UPDATE_SCREENSHOTS=1`` to copy the viewer screenshots to ``docs/img/viewer.png`` and
+``docs/img/fleet.png``.
 """
 
 import math
 import os
+import re
 import shutil
 import signal
 import time
@@ -197,8 +200,12 @@ def test_fleet_viewer_shows_every_robot(ros_env, procs, exe, tmp_path):
             if len(groups) < 2:
                 page.page.wait_for_timeout(500)
         assert len(groups) == 2, groups
+        if os.environ.get('AMR_UPDATE_SCREENSHOTS'):
+            shutil.copy(tmp_path / 'fleet.png', os.path.join(ROOT, 'docs', 'img', 'fleet.png'))
         text = page.page.inner_text('body')
         assert '/r1/ground_truth/odom' in text and '/r2/ground_truth/odom' in text, text
+        # the status counts r1's topics (the fleet has no /joint_states or /odom)
+        assert re.search(r'/r1/joint_states\s+[1-9][\d.]* Hz', text), text
     assert stack.interrupt(timeout=30.0) == 0, stack.output[-3000:]
     assert 'Traceback' not in stack.output, stack.output[-3000:]
 

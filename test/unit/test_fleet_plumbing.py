@@ -87,6 +87,7 @@ def test_fleet_viewer_shows_every_robot_in_world():
     assert params['robot_description_topics'] == [f'/r{i}/robot_description' for i in (1, 2, 3)]
     assert params['odometry_topics'] == [f'/r{i}/ground_truth/odom' for i in (1, 2, 3)]
     assert params['cmd_vel_topic'] == '/r1/diff_drive_controller/cmd_vel'
+    assert viewer[0].remappings == [('/joint_states', '/r1/joint_states')]
     no_viewer = [a for a in _actions(['robots:=3', 'viewer:=false']) if isinstance(a, Node)]
     assert not [n for n in no_viewer if n.executable == 'viewer']
 
