@@ -188,11 +188,10 @@ class Viewer(Node):
         for name in ('/clock', self._joint_states, self._rated_odometry, '/tf'):
             if name is not None:
                 self._rates[name] = _Rate()
-        for topic in self.get_parameter('odometry_topics').value:
-            if topic:
-                self._add_trail(topic)
-                self.create_subscription(
-                    Odometry, topic, lambda msg, topic=topic: self._on_odometry(topic, msg), 10)
+        for topic in odometry:
+            self._add_trail(topic)
+            self.create_subscription(
+                Odometry, topic, lambda msg, topic=topic: self._on_odometry(topic, msg), 10)
         self._cmd_pub = self.create_publisher(
             TwistStamped, str(self.get_parameter('cmd_vel_topic').value), 10)
         wall = Clock(clock_type=ClockType.STEADY_TIME)

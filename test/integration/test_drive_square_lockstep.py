@@ -74,9 +74,7 @@ class StandInSimulator(StandIn):
         self.pose = [x + linear * math.cos(yaw) * dt, y + linear * math.sin(yaw) * dt,
                      yaw + angular * dt]
         self.t += dt
-        sec, nanosec = divmod(int(round(self.t * 1e9)), 1_000_000_000)
-        clock = self.Clock()
-        clock.clock.sec, clock.clock.nanosec = sec, nanosec
+        clock = self._clock_now()
         odom = self.Odometry()
         odom.header.stamp = clock.clock
         odom.pose.pose.position.x, odom.pose.pose.position.y = self.pose[0], self.pose[1]
@@ -88,6 +86,11 @@ class StandInSimulator(StandIn):
                 publisher.publish(msg)
         return messages
 
+    def _clock_now(self):
+        clock = self.Clock()
+        clock.clock.sec, clock.clock.nanosec = divmod(int(round(self.t * 1e9)), 1_000_000_000)
+        return clock
+
     def _on_timer(self):
         if self._late:  # the run-ahead, delivered after the pause was answered
             for publisher, msg in self._late:
@@ -98,10 +101,7 @@ class StandInSimulator(StandIn):
 
     def _on_paused_tick(self):
         if self.paused and not self._late:  # as mujoco_sim: the unchanged time, at 10 Hz
-            clock = self.Clock()
-            clock.clock.sec, clock.clock.nanosec = divmod(int(round(self.t * 1e9)),
-                                                          1_000_000_000)
-            self._clock.publish(clock)
+            self._clock.publish(self._clock_now())
 
     def _on_cmd(self, msg):
         stamp = msg.header.stamp.sec + msg.header.stamp.nanosec * 1e-9
