@@ -50,8 +50,9 @@ setup(
             'teleop_twist_keyboard = amr_description.nodes.teleop_twist_keyboard:main',
             'bringup = amr_description.launch.bringup:main',
             'drive_square = amr_description.nodes.drive_square:main',
-            'physics_report = amr_description.sim.physics_report:main',
+            'physics_report = amr_description.tools.physics_report:main',
             'ros2 = amr_description.cli.main:main',
+            'ros2_control_node = amr_description.nodes.ros2_control_node:main',
             'component_container = amr_description.nodes.component_container:main',
             'static_transform_publisher = '
             'amr_description.nodes.static_transform_publisher:main',

@@ -99,7 +99,7 @@ class _Interrupts:
     ``topic echo`` that once did not exit came from a test run with SIGINT ignored, see
     ``test/conftest.py``). Inside ``spin_once`` the signal only sets a flag and
     ``spin_once`` raises ``KeyboardInterrupt`` once rclpy returned (the nodes' pattern,
-    :mod:`amr_description.nodes.shutdown`). A handler a verb installed itself (``ros2 bag``'s
+    :mod:`amr_description.ros.shutdown`). A handler a verb installed itself (``ros2 bag``'s
     stop flag) is left alone.
     """
 

@@ -15,63 +15,11 @@ the rclpy lifecycle callbacks ``on_configure(state)``/``on_activate``/``on_deact
 :meth:`state_interface_configuration` and :meth:`update`.
 """
 
-import math
-
-from builtin_interfaces.msg import Time as TimeMsg
-from rclpy.lifecycle import LifecycleNode
+from amr_description.ros.node import LifecycleNode
 from rclpy.lifecycle import TransitionCallbackReturn
 from rclpy.parameter import Parameter
 
-__all__ = ['ControllerInterface', 'TransitionCallbackReturn', 'time_to_msg', 'msg_to_time',
-           'set_stamp', 'heard']
-
-
-def time_to_msg(time):
-    """Return ``builtin_interfaces/Time`` for ``time`` in seconds (float, >= 0)."""
-    sec = math.floor(time)
-    nanosec = int(round((time - sec) * 1e9))
-    if nanosec >= 1_000_000_000:
-        sec, nanosec = sec + 1, nanosec - 1_000_000_000
-    return TimeMsg(sec=int(sec), nanosec=nanosec)
-
-
-def set_stamp(stamp, time):
-    """
-    Write ``time`` (seconds, float >= 0) into an existing ``builtin_interfaces/Time``.
-
-    Same rounding as :func:`time_to_msg`, without creating a message: for the realtime
-    ``update`` of controllers that reuse their messages.
-
-    :param stamp: the ``builtin_interfaces/Time`` to change in place.
-    :param time: seconds (float).
-    """
-    sec = math.floor(time)
-    nanosec = int(round((time - sec) * 1e9))
-    if nanosec >= 1_000_000_000:
-        sec, nanosec = sec + 1, nanosec - 1_000_000_000
-    stamp.sec = int(sec)
-    stamp.nanosec = nanosec
-
-
-def heard(publisher):
-    """
-    Return True when a volatile ``publisher`` has at least one matched subscription.
-
-    For the realtime ``update`` of controllers: a message published on a volatile topic that
-    no subscription has matched yet is delivered to nobody (DDS keeps no history for late
-    joiners), so skipping its conversion and publication changes nothing any subscriber
-    sees, while it saves the rclpy message conversion (the largest Python cost per robot of a
-    fleet whose topics nobody listens to). Not for ``transient_local`` publishers.
-
-    :param publisher: an rclpy publisher.
-    :returns: bool.
-    """
-    return publisher.get_subscription_count() > 0
-
-
-def msg_to_time(msg):
-    """Return seconds (float) of a ``builtin_interfaces/Time``."""
-    return msg.sec + msg.nanosec * 1e-9
+__all__ = ['ControllerInterface', 'TransitionCallbackReturn']
 
 
 class ControllerInterface(LifecycleNode):

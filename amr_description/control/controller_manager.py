@@ -30,26 +30,18 @@ service happen at the next update; the service waits for it up to the request's 
 :meth:`ControllerManager.destroy_node` everything of the manager, leaving nothing in the ROS
 graph.
 
-Run standalone (ros2_control_node equivalent)::
-
-    python -m amr_description.control.controller_manager --urdf urdf/amr.urdf \
-        --params config/controllers.yaml --mock-hardware
+Run standalone with :mod:`amr_description.nodes.ros2_control_node` (upstream's
+``ros2_control_node``).
 """
 
-import argparse
 from importlib.metadata import entry_points
-import os
-import sys
 import threading
-import time as _time
 
 from amr_description.control import hardware_interface as hi
 from amr_description.control.controller_interface import parameters_from_dict
 from amr_description.control.resource_manager import ResourceManager
 from amr_description.core import ros_param_file
-import rclpy
-from rclpy.executors import ExternalShutdownException
-from rclpy.node import Node
+from amr_description.ros.node import Node
 
 CONTROLLER_GROUP = 'amr_description.controllers'
 BASE_CLASSES = ['controller_interface::ControllerInterface',
@@ -114,7 +106,6 @@ class ControllerManager(Node):
     def __init__(self, urdf_xml, executor, hardware_factory=None, parameters_file=None,
                  namespace='', use_sim_time=True):
         """Create the node, the hardware and the services (see the class docstring)."""
-        from rcl_interfaces.msg import ParameterDescriptor
         self._yaml_files = []
         own = {}
         if parameters_file:
@@ -128,6 +119,23 @@ class ControllerManager(Node):
             'controller_manager', namespace=namespace, context=executor.context,
             parameter_overrides=overrides, allow_undeclared_parameters=True,
             automatically_declare_parameters_from_overrides=False)
+        self._executor = executor
+        self._destroyed = False
+        try:
+            self._setup(urdf_xml, hardware_factory, overrides, skipped, use_sim_time)
+        except BaseException:
+            # a rejected robot leaves nothing in the ROS graph
+            self._destroyed = True
+            for cleanup in (lambda: executor.remove_node(self), self.destroy_node):
+                try:
+                    cleanup()
+                except Exception:  # noqa: B902 - the node may not be added yet
+                    pass
+            raise
+
+    def _setup(self, urdf_xml, hardware_factory, overrides, skipped, use_sim_time):
+        """Declare parameters, build the hardware and services, join the executor."""
+        from rcl_interfaces.msg import ParameterDescriptor
         for name in skipped:
             self.get_logger().warn(f"Parameter '{name}' has an unsupported value: ignored")
         # update_rate is read-only, as upstream (generate_parameter_library read_only: true)
@@ -146,10 +154,8 @@ class ControllerManager(Node):
         self.update_rate = rate
         self.robot_description = urdf_xml
         self.use_sim_time = bool(use_sim_time)
-        self._executor = executor
         self._lock = threading.RLock()
         self._pending = None
-        self._destroyed = False
         self.controllers = {}  # name -> controller node, in load order
         self._last_update = {}  # controller name -> time of its last update (s)
         self.resource_manager = ResourceManager(urdf_xml, hardware_factory)
@@ -158,7 +164,7 @@ class ControllerManager(Node):
             f'active, {len(self.resource_manager.command_interfaces)} command and '
             f'{len(self.resource_manager.state_interfaces)} state interfaces')
         self._create_services()
-        executor.add_node(self)
+        self._executor.add_node(self)
         self._publish_activity()
 
     # ----------------------------------------------------------------- services
@@ -858,91 +864,3 @@ class ControllerManager(Node):
         except Exception:  # noqa: B902 - executor already shut down
             pass
         self.destroy_node()
-
-
-def _mock_factory(info):
-    from amr_description.control.generic_system import GenericSystem
-    return GenericSystem()
-
-
-def main(args=None):
-    """
-    Run a controller manager standalone (ros2_control_node), wall-clock loop.
-
-    Options: ``--urdf FILE`` (required), ``--params FILE`` (controllers YAML),
-    ``--mock-hardware`` (every component is ``mock_components/GenericSystem``),
-    ``--use-sim-time``; ROS arguments after ``--ros-args``.
-
-    :returns: exit code: 0 after Ctrl-C, 1 on a configuration error (one line).
-    """
-    argv = sys.argv[1:] if args is None else list(args)
-    ros_args = argv[argv.index('--ros-args'):] if '--ros-args' in argv else []
-    own = argv[:len(argv) - len(ros_args)]
-    parser = argparse.ArgumentParser(prog='controller_manager')
-    parser.add_argument('--urdf', required=True, help='robot description (URDF file)')
-    parser.add_argument('--params', default=None, help='controllers YAML file')
-    parser.add_argument('--mock-hardware', action='store_true',
-                        help='replace every hardware plugin by mock_components/GenericSystem')
-    parser.add_argument('--use-sim-time', action='store_true')
-    parser.add_argument('-n', '--namespace', default='')
-    opts = parser.parse_args(own)
-    try:
-        with open(opts.urdf, 'r') as f:
-            urdf = f.read()
-    except OSError as exc:
-        print(f'controller_manager: cannot read {opts.urdf}: {exc.strerror}', file=sys.stderr)
-        return 1
-    rclpy.init(args=['controller_manager'] + ros_args)
-    executor = rclpy.executors.MultiThreadedExecutor(num_threads=2)
-    cm = None
-    thread = None
-    stop = threading.Event()
-    try:
-        try:
-            cm = ControllerManager(
-                urdf, executor, _mock_factory if opts.mock_hardware else None,
-                opts.params, opts.namespace, use_sim_time=opts.use_sim_time)
-        except ValueError as exc:
-            print(f'controller_manager: {exc}', file=sys.stderr)
-            return 1
-
-        def loop():
-            period = 1.0 / cm.update_rate
-            start = _time.monotonic()
-            previous = 0.0
-            k = 0
-            while not stop.is_set() and cm.context.ok():
-                k += 1
-                target = start + k * period
-                delay = target - _time.monotonic()
-                if delay > 0:
-                    stop.wait(delay)
-                now = _time.monotonic() - start
-                t = cm.get_clock().now().nanoseconds * 1e-9 if opts.use_sim_time else \
-                    _time.time()
-                cm.read(t, now - previous)
-                cm.update(t, now - previous)
-                cm.write(t, now - previous)
-                previous = now
-
-        thread = threading.Thread(target=loop, daemon=True)
-        thread.start()
-        cm.get_logger().info(f'update rate is {cm.update_rate} Hz')
-        executor.spin()
-    except (KeyboardInterrupt, ExternalShutdownException):
-        pass
-    finally:
-        stop.set()
-        if thread is not None:
-            thread.join(timeout=2.0)
-        if cm is not None:
-            cm.destroy()
-        executor.shutdown()
-        if rclpy.ok():
-            rclpy.try_shutdown()
-    return 0
-
-
-if __name__ == '__main__':
-    os.environ.setdefault('ROS_AUTOMATIC_DISCOVERY_RANGE', 'LOCALHOST')
-    sys.exit(main())

@@ -33,14 +33,14 @@ before each publication.
 import math
 
 from amr_description.control.controller_interface import ControllerInterface
-from amr_description.control.controller_interface import heard
-from amr_description.control.controller_interface import msg_to_time
-from amr_description.control.controller_interface import set_stamp
-from amr_description.control.controller_interface import time_to_msg
 from amr_description.control.controller_interface import TransitionCallbackReturn
 from amr_description.core.odometry import Odometry
 from amr_description.core.speed_limiter import PARAMETER_NAMES as LIMIT_NAMES
 from amr_description.core.speed_limiter import SpeedLimiter
+from amr_description.ros.stamps import has_subscribers
+from amr_description.ros.stamps import msg_to_time
+from amr_description.ros.stamps import set_stamp
+from amr_description.ros.stamps import time_to_msg
 from geometry_msgs.msg import TransformStamped
 from geometry_msgs.msg import TwistStamped
 from nav_msgs.msg import Odometry as OdometryMsg
@@ -48,11 +48,8 @@ from rclpy.qos import DurabilityPolicy
 from rclpy.qos import HistoryPolicy
 from rclpy.qos import QoSProfile
 from rclpy.qos import ReliabilityPolicy
+from tf2_msgs.msg import TFMessage
 
-try:
-    from tf2_msgs.msg import TFMessage
-except ImportError:  # built by scripts/setup; without it no TF is published
-    TFMessage = None
 
 # QoS of tf2_ros::TransformBroadcaster (jazzy): reliable, volatile, keep last 100
 TF_QOS = QoSProfile(depth=100, history=HistoryPolicy.KEEP_LAST,
@@ -184,10 +181,7 @@ class DiffDriveController(ControllerInterface):
         if self._odom_pub is None:
             self._odom_pub = self.create_publisher(OdometryMsg, '~/odom', qos)
         if cfg['enable_odom_tf'] and self._tf_pub is None:
-            if TFMessage is None:
-                self.get_logger().warn('tf2_msgs is not installed: odom TF is not published')
-            else:
-                self._tf_pub = self.create_publisher(TFMessage, '/tf', TF_QOS)
+            self._tf_pub = self.create_publisher(TFMessage, '/tf', TF_QOS)
         if cfg['publish_limited_velocity'] and self._limited_pub is None:
             self._limited_pub = self.create_publisher(TwistStamped, '~/cmd_vel_out', qos)
         if self._cmd_sub is None:
@@ -406,8 +400,8 @@ class DiffDriveController(ControllerInterface):
             self._previous_publish = previous
         else:
             return
-        odom_heard = heard(self._odom_pub)
-        tf_heard = self._tf_msg is not None and heard(self._tf_pub)
+        odom_heard = has_subscribers(self._odom_pub)
+        tf_heard = self._tf_msg is not None and has_subscribers(self._tf_pub)
         if not (odom_heard or tf_heard):
             return  # volatile topics nobody has matched: nothing to deliver
         odom = self.odometry

@@ -23,9 +23,9 @@ import math
 import xml.etree.ElementTree as ET
 
 from amr_description.control.controller_interface import ControllerInterface
-from amr_description.control.controller_interface import heard
-from amr_description.control.controller_interface import set_stamp
 from amr_description.control.controller_interface import TransitionCallbackReturn
+from amr_description.ros.stamps import has_subscribers
+from amr_description.ros.stamps import set_stamp
 from rclpy.qos import QoSProfile
 from sensor_msgs.msg import JointState
 
@@ -142,7 +142,7 @@ class JointStateBroadcaster(ControllerInterface):
 
     def update(self, time, period):
         """Publish one JointState stamped ``time`` (when subscribed, see heard); True."""
-        if not heard(self._publisher):
+        if not has_subscribers(self._publisher):
             return True
         for column, index, handle in self._slots:
             column[index] = handle.value

@@ -276,7 +276,7 @@ def parse_urdf(urdf_xml, source='robot_description'):
     _check_elements(root_element, source)
     # imported here, not at module level: it pulls in trimesh (~1 s), whose imports swallow
     # exceptions, so a Ctrl-C during a node's start-up must reach it only after main()
-    # installed the clean-shutdown signal handling (amr_description.nodes.shutdown)
+    # installed the clean-shutdown signal handling (amr_description.ros.shutdown)
     import yourdfpy
     try:
         urdf = yourdfpy.URDF.load(

@@ -30,6 +30,9 @@ from amr_description.launch.actions import parse_launch_arguments
 
 PACKAGE = 'amr_description'
 
+CONTROLLERS = ('joint_state_broadcaster', 'diff_drive_controller')
+"""The controllers every stack spawns, in spawn order (one ``spawner`` with both names)."""
+
 
 def urdf_path():
     """
@@ -208,7 +211,7 @@ def sim(args):
                    '-Y', repr(pose['yaw'])])
     spawner = Node(
         PACKAGE, 'spawner', output='screen',
-        arguments=['joint_state_broadcaster', 'diff_drive_controller'])
+        arguments=list(CONTROLLERS))
     actions = [
         mujoco_sim,
         robot_state_publisher,
@@ -323,8 +326,7 @@ def fleet(args):
                        '-robot_namespace', ns, '-x', repr(x), '-y', repr(y), '-z', '0.2'])
         spawner = Node(
             PACKAGE, 'spawner', output='screen',
-            arguments=['-c', f'/{ns}/controller_manager', 'joint_state_broadcaster',
-                       'diff_drive_controller'])
+            arguments=['-c', f'/{ns}/controller_manager', *CONTROLLERS])
         if not use_composition:
             actions.append(Node(PACKAGE, 'robot_state_publisher', namespace=ns,
                                 output='screen', parameters=rsp_parameters(ns)))

@@ -42,9 +42,9 @@ import argparse
 from importlib.metadata import entry_points
 import sys
 
-from amr_description.nodes import shutdown
-from amr_description.nodes.shutdown import Node
-from amr_description.nodes.shutdown import take_over_time_source
+from amr_description.ros import shutdown
+from amr_description.ros.node import Node
+from amr_description.ros.sim_time import take_over_time_source
 from rclpy.exceptions import InvalidParameterTypeException
 from rclpy.exceptions import InvalidParameterValueException
 from rclpy.exceptions import ParameterException
@@ -162,7 +162,7 @@ def main(args=None):
     :param args: command line without the program name (default ``sys.argv[1:]``).
     :returns: 0 on a clean shutdown.
     :raises SystemExit: code 1 after one error line when the ROS arguments cannot be parsed
-        or the component list cannot be read (:mod:`amr_description.nodes.shutdown`).
+        or the component list cannot be read (:mod:`amr_description.ros.shutdown`).
     """
     argv = ['component_container'] + (sys.argv[1:] if args is None else list(args))
     opts = build_parser().parse_args(shutdown.remove_ros_args(argv)[1:])

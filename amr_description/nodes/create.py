@@ -22,8 +22,8 @@ import math
 import sys
 import time
 
-from amr_description.nodes import shutdown
-from amr_description.nodes.shutdown import Node
+from amr_description.ros import shutdown
+from amr_description.ros.node import Node
 from geometry_msgs.msg import PoseStamped
 from rclpy.executors import ExternalShutdownException
 from rclpy.qos import DurabilityPolicy
@@ -222,7 +222,7 @@ def main(args=None):
     """
     Parse the flags, spawn, and return the exit code (0 created, 1 failed).
 
-    Clean-shutdown pattern of :mod:`amr_description.nodes.shutdown`; a ``-file``, ``-string``
+    Clean-shutdown pattern of :mod:`amr_description.ros.shutdown`; a ``-file``, ``-string``
     or ``-param`` description the URDF loader
     (:func:`amr_description.core.urdf_model.parse_urdf`) refuses is one error line and exit
     code 1, before the simulator is asked; one from ``-topic`` is checked by the simulator

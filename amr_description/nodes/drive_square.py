@@ -48,12 +48,13 @@ from amr_description.core.course import format_leg_table
 from amr_description.core.course import leg_delta
 from amr_description.core.course import leg_progress
 from amr_description.core.course import square_course
-from amr_description.nodes import shutdown
+from amr_description.launch.stacks import CONTROLLERS
+from amr_description.ros import shutdown
+from amr_description.ros.node import Node
 from geometry_msgs.msg import TwistStamped
 from nav_msgs.msg import Odometry
 from rclpy.executors import ExternalShutdownException
 from rclpy.executors import SingleThreadedExecutor
-from rclpy.node import Node
 from rclpy.qos import QoSProfile
 from rclpy.qos import ReliabilityPolicy
 from rosgraph_msgs.msg import Clock
@@ -61,7 +62,6 @@ from rosgraph_msgs.msg import Clock
 CMD_TOPIC = '/diff_drive_controller/cmd_vel'
 ODOM_TOPIC = '/odom'
 TRUTH_TOPIC = '/ground_truth/odom'
-CONTROLLERS = ('joint_state_broadcaster', 'diff_drive_controller')
 SIM_NODE = '/mujoco_sim'
 CMD_VEL_TIMEOUT = 0.5  # s, diff_drive_controller's cmd_vel_timeout in config/controllers.yaml
 STALE_LOG_LINE = 'Ignoring the received message'  # diff_drive_controller's warning

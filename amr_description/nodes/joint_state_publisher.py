@@ -18,8 +18,8 @@ Follows upstream ``joint_state_publisher`` (ROS 2):
 import sys
 
 from amr_description.core.urdf_model import parse_urdf
-from amr_description.nodes import shutdown
-from amr_description.nodes.shutdown import Node
+from amr_description.ros import shutdown
+from amr_description.ros.node import Node
 from rcl_interfaces.msg import ParameterDescriptor
 from rcl_interfaces.msg import ParameterType
 from rclpy.qos import DurabilityPolicy
@@ -128,7 +128,7 @@ def main(args=None):
     :param args: command-line arguments for rclpy (default ``sys.argv``).
     :returns: 0 on a clean shutdown.
     :raises SystemExit: code 1 after one error line on bad ROS arguments or a bad parameter
-        (:mod:`amr_description.nodes.shutdown`).
+        (:mod:`amr_description.ros.shutdown`).
     """
     shutdown.init(args)
     node = None

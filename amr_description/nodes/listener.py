@@ -8,8 +8,8 @@ Subscribes to ``std_msgs/msg/String`` on ``topic`` and logs ``I heard: "<data>"`
 tutorial's ``minimal_subscriber``.
 """
 
-from amr_description.nodes import shutdown
-from amr_description.nodes.shutdown import Node
+from amr_description.ros import shutdown
+from amr_description.ros.node import Node
 from std_msgs.msg import String
 
 

@@ -49,10 +49,11 @@ import os
 import threading
 import time
 
-from amr_description.control.controller_interface import heard
-from amr_description.nodes import shutdown
-from amr_description.nodes.shutdown import Node
-from amr_description.nodes.shutdown import take_over_time_source
+from amr_description.ros import shutdown
+from amr_description.ros.node import Node
+from amr_description.ros.sim_time import SimTime
+from amr_description.ros.sim_time import SimTimeExecutor
+from amr_description.ros.stamps import has_subscribers
 from amr_description.sim.simulation import IDLE_RATE
 from amr_description.sim.simulation import normalize_namespace
 from amr_description.sim.simulation import Simulation
@@ -78,113 +79,17 @@ def _sim_msgs():
     return msg, srv
 
 
-class SimTime:
-    """
-    The sim time of in-process nodes, set by the simulation thread without DDS.
-
-    Nodes are adopted when they are added to the executor (their /clock subscription is
-    destroyed then, on the adding thread, before any executor waits on it) and dropped when
-    they are removed; :meth:`set_time` (simulation thread) sets every adopted clock. A lock keeps
-    :meth:`set` off a node that is being removed (and destroyed right after).
-    """
-
-    def __init__(self):
-        """Start with no node."""
-        self._lock = threading.Lock()
-        self._sources = {}   # node -> TimeSource
-        self._snapshot = ()
-
-    def adopt(self, node):
-        """Take over ``node``'s time source when it uses sim time (see take_over_time_source)."""
-        source = take_over_time_source(node)
-        if source is not None:
-            with self._lock:
-                self._sources[node] = source
-                self._snapshot = tuple(self._sources.values())
-
-    def drop(self, node):
-        """Stop setting ``node``'s clocks (before it is destroyed)."""
-        with self._lock:
-            if self._sources.pop(node, None) is not None:
-                self._snapshot = tuple(self._sources.values())
-
-    def set_time(self, t):
-        """Set every adopted clock to sim time ``t`` (s), as ``TimeSource.clock_callback``."""
-        now = Time(nanoseconds=int(round(t * 1e9)))
-        handle = now._time_handle
-        with self._lock:  # a node is dropped (under this lock) before it is destroyed
-            for source in self._snapshot:
-                source._last_time_set = now
-                for clock in source._associated_clocks:
-                    # Clock.set_ros_time_override without its type check and handle guard
-                    clock.handle.set_ros_time_override(handle)
-
-
-class SimTimeExecutor(SingleThreadedExecutor):
-    """A single-threaded executor whose added nodes get their sim time from :class:`SimTime`."""
-
-    def __init__(self, sim_time, context=None):
-        """:param sim_time: the :class:`SimTime` adopting every added node."""
-        super().__init__(context=context)
-        self.sim_time = sim_time
-        self.exempt = set()
-
-    def add_node(self, node):
-        """Adopt ``node``'s time source (unless exempt), then add it."""
-        if node not in self.exempt:
-            self.sim_time.adopt(node)
-        return super().add_node(node)
-
-    def remove_node(self, node):
-        """Drop ``node`` from the sim time, then remove it."""
-        self.sim_time.drop(node)
-        super().remove_node(node)
-
-
-def release_controller_manager(cm, executor):
-    """
-    Destroy a controller manager and everything it created (failed spawn, shutdown).
-
-    Uses the controller manager's ``destroy()`` when it has one; otherwise shuts its
-    controllers down and destroys its node.
-    """
-    destroy = getattr(cm, 'destroy', None)
-    if destroy is not None:
-        destroy()
-        return
-    try:
-        cm.shutdown()
-    finally:
-        try:
-            executor.remove_node(cm)
-        except Exception:  # noqa: B902 - not added yet
-            pass
-        cm.destroy_node()
-
-
 def make_controller_manager(urdf_xml, executor, hardware_factory, parameters_file, namespace):
     """
     Create an in-sim controller manager (``amr_description.control.controller_manager``).
-
-    A constructor that fails after its node exists destroys that node again, so a rejected
-    robot leaves nothing in the ROS graph.
 
     :returns: the ControllerManager node, added with its controllers to ``executor``.
     :raises ValueError: one line, on bad input (unknown plugin, missing joint, bad YAML).
     """
     from amr_description.control.controller_manager import ControllerManager
-    cm = ControllerManager.__new__(ControllerManager)
-    try:
-        cm.__init__(urdf_xml, executor, hardware_factory=hardware_factory,
-                    parameters_file=parameters_file, namespace=namespace, use_sim_time=True)
-    except BaseException:
-        for cleanup in (lambda: executor.remove_node(cm), cm.destroy_node):
-            try:
-                cleanup()
-            except Exception:  # noqa: B902 - the node may not exist
-                pass
-        raise
-    return cm
+    return ControllerManager(urdf_xml, executor, hardware_factory=hardware_factory,
+                             parameters_file=parameters_file, namespace=namespace,
+                             use_sim_time=True)
 
 
 def _prewarm_imports():
@@ -256,12 +161,12 @@ class MujocoSim(Node):
         self.sim = Simulation(
             self.physics_step, self.real_time_factor, paused,
             controller_manager_factory=self._make_cm,
-            controller_manager_release=lambda cm: release_controller_manager(cm, executor),
+            controller_manager_release=lambda cm: cm.destroy(),
             parameters_file=self.parameters_file, logger=_Logger(log))
-        self.sim.before_update = executor.sim_time.set_time
-        self.sim.after_cycle = self._after_cycle
-        self.sim.paused_tick = self._publish_clock
-        self.sim.on_reset = self._on_sim_reset
+        self.sim.before_update.append(executor.sim_time.set_time)
+        self.sim.after_cycle.append(self._after_cycle)
+        self.sim.paused_tick.append(self._publish_clock)
+        self.sim.on_reset.append(self._on_sim_reset)
         self._gt_steps = max(1, int(round(1.0 / (self.ground_truth_rate * self.physics_step)))) \
             if self.ground_truth_rate > 0 and self.publish_ground_truth else 0
         self._clock_msg = Clock()
@@ -392,7 +297,7 @@ class MujocoSim(Node):
         world = self.sim.world
         for entity in self.sim.active:
             publisher = entity.user.get('ground_truth')
-            if publisher is None or not heard(publisher):
+            if publisher is None or not has_subscribers(publisher):
                 continue  # volatile: unheard messages reach nobody
             position, quat, linear, angular = world.ground_truth(entity.name)
             msg = entity.user['ground_truth_msg']
@@ -650,7 +555,7 @@ def main(args=None):
     """
     Run the simulator until Ctrl-C/SIGTERM (or a SetSimulationState QUITTING request).
 
-    Shutdown order (:mod:`amr_description.nodes.shutdown`): the simulation thread is stopped
+    Shutdown order (:mod:`amr_description.ros.shutdown`): the simulation thread is stopped
     and joined, then the controllers are deactivated and their nodes,
     the controller managers and this node destroyed, and rclpy is shut down last, so no
     update or publication meets a dead context.

@@ -36,9 +36,9 @@ def _description_from_topic(args, timeout):
     Return the first /robot_description message's data, or None after ``timeout`` s.
 
     A short-lived node ``render`` in the clean-shutdown pattern of
-    :mod:`amr_description.nodes.shutdown` (bad ROS arguments: one line, exit code 1).
+    :mod:`amr_description.ros.shutdown` (bad ROS arguments: one line, exit code 1).
     """
-    from amr_description.nodes import shutdown
+    from amr_description.ros import shutdown
     from rclpy.qos import DurabilityPolicy
     from rclpy.qos import QoSProfile
     from std_msgs.msg import String
@@ -67,7 +67,7 @@ def main(args=None):
     :returns: 0 on success, 1 on a bad URDF, a missing description or an unwritable file
         (one-line error on stderr).
     """
-    from amr_description.nodes import shutdown
+    from amr_description.ros import shutdown
 
     argv = sys.argv if args is None else args
     options = _parse(shutdown.remove_ros_args(argv)[1:])

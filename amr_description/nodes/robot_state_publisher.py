@@ -33,8 +33,8 @@ from amr_description.core.kinematics import joint_transform
 from amr_description.core.kinematics import matrix_to_translation_quaternion
 from amr_description.core.kinematics import MOVING_JOINT_TYPES
 from amr_description.core.urdf_model import parse_urdf
-from amr_description.nodes import shutdown
-from amr_description.nodes.shutdown import Node
+from amr_description.ros import shutdown
+from amr_description.ros.node import Node
 from geometry_msgs.msg import TransformStamped
 from rcl_interfaces.msg import FloatingPointRange
 from rcl_interfaces.msg import ParameterDescriptor
@@ -186,7 +186,7 @@ def main(args=None):
     :returns: 0 on a clean shutdown.
     :raises SystemExit: code 1 after one error line when the ROS arguments cannot be parsed,
         ``robot_description`` is empty or refused by the URDF loader, or a parameter has the
-        wrong type or is out of range (:mod:`amr_description.nodes.shutdown`).
+        wrong type or is out of range (:mod:`amr_description.ros.shutdown`).
     """
     shutdown.init(args)
     node = None

@@ -26,9 +26,10 @@ import time
 from amr_description.control import controller_manager_services as cms
 from amr_description.control.controller_manager_services import ServiceNotFoundError
 from amr_description.core import ros_param_file
-from amr_description.nodes import shutdown
+from amr_description.ros import shutdown
+from amr_description.ros.node import Node
 import rclpy
-from rclpy.node import Node
+
 
 STRICT = cms.STRICT
 BEST_EFFORT = cms.BEST_EFFORT
@@ -177,7 +178,7 @@ def main(args=None):
     """
     Entry point of ``ros2 run amr_description spawner``; returns the exit code.
 
-    Clean-shutdown pattern of :mod:`amr_description.nodes.shutdown` (bad ROS arguments: one
+    Clean-shutdown pattern of :mod:`amr_description.ros.shutdown` (bad ROS arguments: one
     line, exit code 1).
     """
     argv = sys.argv if args is None else ['spawner'] + list(args)

@@ -27,8 +27,8 @@ import string
 import sys
 
 from amr_description.core import static_transform_args
-from amr_description.nodes import shutdown
-from amr_description.nodes.shutdown import Node
+from amr_description.ros import shutdown
+from amr_description.ros.node import Node
 from geometry_msgs.msg import TransformStamped
 from rcl_interfaces.msg import ParameterDescriptor
 import rclpy

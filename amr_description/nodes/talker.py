@@ -8,8 +8,8 @@ Publishes ``std_msgs/msg/String`` ``'Hello World: N'`` (N from 0) on ``topic`` e
 and logs ``Publishing: "Hello World: N"``, like the tutorial's ``minimal_publisher``.
 """
 
-from amr_description.nodes import shutdown
-from amr_description.nodes.shutdown import Node
+from amr_description.ros import shutdown
+from amr_description.ros.node import Node
 from std_msgs.msg import String
 
 TIMER_PERIOD = 0.5  # seconds

@@ -33,8 +33,8 @@ from amr_description.core.teleop_keys import check_parameters
 from amr_description.core.teleop_keys import format_speeds
 from amr_description.core.teleop_keys import stop
 from amr_description.core.teleop_keys import TeleopState
-from amr_description.nodes import shutdown
-from amr_description.nodes.shutdown import Node
+from amr_description.ros import shutdown
+from amr_description.ros.node import Node
 from geometry_msgs.msg import Twist
 from geometry_msgs.msg import TwistStamped
 from rcl_interfaces.msg import ParameterDescriptor
@@ -142,7 +142,7 @@ def main(args=None):
     """
     Run the keyboard teleop until Ctrl-C; publish a zero twist and restore the terminal.
 
-    The clean-shutdown pattern of :mod:`amr_description.nodes.shutdown`: the executor spins
+    The clean-shutdown pattern of :mod:`amr_description.ros.shutdown`: the executor spins
     in a thread, keys are read in the main thread, where SIGINT/SIGTERM raise
     KeyboardInterrupt.
 

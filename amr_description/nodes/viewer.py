@@ -49,7 +49,7 @@ import time
 from amr_description.core import teleop_pad
 from amr_description.core.tf_buffer import TransformBuffer
 from amr_description.core.tf_buffer import TransformException
-from amr_description.nodes.shutdown import Node
+from amr_description.ros.node import Node
 from amr_description.web.robot_scene import wxyzs_positions
 from amr_description.web.server import page_url
 from amr_description.web.server import run_web_node

@@ -153,7 +153,7 @@ class Simulation:
         ``<mujoco><ros2_control parameters=...>``).
     :param logger: a ``logging.Logger``-like object (``info``, ``warning``, ``error``).
 
-    Hooks (attributes, called on the simulation thread; None to skip):
+    Hooks (lists of listeners, called in order on the simulation thread; append to them):
     ``before_update(t)`` before the controller managers' ``read`` at an instant where any is
     due; ``after_cycle(t)`` after every cycle; ``paused_tick(t)`` every :data:`PAUSED_TICK`
     s of wall time while paused; ``on_reset()`` after :meth:`reset`.
@@ -177,10 +177,10 @@ class Simulation:
         self.active = ()            # Entities set up and stepped with their controllers
         self._managers = ()         # (cm, per_update, read, update, write)
         self.step_count = 0
-        self.before_update = None
-        self.after_cycle = None
-        self.paused_tick = None
-        self.on_reset = None
+        self.before_update = []
+        self.after_cycle = []
+        self.paused_tick = []
+        self.on_reset = []
         self._requests = collections.deque()
         self._wake = threading.Event()
         self._running = False
@@ -455,8 +455,8 @@ class Simulation:
             self._anchor = None
             self._halted = None
             self._warnings_seen = 0
-            if self.on_reset is not None:
-                self.on_reset()
+            for listener in self.on_reset:
+                listener()
         self.call(apply)
 
     def set_paused(self, paused):
@@ -534,8 +534,8 @@ class Simulation:
         t = step_count * self.physics_step
         due = [m for m in self._managers if step_count % m[1] == 0]
         if due and self._halted is None:
-            if self.before_update is not None:
-                self.before_update(t)
+            for listener in self.before_update:
+                listener(t)
             dt = self.physics_step
             try:
                 for cm, per, read, update, write in due:
@@ -551,8 +551,8 @@ class Simulation:
                 n = self.update_errors
                 if n in (1, 10, 100) or n % 1000 == 0:
                     self.logger.error(f'controller manager update failed ({n}x): {exc!r}')
-        if self.after_cycle is not None:
-            self.after_cycle(t)
+        for listener in self.after_cycle:
+            listener(t)
         if self._step_waiters:
             self._release_step_waiters()
         return count
@@ -623,8 +623,8 @@ class Simulation:
                     now = time.monotonic()
                     if now - last_tick > PAUSED_TICK:
                         last_tick = now
-                        if self.paused_tick is not None:
-                            self.paused_tick(self.time)
+                        for listener in self.paused_tick:
+                            listener(self.time)
                     self._wake.wait(0.05)
                     self._wake.clear()
                     continue

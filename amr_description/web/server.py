@@ -99,7 +99,7 @@ def run_web_node(node_class, node_name, args=None, executor_class=None):
     """
     Run a node that serves a page until Ctrl-C or SIGTERM (``main`` of the web nodes).
 
-    The project's clean-shutdown pattern (:mod:`amr_description.nodes.shutdown`) plus the web
+    The project's clean-shutdown pattern (:mod:`amr_description.ros.shutdown`) plus the web
     part: once the node is built (its server listens) one line ``<node_name>: open URL in a
     browser`` is printed; the server is stopped before the node is destroyed.
 
@@ -111,7 +111,7 @@ def run_web_node(node_class, node_name, args=None, executor_class=None):
     :returns: 0 on a clean shutdown, 1 on a port in use or a bad parameter (one line).
     """
     import rclpy
-    from amr_description.nodes import shutdown
+    from amr_description.ros import shutdown
     shutdown.init(args)
     node = None
     executor = None

@@ -17,7 +17,7 @@ PARAMS = os.path.join(ROOT, 'config', 'controllers.yaml')
 @pytest.fixture
 def cm_proc(ros_env, procs):
     pytest.importorskip('controller_manager_msgs.srv')
-    proc = procs.start([sys.executable, '-m', 'amr_description.control.controller_manager',
+    proc = procs.start([sys.executable, '-m', 'amr_description.nodes.ros2_control_node',
                         '--urdf', URDF, '--params', PARAMS, '--mock-hardware'], ros_env)
     assert proc.wait_for_output('update rate is 100 Hz', 20.0), proc.output
     return proc

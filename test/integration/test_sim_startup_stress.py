@@ -15,7 +15,7 @@ pytest.importorskip('rclpy')
 
 
 def test_sim_stack_startups_with_two_cpu_hogs(ros_env, monkeypatch):
-    from amr_description.sim import stress
+    from amr_description.tools import stress
     for key, value in ros_env.items():
         monkeypatch.setenv(key, value)
     hogs = [stress._hog() for _ in range(2)]

@@ -20,9 +20,9 @@ pytest.importorskip('controller_manager_msgs.srv')
 
 from geometry_msgs.msg import TwistStamped  # noqa: E402, I100, I202
 
-from amr_description.control.controller_interface import time_to_msg  # noqa: E402, I100
-from amr_description.control.controller_manager import ControllerManager  # noqa: E402
+from amr_description.control.controller_manager import ControllerManager  # noqa: E402, I100
 from amr_description.control.generic_system import GenericSystem  # noqa: E402
+from amr_description.ros.stamps import time_to_msg  # noqa: E402
 
 WHEELS = ('joint_wheel_front_left', 'joint_wheel_front_right', 'joint_wheel_back_left',
           'joint_wheel_back_right')

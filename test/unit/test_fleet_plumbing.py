@@ -14,7 +14,8 @@ from amr_description.launch.actions import Node
 from amr_description.launch.actions import OnProcessExit
 from amr_description.nodes import create
 from amr_description.nodes import drive_square
-from amr_description.sim import benchmark
+from amr_description.tools.benchmark import common
+from amr_description.tools.benchmark import report
 import pytest
 
 
@@ -189,7 +190,7 @@ def test_benchmark_wheel_speeds_closed_form(tmp_path):
     config = tmp_path / 'controllers.yaml'
     config.write_text('diff_drive_controller:\n  ros__parameters:\n    wheel_separation: 0.3\n'
                       '    wheel_separation_multiplier: 4.2\n    wheel_radius: 0.1\n')
-    left, right = benchmark.wheel_speeds((0.3, 0.5), str(config))
+    left, right = common.wheel_speeds((0.3, 0.5), str(config))
     assert left == pytest.approx((0.3 - 0.5 * 1.26 / 2) / 0.1)
     assert right == pytest.approx((0.3 + 0.5 * 1.26 / 2) / 0.1)
 
@@ -197,9 +198,9 @@ def test_benchmark_wheel_speeds_closed_form(tmp_path):
 def test_benchmark_report_keeps_text_outside_the_markers(tmp_path):
     doc = tmp_path / 'benchmark.md'
     doc.write_text('# notes\nkept\n')
-    benchmark.write_report(str(doc), 'first')
+    report.write_report(str(doc), 'first')
     assert doc.read_text().count('first') == 1 and 'kept' in doc.read_text()
-    benchmark.write_report(str(doc), 'second')
+    report.write_report(str(doc), 'second')
     text = doc.read_text()
     assert 'first' not in text and text.count('second') == 1 and 'kept' in text
 
@@ -209,11 +210,11 @@ def test_benchmark_failure_is_not_a_figure(tmp_path, monkeypatch, capsys):
     doc.write_text('untouched\n')
 
     def failing_run(*args, **kwargs):
-        raise benchmark.BenchmarkError('start-up, 2 robots, rtf 0',
-                                       'create-3 exited with code 1',
-                                       '[create-3] Failed request to create entity: boom')
-    monkeypatch.setattr(benchmark, 'run', failing_run)
-    assert benchmark.main(['--robots', '2', '--output', str(doc)]) == 1
+        raise common.BenchmarkError('start-up, 2 robots, rtf 0',
+                                    'create-3 exited with code 1',
+                                    '[create-3] Failed request to create entity: boom')
+    monkeypatch.setattr(report, 'run', failing_run)
+    assert report.main(['--robots', '2', '--output', str(doc)]) == 1
     err = capsys.readouterr().err
     assert 'FAILED at start-up, 2 robots, rtf 0: create-3 exited with code 1' in err
     assert 'boom' in err
@@ -221,10 +222,10 @@ def test_benchmark_failure_is_not_a_figure(tmp_path, monkeypatch, capsys):
 
 
 def test_benchmark_robot_list_argument():
-    assert benchmark._robot_list('1,2,4') == [1, 2, 4]
+    assert report._robot_list('1,2,4') == [1, 2, 4]
     for bad in ('', '0', 'a,b'):
         with pytest.raises(Exception):
-            benchmark._robot_list(bad)
+            report._robot_list(bad)
 
 
 def test_benchmark_targets_only_for_counts_run():
@@ -232,9 +233,9 @@ def test_benchmark_targets_only_for_counts_run():
              'cost_rel': 1.0},
             {'robots': 16, 'rtf': 0.8, 'fast': 3.0, 'raw': 6.0, 'startup': 12.0,
              'cost_rel': 1.25}]
-    result = {d: ok for d, _, ok in benchmark.targets(rows)}
+    result = {d: ok for d, _, ok in report.targets(rows)}
     assert result['1 robot, fast: >= 60 % of raw mj_step'] is True
     assert result['16 robots, real time: rtf >= 1.0 (paced to 1.0, 1 % tolerance)'] is False
     assert result['16 robots, fast: cost per robot-second <= 1.3x linear'] is True
     assert result['16 robots: all controllers active < 10 s'] is False
-    assert benchmark.targets(rows[:1])[0][0].startswith('1 robot')
+    assert report.targets(rows[:1])[0][0].startswith('1 robot')

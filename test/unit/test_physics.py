@@ -8,9 +8,9 @@ Contact (all four wheels on the ground, base steady), skid-steer turning against
 model, wheel speed tracking under turning load, rest and creep, the drive's anti-windup.
 """
 
-from amr_description.sim import physics_report
-from amr_description.sim.physics_report import Bench
-from amr_description.sim.physics_report import rest_and_creep
+from amr_description.tools import physics_report
+from amr_description.tools.physics_report import Bench
+from amr_description.tools.physics_report import rest_and_creep
 import pytest
 from sim_fixtures import AMR_URDF
 

@@ -10,7 +10,8 @@ import pytest
 
 rclpy = pytest.importorskip('rclpy')
 
-from amr_description.nodes import shutdown  # noqa: E402, I100 - after the skip
+from amr_description.ros import shutdown  # noqa: E402, I100 - after the skip
+from amr_description.ros.node import Node  # noqa: E402
 from conftest import next_domain_id  # noqa: E402
 from conftest import release_domain_id  # noqa: E402
 
@@ -33,7 +34,7 @@ def pattern(monkeypatch):
 
 def test_signal_inside_a_callback_stops_spin_after_it(pattern):
     pattern.init(['test_shutdown'])
-    node = pattern.create(pattern.Node, 'test_shutdown')
+    node = pattern.create(Node, 'test_shutdown')
     steps = []
 
     def callback():
@@ -65,7 +66,7 @@ def test_signal_outside_spin_raises_at_once(pattern):
 def test_whole_number_for_a_float_parameter(pattern):
     pattern.init(['test_shutdown', '--ros-args', '-p', 'rate:=0', '-p', 'count:=2',
                   '-p', 'ratio:=3'])
-    node = pattern.create(pattern.Node, 'test_shutdown')
+    node = pattern.create(Node, 'test_shutdown')
     assert node.declare_parameter('rate', 1.5).value == 0.0
     assert isinstance(node.get_parameter('rate').value, float)
     assert node.declare_parameter('count', 1).value == 2  # integers stay integers
@@ -77,7 +78,7 @@ def test_whole_number_for_a_float_parameter(pattern):
 def test_wrong_type_is_one_line_and_exit_1(pattern, capfd):
     pattern.init(['test_shutdown', '--ros-args', '-p', 'rate:=fast'])
 
-    class Rated(pattern.Node):
+    class Rated(Node):
 
         def __init__(self):
             super().__init__('test_shutdown')

@@ -230,7 +230,7 @@ def test_thread_pause_step_and_requests():
             cycles.append(t)
             if len(cycles) >= 50:
                 event.set()
-        sim.after_cycle = after
+        sim.after_cycle.append(after)
         sim.set_paused(False)
         assert event.wait(30)
         assert entity in sim.active

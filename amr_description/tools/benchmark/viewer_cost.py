@@ -10,15 +10,14 @@ a private domain) plus robot_state_publisher and the ``viewer`` node, measured b
 """
 
 import os
-import re
 import signal
 import subprocess
 import tempfile
 import time
 
-CONTROLLERS = ('joint_state_broadcaster', 'diff_drive_controller')
-FAST_LINEAR = 0.2  # m/s
-TURN_TWIST = (0.3, 0.5)  # m/s, rad/s: the robot drives in a circle
+from amr_description.launch.stacks import CONTROLLERS
+from amr_description.tools.benchmark.common import cpu_seconds
+from amr_description.tools.benchmark.common import TURN_TWIST
 
 
 def _exe(name):
@@ -53,22 +52,6 @@ class _Stack:
     def output(self, proc):
         proc.log.seek(0)
         return proc.log.read().decode(errors='replace')
-
-    def activation_time(self):
-        """
-        Return s from start to the last spawner's "Configured and activated" log line.
-
-        The spawner logs that line when switch_controller answered ok; its ROS log stamp is
-        wall-clock time. None when a spawner has not logged it.
-        """
-        stamps = []
-        for proc, name in zip(self.spawners, CONTROLLERS):
-            match = re.search(r'\[(\d+\.\d+)\] \[[^\]]*\]: Configured and activated ' + name,
-                              self.output(proc))
-            if match is None:
-                return None
-            stamps.append(float(match.group(1)))
-        return max(stamps) - self.start_epoch
 
     def close(self):
         for proc in self.procs:
@@ -157,24 +140,6 @@ class _Observer:
             return set()
         return {c.name for c in future.result().controller if c.state == 'active'}
 
-    def clock_sample(self, timeout=5.0):
-        """Return ``(wall, sim)`` of one /clock message, or None (:func:`sample_clock`)."""
-        from amr_description.sim.benchmark import sample_clock
-        return sample_clock(self.node, self.executor, timeout)
-
-    def measure_fast(self, seconds, twist=(FAST_LINEAR, 0.0)):
-        """Return the sim/wall speed over ``seconds`` driven by ``twist`` (m/s, rad/s)."""
-        self.twist.twist.linear.x, self.twist.twist.angular.z = twist
-        self.node.destroy_subscription(self._clock_sub)
-        for sub in self._other_subs:
-            self.node.destroy_subscription(sub)
-        first = self.clock_sample()
-        self.spin_for(seconds)
-        last = self.clock_sample()
-        if first is None or last is None:
-            return 0.0
-        return (last[1] - first[1]) / (last[0] - first[0])
-
     def measure(self, seconds):
         """Return (rtf, rates dict Hz of wall time) over ``seconds`` wall seconds."""
         self.spin_for(0.5)
@@ -213,9 +178,7 @@ def viewer_cost(domain_id, urdf_path, duration, log=print):
     import shutil
     import socket
 
-    from amr_description.sim.benchmark import _cpu_seconds
-
-    def cpu_seconds(pgid):
+    def group_cpu_seconds(pgid):
         total = 0.0
         for entry in os.listdir('/proc'):
             if entry.isdigit():
@@ -223,7 +186,7 @@ def viewer_cost(domain_id, urdf_path, duration, log=print):
                     in_group = os.getpgid(int(entry)) == pgid
                 except OSError:  # gone meanwhile
                     continue
-                total += (_cpu_seconds(entry) or 0.0) if in_group else 0.0
+                total += (cpu_seconds(entry) or 0.0) if in_group else 0.0
         return total
 
     result = {'rtf': 0.0, 'viewer_cpu': None, 'rates': {}}
@@ -267,9 +230,9 @@ def viewer_cost(domain_id, urdf_path, duration, log=print):
                 page.goto(f'http://127.0.0.1:{port}/', timeout=120000)
                 page.get_by_text('Fixed Frame').first.wait_for(timeout=120000)
                 observer.spin_for(2.0)
-                cpu0, wall0 = cpu_seconds(viewer.pid), time.monotonic()
+                cpu0, wall0 = group_cpu_seconds(viewer.pid), time.monotonic()
                 result['rtf'], result['rates'] = observer.measure(duration)
-                result['viewer_cpu'] = (cpu_seconds(viewer.pid) - cpu0) / \
+                result['viewer_cpu'] = (group_cpu_seconds(viewer.pid) - cpu0) / \
                     (time.monotonic() - wall0)
             finally:
                 context.close()

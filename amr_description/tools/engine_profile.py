@@ -3,7 +3,7 @@
 """
 Engine cost per robot, in one process: the Simulation cycle against raw ``mj_step``.
 
-``python -m amr_description.sim.engine_profile --robots N [--profile]`` spawns N tutorial
+``python -m amr_description.tools.engine_profile --robots N [--profile]`` spawns N tutorial
 robots (namespaces ``r0``... when N > 1) into a :class:`~amr_description.sim.simulation.
 Simulation` with real controller managers (joint_state_broadcaster and diff_drive_controller
 active, publishing over DDS on ``ROS_DOMAIN_ID``), runs the cycle as fast as possible for
@@ -20,24 +20,23 @@ import pstats
 import sys
 import time
 
-CONTROLLERS = ('joint_state_broadcaster', 'diff_drive_controller')
-
 
 def build(robots, urdf_path):
     """Return ``(simulation, executor)`` with ``robots`` robots and active controllers."""
-    from amr_description.nodes.mujoco_sim import make_controller_manager
-    from amr_description.nodes.mujoco_sim import SimTime
-    from amr_description.nodes.mujoco_sim import SimTimeExecutor
+    from amr_description.control.controller_manager import ControllerManager
+    from amr_description.launch.stacks import CONTROLLERS
+    from amr_description.ros.sim_time import SimTime
+    from amr_description.ros.sim_time import SimTimeExecutor
     from amr_description.sim.simulation import Simulation
     sim_time = SimTime()
     executor = SimTimeExecutor(sim_time)
 
     def factory(entity, hardware_factory, parameters_file):
-        return make_controller_manager(entity.urdf, executor, hardware_factory,
-                                       parameters_file, entity.namespace)
+        return ControllerManager(entity.urdf, executor, hardware_factory, parameters_file,
+                                 entity.namespace, use_sim_time=True)
     sim = Simulation(real_time_factor=0.0, controller_manager_factory=factory,
                      controller_manager_release=lambda cm: cm.destroy())
-    sim.before_update = sim_time.set_time
+    sim.before_update.append(sim_time.set_time)
     with open(urdf_path) as f:
         urdf = f.read()
     for i in range(robots):

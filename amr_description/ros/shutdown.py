@@ -32,10 +32,8 @@ The same pattern turns start-up errors into one line and exit code 1, never a tr
 - :func:`create`: the node refuses a parameter: a wrong type names the parameter and the
   expected type (rclpy's ``InvalidParameterTypeException`` text), an out-of-range value its
   range; a ``ValueError`` raised by the node's constructor is printed as it is;
-- :class:`Node` (the base class of our nodes): a whole number given on the command line for
-  a floating-point parameter (``-p real_time_factor:=0``) is accepted as that float. rcl
-  parses ``0`` as an integer and rclpy (like rclcpp) then refuses it for a parameter whose
-  default is a float, which users do not expect.
+- :class:`amr_description.ros.node.Node` (the base class of our nodes): a whole number
+  given on the command line for a floating-point parameter is accepted as that float.
 
 The one line goes to stderr through the rclpy logger named after the program, i.e.
 ``[ERROR] [<time>] [<name>]: <message>``.
@@ -53,8 +51,6 @@ from rclpy.exceptions import ParameterException
 from rclpy.executors import ExternalShutdownException
 from rclpy.executors import SingleThreadedExecutor
 from rclpy.logging import LoggingSeverity
-import rclpy.node
-from rclpy.parameter import Parameter
 from rclpy.signals import SignalHandlerOptions
 import rclpy.utilities
 
@@ -188,51 +184,6 @@ def create(factory, *args, **kwargs):
     except (InvalidParameterTypeException, InvalidParameterValueException,
             ParameterException, ValueError) as exc:
         fail(_program(None), exc)
-
-
-class Node(rclpy.node.Node):
-    """
-    ``rclpy.node.Node`` that accepts a whole number for a floating-point parameter.
-
-    When a parameter is declared with a float default (or type ``Parameter.Type.DOUBLE``) and
-    its override (``--ros-args -p`` or a parameters file) is an integer, the override is
-    converted to that float before rclpy checks its type. Everything else is rclpy's.
-    """
-
-    def declare_parameters(self, namespace, parameters, ignore_override=False):
-        """Declare as rclpy does, after converting whole-number overrides of float parameters."""
-        for parameter in parameters:
-            name, value = parameter[0], parameter[1] if len(parameter) > 1 else None
-            full = f'{namespace}.{name}' if namespace else name
-            override = self._parameter_overrides.get(full)
-            wants_float = isinstance(value, float) or value == Parameter.Type.DOUBLE
-            if override is not None and wants_float and \
-                    override.type_ == Parameter.Type.INTEGER:
-                self._parameter_overrides[full] = Parameter(
-                    full, Parameter.Type.DOUBLE, float(override.value))
-        return super().declare_parameters(namespace, parameters, ignore_override)
-
-
-def take_over_time_source(node):
-    """
-    Stop a node's /clock subscription so the caller can drive its sim time directly.
-
-    Only for nodes in this process with ``use_sim_time`` true; the caller then sets the time
-    of the source's clocks at every /clock instant, as rclpy ``TimeSource.clock_callback``
-    does. Call it before the node is added to an executor (or on the executor's thread).
-
-    :param node: an rclpy node.
-    :returns: the node's ``TimeSource``, or None when the node does not use sim time (then it
-        is left alone).
-    """
-    source = getattr(node, '_time_source', None)
-    if source is None or not source.ros_time_is_active:
-        return None
-    subscription = getattr(source, '_clock_sub', None)
-    if subscription is not None:
-        node.destroy_subscription(subscription)
-        source._clock_sub = None
-    return source
 
 
 def spin(target, until=None, period=SPIN_PERIOD):

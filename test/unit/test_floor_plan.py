@@ -1,0 +1,126 @@
+# Copyright 2026 The amr_description Authors
+# Licensed under the Apache License, Version 2.0
+"""
+The floor plan of docs/architecture.md, read from every import of the package.
+
+Every ``import`` and ``from ... import`` statement of every module (also those inside
+functions, and relative ones) is read with :mod:`ast`. A folder may import its own floor's
+folders and the floors below, never a floor above; the folders' import graph has no circle;
+core/ (pure logic) imports no other folder and ros/ (plumbing) none with project logic.
+"""
+
+import ast
+import os
+
+import pytest
+
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+PACKAGE = os.path.join(ROOT, 'amr_description')
+
+FLOORS = {
+    'core': 1, 'ros': 1,
+    'control': 2, 'sim': 2, 'web': 2, 'launch': 2,
+    'nodes': 3, 'cli': 3, 'tools': 3,
+}
+"""Folder -> floor (1 is the ground), as drawn in docs/architecture.md."""
+
+ONLY_ITSELF = {'core', 'ros'}
+"""Ground-floor folders that import no other folder of the package."""
+
+
+def _modules():
+    """Yield ``(folder, dotted module name, path)`` of every module of the package."""
+    for base, _, files in os.walk(PACKAGE):
+        for name in sorted(files):
+            if not name.endswith('.py'):
+                continue
+            path = os.path.join(base, name)
+            rel = os.path.relpath(path, ROOT)[:-3].split(os.sep)
+            if rel[-1] == '__init__':
+                rel = rel[:-1]
+            folder = rel[1] if len(rel) > 2 or (len(rel) == 2 and rel[1] in FLOORS) else None
+            yield folder, '.'.join(rel), path
+
+
+def _imports(module, path):
+    """Return every ``amr_description`` module name imported by the file at ``path``."""
+    with open(path) as f:
+        tree = ast.parse(f.read(), path)
+    package = module if path.endswith('__init__.py') else module.rpartition('.')[0]
+    found = []
+    for node in ast.walk(tree):
+        if isinstance(node, ast.Import):
+            found += [alias.name for alias in node.names]
+        elif isinstance(node, ast.ImportFrom):
+            base = node.module or ''
+            if node.level:
+                parts = package.split('.')
+                parts = parts[:len(parts) - node.level + 1]
+                base = '.'.join(parts + ([base] if base else []))
+            found += [f'{base}.{alias.name}' for alias in node.names] + [base]
+    return [name for name in found if name.split('.')[0] == 'amr_description']
+
+
+def _folder_of(name):
+    parts = name.split('.')
+    return parts[1] if len(parts) > 1 and parts[1] in FLOORS else None
+
+
+def _edges():
+    """Return ``{(folder, imported folder): first 'module -> import' seen}``."""
+    edges = {}
+    for folder, module, path in _modules():
+        for name in _imports(module, path):
+            target = _folder_of(name)
+            if folder is None or target is None or target == folder:
+                continue
+            edges.setdefault((folder, target), f'{module} -> {name}')
+    return edges
+
+
+def test_every_folder_has_a_floor():
+    folders = {entry for entry in os.listdir(PACKAGE)
+               if os.path.isdir(os.path.join(PACKAGE, entry)) and not entry.startswith('__')}
+    assert folders == set(FLOORS)
+
+
+def test_no_import_runs_up_a_floor():
+    up = [where for (a, b), where in _edges().items() if FLOORS[b] > FLOORS[a]]
+    assert not up, 'imports that run up a floor:\n' + '\n'.join(sorted(up))
+
+
+def test_ground_floor_imports_no_other_folder():
+    bad = [where for (a, b), where in _edges().items() if a in ONLY_ITSELF]
+    assert not bad, 'ground-floor imports of other folders:\n' + '\n'.join(sorted(bad))
+
+
+def test_no_circle_between_folders():
+    edges = _edges()
+    graph = {}
+    for a, b in edges:
+        graph.setdefault(a, set()).add(b)
+
+    def reaches(start, goal, seen):
+        for nxt in graph.get(start, ()):
+            if nxt == goal:
+                return True
+            if nxt not in seen:
+                seen.add(nxt)
+                if reaches(nxt, goal, seen):
+                    return True
+        return False
+
+    circles = [where for (a, b), where in edges.items() if reaches(b, a, set())]
+    assert not circles, 'imports in a circle of folders:\n' + '\n'.join(sorted(circles))
+
+
+@pytest.mark.parametrize('source, expected', [
+    ('from amr_description.sim import world\n', 'sim'),
+    ('from ..sim.world import World\n', 'sim'),
+    ('def f():\n    import amr_description.nodes.viewer\n', 'nodes'),
+])
+def test_the_reader_sees_every_form_of_import(tmp_path, source, expected):
+    path = tmp_path / 'probe.py'
+    path.write_text(source)
+    names = _imports('amr_description.control.probe', str(path))
+    assert expected in {_folder_of(name) for name in names}
