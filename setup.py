@@ -44,7 +44,7 @@ setup(
             'viewer = amr_description.nodes.viewer:main',
             'check_model = amr_description.core.model_check:main',
             'render = amr_description.nodes.render:main',
-            'mujoco_sim = amr_description.nodes.mujoco_sim:main',
+            'mujoco_sim = amr_description.nodes.mujoco_sim.node:main',
             'create = amr_description.nodes.create:main',
             'spawner = amr_description.nodes.spawner:main',
             'teleop_twist_keyboard = amr_description.nodes.teleop_twist_keyboard:main',
@@ -68,6 +68,9 @@ setup(
             'amr_description.control.joint_state_broadcaster:JointStateBroadcaster',
             'diff_drive_controller/DiffDriveController = '
             'amr_description.control.diff_drive_controller:DiffDriveController',
+        ],
+        'amr_description.sensors': [
+            'ground_truth = amr_description.sim.sensors.ground_truth:create',
         ],
         'amr_description.hardware': [
             'amr_description/MujocoSystem = amr_description.sim.mujoco_system:MujocoSystem',

@@ -6,18 +6,12 @@ Stamps and publication helpers for realtime loops (controllers, the simulator's 
 Times are seconds of ROS time (sim time in the simulator), as floats >= 0.
 """
 
-import math
-
 from builtin_interfaces.msg import Time as TimeMsg
 
 
 def _split(time):
-    """Return ``(sec, nanosec)`` of ``time`` seconds, nanoseconds rounded."""
-    sec = math.floor(time)
-    nanosec = int(round((time - sec) * 1e9))
-    if nanosec >= 1_000_000_000:
-        sec, nanosec = sec + 1, nanosec - 1_000_000_000
-    return int(sec), nanosec
+    """Return ``(sec, nanosec)`` of ``time`` seconds rounded to whole nanoseconds."""
+    return divmod(int(round(time * 1e9)), 1_000_000_000)
 
 
 def time_to_msg(time):

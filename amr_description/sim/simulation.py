@@ -40,6 +40,7 @@ import threading
 import time
 
 from amr_description.core.urdf_model import entity_name
+from amr_description.sim.sensors.registry import make_sensors
 from amr_description.sim.world import World
 import mujoco
 
@@ -87,6 +88,21 @@ def normalize_namespace(namespace):
     return text
 
 
+class SpawnError(ValueError):
+    """
+    A refused spawn: one line, and the SpawnEntity result it stands for.
+
+    :ivar code: the name of the ``simulation_interfaces`` result constant:
+        ``'NAME_NOT_UNIQUE'``, ``'NAMESPACE_INVALID'``, ``'RESOURCE_PARSE_ERROR'`` (constants
+        of ``SpawnEntity.Response``) or ``'RESULT_OPERATION_FAILED'`` (of ``Result``).
+    """
+
+    def __init__(self, message, code='RESULT_OPERATION_FAILED'):
+        """Keep the one-line ``message`` and the result ``code`` (see the class docstring)."""
+        super().__init__(message)
+        self.code = code
+
+
 class Entity:
     """
     A spawned robot: its world entry, its namespace and its controller manager.
@@ -97,7 +113,9 @@ class Entity:
     :ivar urdf: the URDF it was spawned from (str).
     :ivar controller_manager: the controller manager, or None (no ``<ros2_control>``).
     :ivar systems: the ``MujocoSystem`` hardware components bound to the world.
-    :ivar user: a dict for the owner of the simulation (e.g. the node's publishers).
+    :ivar sensors: its :class:`~amr_description.sim.sensors.base.Sensor` instances, made from
+        its description by the registered sensor factories.
+    :ivar steps_per_update: physics steps between two controller-manager updates (0: none).
     """
 
     def __init__(self, name, namespace, robot, urdf):
@@ -107,9 +125,9 @@ class Entity:
         self.robot = robot
         self.urdf = urdf
         self.controller_manager = None
-        self.per_update = 0
+        self.steps_per_update = 0
         self.systems = []
-        self.user = {}
+        self.sensors = []
 
     @property
     def frame_prefix(self):
@@ -152,6 +170,8 @@ class Simulation:
     :param parameters_file: controllers YAML for every entity (``''``: each URDF's
         ``<mujoco><ros2_control parameters=...>``).
     :param logger: a ``logging.Logger``-like object (``info``, ``warning``, ``error``).
+    :param sensor_settings: dict of simulator-wide sensor settings handed to the sensor
+        factories (:func:`~amr_description.sim.sensors.registry.make_sensors`).
 
     Hooks (lists of listeners, called in order on the simulation thread; append to them):
     ``before_update(t)`` before the controller managers' ``read`` at an instant where any is
@@ -161,7 +181,7 @@ class Simulation:
 
     def __init__(self, physics_step=0.001, real_time_factor=1.0, paused=False,
                  controller_manager_factory=None, controller_manager_release=None,
-                 parameters_file='', logger=None):
+                 parameters_file='', logger=None, sensor_settings=None):
         """Build the empty world (see the class docstring)."""
         if not real_time_factor >= 0:
             raise ValueError(f'real_time_factor must be >= 0, found {real_time_factor!r}')
@@ -171,11 +191,12 @@ class Simulation:
         self.paused = bool(paused)
         self.parameters_file = parameters_file
         self.logger = logger or logging.getLogger('simulation')
+        self.sensor_settings = dict(sensor_settings or {})
         self._factory = controller_manager_factory
         self._release = controller_manager_release
         self.entities = {}          # name -> Entity (spawned; possibly still being set up)
         self.active = ()            # Entities set up and stepped with their controllers
-        self._managers = ()         # (cm, per_update, read, update, write)
+        self._managers = ()         # (cm, steps_per_update, read, update, write)
         self.step_count = 0
         self.before_update = []
         self.after_cycle = []
@@ -340,12 +361,15 @@ class Simulation:
         as :meth:`spawn`; an error of a yielded function must be thrown into the generator.
         """
         from amr_description.core.ros2_control_info import parse_ros2_control
-        namespace = normalize_namespace(namespace)
-        name = entity_name(name, urdf)
         try:
+            namespace = normalize_namespace(namespace)
+        except ValueError as exc:
+            raise SpawnError(str(exc), 'NAMESPACE_INVALID') from None
+        try:
+            name = entity_name(name, urdf)
             has_control = bool(parse_ros2_control(urdf))
         except ValueError as exc:
-            raise ValueError(str(exc).splitlines()[0]) from None
+            raise SpawnError(str(exc).splitlines()[0], 'RESOURCE_PARSE_ERROR') from None
         entity = yield lambda: self._add(urdf, name, pose, namespace, allow_renaming)
         cm = None
         try:
@@ -353,6 +377,7 @@ class Simulation:
                 cm = self._factory(entity, self._hardware_factory(entity),
                                    self._parameters_file(urdf))
                 entity.controller_manager = cm
+            entity.sensors = make_sensors(entity, self.sensor_settings)
             if setup is not None:
                 setup(entity)
         except Exception as exc:  # noqa: B902 - any failure: undo, report one line
@@ -364,7 +389,7 @@ class Simulation:
                     pass
             yield lambda: self._remove(entity)
             text = str(exc).splitlines()[0] if str(exc) else repr(exc)
-            raise ValueError(text) from None
+            raise SpawnError(text) from None
         yield lambda: self._activate(entity)
         return entity
 
@@ -377,14 +402,19 @@ class Simulation:
                 index += 1
             name = f'{name}_{index}'
         if name in self.entities:
-            raise ValueError(f'an entity named {name!r} already exists')
+            raise SpawnError(f'an entity named {name!r} already exists', 'NAME_NOT_UNIQUE')
         for other in self.entities.values():
             if other.namespace == namespace:
                 shown = namespace or '/'
-                raise ValueError(
+                raise SpawnError(
                     f'namespace {shown!r} is already used by entity {other.name!r}; give each '
-                    'robot its own namespace (entity_namespace / -robot_namespace)')
-        spec = urdf_to_spec(urdf, name=name, pose=(0, 0, 0, 0, 0, 0) if pose is None else pose)
+                    'robot its own namespace (entity_namespace / -robot_namespace)',
+                    'NAME_NOT_UNIQUE')
+        try:
+            spec = urdf_to_spec(urdf, name=name,
+                                pose=(0, 0, 0, 0, 0, 0) if pose is None else pose)
+        except ValueError as exc:
+            raise SpawnError(str(exc).splitlines()[0], 'RESOURCE_PARSE_ERROR') from None
         robot = self.world.spawn(spec, name, urdf)
         entity = Entity(name, namespace, robot, urdf)
         self.entities[name] = entity
@@ -403,10 +433,10 @@ class Simulation:
         cm = entity.controller_manager
         if cm is not None:
             rate = float(getattr(cm, 'update_rate', IDLE_RATE) or IDLE_RATE)
-            entity.per_update = max(1, int(round(1.0 / (rate * self.physics_step))))
+            entity.steps_per_update = max(1, int(round(1.0 / (rate * self.physics_step))))
         self.active = self.active + (entity,)
         self._managers = tuple(
-            (e.controller_manager, e.per_update) + _phases(e.controller_manager)
+            (e.controller_manager, e.steps_per_update) + _phases(e.controller_manager)
             for e in self.active if e.controller_manager is not None)
 
     def _rebind(self):

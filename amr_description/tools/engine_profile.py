@@ -99,7 +99,7 @@ def main(argv=None):
     try:
         sim, _ = build(opts.robots, opts.urdf)
         engine = engine_rate(sim, opts.seconds)
-        batch = min(e.per_update for e in sim.active if e.per_update) if sim.active else 10
+        batch = min((e.steps_per_update for e in sim.active if e.steps_per_update), default=10)
         raw = raw_rate(sim, opts.seconds, batch)
         print(f'robots {opts.robots}: engine {engine:.0f} steps/s ({engine / 1000:.1f}x real '
               f'time at 1 ms), raw mj_step {raw:.0f} steps/s, engine/raw '

@@ -1,0 +1,52 @@
+# Copyright 2026 The amr_description Authors
+# Licensed under the Apache License, Version 2.0
+"""The sensor protocol of the simulator (no rclpy)."""
+
+
+class Sensor:
+    """
+    One sensor of one spawned entity: what the ``mujoco_sim`` node needs to publish it.
+
+    A subclass sets the attributes in its constructor and implements :meth:`measure`.
+
+    :ivar name: sensor name, unique within its entity (str).
+    :ivar topic: ROS topic of its messages; a relative name is resolved in the entity's
+        namespace by the caller, an absolute one (``/...``) is used as is.
+    :ivar frame_id: TF frame of the measurement (``header.frame_id``), with the entity's frame
+        prefix.
+    :ivar rate: measurements per second of sim time (Hz, > 0).
+    :ivar message_type: the ROS message class :meth:`measure` returns.
+    :ivar costly: True when measuring costs enough to be skipped while nobody subscribes
+        (the node then does not call :meth:`measure`); False when every due measurement is
+        taken (e.g. to keep a noise generator's sequence independent of subscribers).
+    """
+
+    name = ''
+    topic = ''
+    frame_id = ''
+    rate = 0.0
+    message_type = None
+    costly = False
+
+    def period_steps(self, physics_step):
+        """
+        Return the number of physics steps between two measurements (>= 1).
+
+        A measurement is due at the sim times that are multiples of this period, i.e. at
+        ``step_count % period_steps == 0``.
+
+        :param physics_step: s of one physics step (> 0).
+        """
+        return max(1, int(round(1.0 / (self.rate * physics_step))))
+
+    def measure(self, world, t):
+        """
+        Return the message of a measurement of ``world`` at sim time ``t`` (s).
+
+        Called on the simulation thread, between two physics steps, with the world at ``t``.
+        The returned message may be reused by the next call (the caller publishes it first).
+
+        :param world: the :class:`~amr_description.sim.world.World`.
+        :param t: sim time in s; the message's stamp.
+        """
+        raise NotImplementedError
