@@ -47,6 +47,8 @@ class ControllerInterface(LifecycleNode):
             automatically_declare_parameters_from_overrides=True,
             enable_communication_interface=False, **node_kwargs)
         self.robot_description = robot_description or ''
+        # the parsed robot_description (RobotDescription) when the manager has one, else None
+        self.description = None
         # as upstream's ControllerInterfaceBase::init: the controller's own update rate
         # (default: the manager's), whether it runs asynchronously, and its thread priority
         self.update_rate = int(self.auto_declare(

@@ -93,7 +93,9 @@ class ControllerManager(Node):
     """
     The controller manager node (see the module docstring).
 
-    :param urdf_xml: robot description with ``<ros2_control>`` blocks (str).
+    :param urdf_xml: robot description with ``<ros2_control>`` blocks: URDF XML (str), or
+        its :class:`~amr_description.core.robot_description.RobotDescription` (the simulator
+        parses a spawned robot once and hands it on).
     :param executor: rclpy executor; the manager adds itself and every controller node.
     :param hardware_factory: ``(HardwareInfo) -> SystemInterface`` (default: entry points).
     :param parameters_file: path of the controllers YAML, or None.
@@ -152,7 +154,8 @@ class ControllerManager(Node):
             raise ValueError(f"controller_manager: parameter 'update_rate' must be a positive "
                              f'integer (Hz), got {rate!r}')
         self.update_rate = rate
-        self.robot_description = urdf_xml
+        self.description = urdf_xml if hasattr(urdf_xml, 'hardware') else None
+        self.robot_description = urdf_xml.xml if self.description is not None else urdf_xml
         self.use_sim_time = bool(use_sim_time)
         self._lock = threading.RLock()
         self._pending = None
@@ -395,6 +398,7 @@ class ControllerManager(Node):
             for param in skipped:
                 ctrl.get_logger().warn(f"Parameter '{param}' has an unsupported value: ignored")
             ctrl.controller_type = type_name
+            ctrl.description = self.description
             self.controllers[name] = ctrl
             self._executor.add_node(ctrl)
         self._publish_activity()

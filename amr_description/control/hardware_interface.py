@@ -41,18 +41,6 @@ class Handle:
         """Return the full interface name ``'<prefix_name>/<interface_name>'``."""
         return f'{self.prefix_name}/{self.interface_name}'
 
-    def get_value(self):
-        """Return the current value (float)."""
-        return self.value
-
-    def set_value(self, value):
-        """
-        Set the value.
-
-        :param value: the new value, converted to float.
-        """
-        self.value = float(value)
-
     def __repr__(self):
         """Return ``Handle('joint/iface', value)``."""
         return f'Handle({self.name!r}, {self.value!r})'

@@ -83,6 +83,8 @@ class JointStateBroadcaster(ControllerInterface):
         return TransitionCallbackReturn.SUCCESS
 
     def _urdf_joints(self):
+        if self.description is not None:  # parsed once by the simulator
+            return self.description.joint_names(moving_only=True)
         try:
             root = ET.fromstring(self.robot_description)
         except ET.ParseError:

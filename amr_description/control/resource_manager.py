@@ -44,7 +44,8 @@ class ResourceManager:
     """
     Hardware components of one robot and their claimed interfaces.
 
-    :param urdf_xml: the robot description (URDF XML string) with ``<ros2_control>`` blocks.
+    :param urdf_xml: the robot description with ``<ros2_control>`` blocks: URDF XML (str),
+        or its :class:`~amr_description.core.robot_description.RobotDescription` (no parse).
     :param hardware_factory: callable ``(HardwareInfo) -> SystemInterface``; default
         :func:`default_hardware_factory`.
     :param activate: when True (default) every component is configured and activated.
@@ -55,13 +56,16 @@ class ResourceManager:
 
     def __init__(self, urdf_xml, hardware_factory=None, activate=True):
         """Build, initialise and (optionally) activate every component."""
-        try:
-            root = ET.fromstring(urdf_xml)
-        except ET.ParseError as exc:
-            raise ValueError(f'robot description is not valid XML: {exc}') from None
+        if hasattr(urdf_xml, 'hardware'):  # a RobotDescription, parsed once by the caller
+            root, self.infos = urdf_xml.root, urdf_xml.hardware
+        else:
+            try:
+                root = ET.fromstring(urdf_xml)
+            except ET.ParseError as exc:
+                raise ValueError(f'robot description is not valid XML: {exc}') from None
+            self.infos = parse_ros2_control(root)
         urdf_joints = [j.get('name') for j in root.findall('joint')]
         self.urdf_joint_names = urdf_joints
-        self.infos = parse_ros2_control(urdf_xml)
         self.rw_rates = {}  # component name -> Hz from <ros2_control rw_rate="...">, else 0
         self.is_async = {}  # component name -> bool from <ros2_control is_async="...">
         for block in root.findall('ros2_control'):

@@ -21,7 +21,7 @@ from dataclasses import dataclass
 import math
 import random
 
-from .kinematics import MOVING_JOINT_TYPES
+from amr_description.core.kinematics import MOVING_JOINT_TYPES
 
 
 @dataclass(frozen=True)

@@ -40,13 +40,13 @@ import filecmp
 import os
 import sys
 
+from amr_description.core.mujoco_block import parse_mujoco_block
+from amr_description.core.ros2_control_info import parse_ros2_control
+from amr_description.core.urdf_model import parse_urdf_file
+from amr_description.core.urdf_model import URDFError
 from lxml import etree
 import numpy as np
 import yaml
-
-from .ros2_control_info import parse_ros2_control
-from .urdf_model import parse_urdf_file
-from .urdf_model import URDFError
 
 ERROR = 'error'
 WARNING = 'warning'
@@ -593,8 +593,11 @@ def check_mujoco_block(model, urdf_xml):
     """
     Check the ``<mujoco>`` extension block (format: docs/architecture.md).
 
-    :returns: list of :class:`Finding`: link/joint names that do not exist, actuators on joints
-        without a velocity command interface, malformed numbers.
+    Values are read by :func:`amr_description.core.mujoco_block.parse_mujoco_block`, the
+    reader the simulator's converter uses: what it refuses is reported here with its line.
+
+    :returns: list of :class:`Finding`: a value the reader refuses, link/joint names that do
+        not exist, actuators on joints without a velocity command interface.
     """
     if isinstance(urdf_xml, str):
         urdf_xml = urdf_xml.encode('utf-8')
@@ -603,9 +606,13 @@ def check_mujoco_block(model, urdf_xml):
     if not blocks:
         return [Finding(WARNING, '<mujoco>', 'no simulator block; the simulator uses defaults')]
     findings = []
+    try:
+        parse_mujoco_block(root)
+    except ValueError as exc:
+        findings.append(Finding(ERROR, '<mujoco>', str(exc).replace('<mujoco>: ', '', 1)))
     commands = set()
     try:
-        for info in parse_ros2_control(urdf_xml):
+        for info in parse_ros2_control(root):
             commands.update(j.name for j in info.joints if 'velocity' in
                             j.command_interface_names())
     except ValueError:
@@ -614,31 +621,17 @@ def check_mujoco_block(model, urdf_xml):
         for element in block:
             if not isinstance(element.tag, str):
                 continue
-            findings.extend(_check_mujoco_element(model, element, commands))
+            findings.extend(_check_mujoco_names(model, element, commands))
     return findings
 
 
-def _numbers(text, count):
-    """Return ``count`` floats parsed from ``text``, or None when malformed."""
-    try:
-        values = [float(v) for v in (text or '').split()]
-    except ValueError:
-        return None
-    return values if len(values) == count else None
-
-
-def _check_mujoco_element(model, element, commands):
-    """Check one child of ``<mujoco>``."""
+def _check_mujoco_names(model, element, commands):
+    """Check the names one child of ``<mujoco>`` refers to."""
     where = f'<mujoco><{element.tag}>'
     findings = []
     if element.tag == 'ros2_control':
         if not element.get('parameters'):
             findings.append(Finding(ERROR, where, 'missing parameters attribute'))
-    if element.tag in ('contact', 'link') and element.get('friction') is not None:
-        friction = _numbers(element.get('friction'), 3)
-        if friction is None or min(friction) < 0.0:
-            findings.append(Finding(ERROR, where, 'friction must be 3 numbers >= 0',
-                                    'sliding torsional rolling', element.get('friction')))
     if element.tag == 'link' and element.get('name') not in model.links:
         findings.append(Finding(ERROR, where, 'names no URDF link', 'a link',
                                 repr(element.get('name'))))
@@ -648,15 +641,6 @@ def _check_mujoco_element(model, element, commands):
             findings.append(Finding(ERROR, where,
                                     'joint has no velocity command interface in <ros2_control>',
                                     'a ros2_control velocity joint', repr(joint)))
-        kv = _numbers(element.get('kv', '1'), 1)
-        if kv is None or kv[0] <= 0.0:
-            findings.append(Finding(ERROR, where, 'kv must be a positive number', 'kv > 0',
-                                    repr(element.get('kv'))))
-        if element.get('forcerange') is not None:
-            limits = _numbers(element.get('forcerange'), 2)
-            if limits is None or limits[0] >= limits[1]:
-                findings.append(Finding(ERROR, where, 'forcerange must be "low high", low < high',
-                                        'low < high', repr(element.get('forcerange'))))
     return findings
 
 

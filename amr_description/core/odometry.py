@@ -69,17 +69,6 @@ class Odometry:
         self.timestamp = None
         self.reset_odometry()
 
-    def set_wheel_params(self, wheel_separation, left_wheel_radius, right_wheel_radius):
-        """Set geometry (m); see the class docstring."""
-        self.wheel_separation = float(wheel_separation)
-        self.left_wheel_radius = float(left_wheel_radius)
-        self.right_wheel_radius = float(right_wheel_radius)
-
-    def set_velocity_rolling_window_size(self, size):
-        """Resize (and clear) the twist rolling mean; ``size`` >= 1."""
-        self._linear_mean = RollingMean(size)
-        self._angular_mean = RollingMean(size)
-
     def init(self, time):
         """Start integrating at ``time`` (s): clear the twist means, keep the pose."""
         self._linear_mean.clear()

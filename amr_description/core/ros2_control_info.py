@@ -193,18 +193,22 @@ def parse_ros2_control(urdf_xml):
     """
     Parse every ``<ros2_control>`` child of the URDF ``<robot>`` element.
 
-    :param urdf_xml: the URDF document, str or bytes.
+    :param urdf_xml: the URDF document, str or bytes, or its parsed ``<robot>`` element
+        (standard library or lxml).
     :returns: list of :class:`HardwareInfo`, in document order (empty when none).
     :raises ValueError: one-line message when the XML is malformed, the root is not
         ``<robot>``, or a block lacks a name, a valid type, ``<hardware><plugin>``, an
         interface name, or has a non-numeric ``min``/``max``/``initial_value``.
     """
-    if isinstance(urdf_xml, str):
-        urdf_xml = urdf_xml.encode('utf-8')
-    try:
-        root = ET.fromstring(urdf_xml)
-    except ET.ParseError as exc:
-        raise ValueError(f'ros2_control: URDF is not well-formed XML: {exc}') from None
+    if isinstance(urdf_xml, (str, bytes)):
+        if isinstance(urdf_xml, str):
+            urdf_xml = urdf_xml.encode('utf-8')
+        try:
+            root = ET.fromstring(urdf_xml)
+        except ET.ParseError as exc:
+            raise ValueError(f'ros2_control: URDF is not well-formed XML: {exc}') from None
+    else:
+        root = urdf_xml
     if root.tag != 'robot':
         raise ValueError(f'ros2_control: root element must be <robot>, found <{root.tag}>')
     return [_hardware(element) for element in root.findall('ros2_control')]

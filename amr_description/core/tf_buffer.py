@@ -28,9 +28,8 @@ re-parented frame is rare enough that the viewer does not need that). Times are 
 
 import math
 
+from amr_description.core.kinematics import quaternion_to_matrix
 import numpy as np
-
-from .kinematics import quaternion_to_matrix
 
 DEFAULT_CACHE_TIME = 10.0
 """Seconds of dynamic transforms kept per frame (tf2's default buffer length)."""
@@ -244,11 +243,6 @@ class TransformBuffer:
         """Return the parent of ``frame`` or None for a root or an unknown frame."""
         entry = self._frames.get(strip_frame(frame))
         return entry.parent if entry is not None else None
-
-    def is_static(self, frame):
-        """Return True when the transform to ``frame`` from its parent is static."""
-        entry = self._frames.get(strip_frame(frame))
-        return entry is not None and entry.static is not None
 
     def root(self, frame):
         """Return the root of the tree that holds ``frame`` (``frame`` itself for a root)."""

@@ -30,15 +30,13 @@ are 4x4 numpy matrices (see :mod:`.kinematics`).
 """
 
 from dataclasses import dataclass
-import io
 import math
 
+from amr_description.core.kinematics import chain_transform
+from amr_description.core.kinematics import mimic_position
+from amr_description.core.kinematics import MOVING_JOINT_TYPES
 from lxml import etree
 import numpy as np
-
-from .kinematics import chain_transform
-from .kinematics import mimic_position
-from .kinematics import MOVING_JOINT_TYPES
 
 
 @dataclass
@@ -250,6 +248,34 @@ def entity_name(name, urdf_xml):
     return name
 
 
+def parse_xml(urdf_xml, source='robot_description'):
+    """
+    Parse a URDF document's XML once: the ``<robot>`` element, comments removed.
+
+    The parser is the one yourdfpy's ``URDF.load`` uses (lxml, blank text removed), so the
+    element can be handed to yourdfpy without a second parse.
+
+    :param urdf_xml: the URDF, str or bytes.
+    :param source: what to name in error messages (a file path or parameter name).
+    :returns: the lxml ``<robot>`` element.
+    :raises URDFError: empty document, malformed XML, another root element, no robot name.
+    """
+    if isinstance(urdf_xml, str):
+        urdf_xml = urdf_xml.encode('utf-8')
+    if not urdf_xml.strip():
+        raise URDFError(source, '', 'empty URDF')
+    try:
+        root_element = etree.fromstring(urdf_xml, etree.XMLParser(remove_blank_text=True))
+    except etree.XMLSyntaxError as exc:
+        raise URDFError(source, '', f'not well-formed XML: {_one_line(exc)}') from None
+    if root_element.tag != 'robot':
+        raise URDFError(source, '', f'root element must be <robot>, found <{root_element.tag}>')
+    if not root_element.get('name'):
+        raise URDFError(source, '<robot>', 'no name attribute')
+    etree.strip_tags(root_element, etree.Comment)
+    return root_element
+
+
 def parse_urdf(urdf_xml, source='robot_description'):
     """
     Parse a URDF document into a :class:`RobotModel`.
@@ -261,26 +287,24 @@ def parse_urdf(urdf_xml, source='robot_description'):
         XML is malformed, yourdfpy rejects an element, or a rule of the module docstring is
         broken.
     """
-    if isinstance(urdf_xml, str):
-        urdf_xml = urdf_xml.encode('utf-8')
-    if not urdf_xml.strip():
-        raise URDFError(source, '', 'empty URDF')
-    try:
-        root_element = etree.fromstring(urdf_xml)
-    except etree.XMLSyntaxError as exc:
-        raise URDFError(source, '', f'not well-formed XML: {_one_line(exc)}') from None
-    if root_element.tag != 'robot':
-        raise URDFError(source, '', f'root element must be <robot>, found <{root_element.tag}>')
-    if not root_element.get('name'):
-        raise URDFError(source, '<robot>', 'no name attribute')
+    return model_from_element(parse_xml(urdf_xml, source), source)
+
+
+def model_from_element(root_element, source='robot_description'):
+    """
+    Return the :class:`RobotModel` of a ``<robot>`` element from :func:`parse_xml`.
+
+    :raises URDFError: as :func:`parse_urdf`, for everything after the XML parse.
+    """
     _check_elements(root_element, source)
     # imported here, not at module level: it pulls in trimesh (~1 s), whose imports swallow
     # exceptions, so a Ctrl-C during a node's start-up must reach it only after main()
     # installed the clean-shutdown signal handling (amr_description.ros.shutdown)
     import yourdfpy
     try:
-        urdf = yourdfpy.URDF.load(
-            io.BytesIO(urdf_xml), build_scene_graph=False, load_meshes=False)
+        # what yourdfpy's URDF.load does after its own parse (same parser options)
+        urdf = yourdfpy.URDF(robot=yourdfpy.URDF._parse_robot(xml_element=root_element),
+                             build_scene_graph=False, load_meshes=False)
     except Exception as exc:  # yourdfpy raises KeyError/ValueError/AttributeError alike
         kind = type(exc).__name__
         raise URDFError(source, '', f'invalid URDF ({kind}: {_one_line(exc)})') from None

@@ -506,22 +506,6 @@ def _to_world(points, origin):
     return [(origin[0] + x * c - y * s, origin[1] + x * s + y * c) for x, y in points]
 
 
-def write_path_plot(path, odom_path, truth_path, odom_origin, truth_origin, side):
-    """
-    Plot one robot's odometry and ground-truth paths, each relative to its start, to a PNG.
-
-    :param path: output PNG path.
-    :param odom_path: list of ``(x, y)`` from ``/odom``, m.
-    :param truth_path: list of ``(x, y)`` from the ground truth, m.
-    :param odom_origin: ``(x, y, yaw)`` where the course began, in odom.
-    :param truth_origin: the same instant in the ground truth.
-    :param side: commanded side length in m (drawn as the reference square).
-    """
-    robot = {'name': '', 'odom_path': odom_path, 'truth_path': truth_path,
-             'odom_origin': odom_origin, 'truth_origin': truth_origin}
-    write_fleet_plot(path, [robot], side)
-
-
 def write_fleet_plot(path, robots, side):
     """
     Plot every robot's odometry and ground-truth paths to a PNG.

@@ -39,6 +39,7 @@ def _description_from_topic(args, timeout):
     :mod:`amr_description.ros.shutdown` (bad ROS arguments: one line, exit code 1).
     """
     from amr_description.ros import shutdown
+    from amr_description.ros.node import Node
     from rclpy.qos import DurabilityPolicy
     from rclpy.qos import QoSProfile
     from std_msgs.msg import String
@@ -48,7 +49,7 @@ def _description_from_topic(args, timeout):
     node = None
     received = []
     try:
-        node = shutdown.create(shutdown.Node, 'render')
+        node = shutdown.create(Node, 'render')
         node.create_subscription(
             String, 'robot_description', lambda msg: received.append(msg.data),
             QoSProfile(depth=1, durability=DurabilityPolicy.TRANSIENT_LOCAL))

@@ -39,7 +39,7 @@ import re
 import threading
 import time
 
-from amr_description.core.urdf_model import entity_name
+from amr_description.core.robot_description import RobotDescription
 from amr_description.sim.sensors.registry import make_sensors
 from amr_description.sim.world import World
 import mujoco
@@ -110,7 +110,8 @@ class Entity:
     :ivar name: entity name, unique in the simulation (str).
     :ivar namespace: ROS namespace, ``''`` or ``'/r1'`` (unique in the simulation).
     :ivar robot: the :class:`~amr_description.sim.world.Robot` (bodies prefixed ``name/``).
-    :ivar urdf: the URDF it was spawned from (str).
+    :ivar description: the :class:`~amr_description.core.robot_description.RobotDescription`
+        it was spawned from (parsed once; ``description.xml`` is the URDF text).
     :ivar controller_manager: the controller manager, or None (no ``<ros2_control>``).
     :ivar systems: the ``MujocoSystem`` hardware components bound to the world.
     :ivar sensors: its :class:`~amr_description.sim.sensors.base.Sensor` instances, made from
@@ -118,12 +119,12 @@ class Entity:
     :ivar steps_per_update: physics steps between two controller-manager updates (0: none).
     """
 
-    def __init__(self, name, namespace, robot, urdf):
+    def __init__(self, name, namespace, robot, description):
         """Keep the fields (see the class docstring)."""
         self.name = name
         self.namespace = namespace
         self.robot = robot
-        self.urdf = urdf
+        self.description = description
         self.controller_manager = None
         self.steps_per_update = 0
         self.systems = []
@@ -360,22 +361,22 @@ class Simulation:
         (controller manager, ``setup``) runs on the driving thread. Same arguments and errors
         as :meth:`spawn`; an error of a yielded function must be thrown into the generator.
         """
-        from amr_description.core.ros2_control_info import parse_ros2_control
         try:
             namespace = normalize_namespace(namespace)
         except ValueError as exc:
             raise SpawnError(str(exc), 'NAMESPACE_INVALID') from None
         try:
-            name = entity_name(name, urdf)
-            has_control = bool(parse_ros2_control(urdf))
+            description = RobotDescription(urdf, source='URDF')  # the spawn's one parse
         except ValueError as exc:
             raise SpawnError(str(exc).splitlines()[0], 'RESOURCE_PARSE_ERROR') from None
-        entity = yield lambda: self._add(urdf, name, pose, namespace, allow_renaming)
+        name = name or description.name
+        has_control = bool(description.hardware)
+        entity = yield lambda: self._add(description, name, pose, namespace, allow_renaming)
         cm = None
         try:
             if has_control and self._factory is not None:
                 cm = self._factory(entity, self._hardware_factory(entity),
-                                   self._parameters_file(urdf))
+                                   self._parameters_file(description))
                 entity.controller_manager = cm
             entity.sensors = make_sensors(entity, self.sensor_settings)
             if setup is not None:
@@ -393,7 +394,7 @@ class Simulation:
         yield lambda: self._activate(entity)
         return entity
 
-    def _add(self, urdf, name, pose, namespace, allow_renaming):
+    def _add(self, description, name, pose, namespace, allow_renaming):
         """Add the robot's bodies to the world (simulation thread)."""
         from amr_description.sim.urdf_to_mjcf import urdf_to_spec
         if name in self.entities and allow_renaming:
@@ -411,12 +412,12 @@ class Simulation:
                     'robot its own namespace (entity_namespace / -robot_namespace)',
                     'NAME_NOT_UNIQUE')
         try:
-            spec = urdf_to_spec(urdf, name=name,
+            spec = urdf_to_spec(description, name=name,
                                 pose=(0, 0, 0, 0, 0, 0) if pose is None else pose)
         except ValueError as exc:
             raise SpawnError(str(exc).splitlines()[0], 'RESOURCE_PARSE_ERROR') from None
-        robot = self.world.spawn(spec, name, urdf)
-        entity = Entity(name, namespace, robot, urdf)
+        robot = self.world.spawn(spec, name, description.xml)
+        entity = Entity(name, namespace, robot, description)
         self.entities[name] = entity
         self._rebind()
         return entity
@@ -460,15 +461,13 @@ class Simulation:
             return default_hardware_factory(info)
         return factory
 
-    def _parameters_file(self, urdf):
-        """Return the controllers YAML path for ``urdf`` (None when there is none)."""
+    def _parameters_file(self, description):
+        """Return the controllers YAML path of a robot (None when there is none)."""
         import os
-        import xml.etree.ElementTree as ET
-        from amr_description.sim.urdf_to_mjcf import parse_mujoco_block
         from amr_description.sim.urdf_to_mjcf import resolve_uri
         path = self.parameters_file
         if not path:
-            path = parse_mujoco_block(ET.fromstring(urdf)).parameters
+            path = description.mujoco.parameters
         if not path:
             return None
         path = resolve_uri(path)

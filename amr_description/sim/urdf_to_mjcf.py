@@ -48,140 +48,23 @@ The ``<mujoco>`` block (see docs/architecture.md)::
     </mujoco>
 """
 
-from dataclasses import dataclass
-from dataclasses import field
 import logging
 import math
 import os
-import xml.etree.ElementTree as ET
 
-from amr_description.core.ros2_control_info import parse_ros2_control
+from amr_description.core.mujoco_block import DEFAULT_CONTACT
+from amr_description.core.robot_description import RobotDescription
 import mujoco
 import numpy as np
 
 _LOG = logging.getLogger(__name__)
 
-#: contact parameters used when the ``<mujoco>`` block gives none
-DEFAULT_CONTACT = {
-    'friction': (1.0, 0.005, 0.0001),
-    'solref': (0.02, 1.0),
-    'solimp': (0.9, 0.95, 0.001, 0.5, 2.0),
-    'condim': 3,
-}
-#: actuator parameters used when the ``<mujoco>`` block gives none
-DEFAULT_ACTUATOR = {'kv': 5.0, 'kp': 100.0, 'ki': 0.0, 'armature': 0.0,
-                    'forcerange': (-20.0, 20.0)}
-#: contact shapes a ``<mujoco><link shape=...>`` may ask for
-CONTACT_SHAPES = ('urdf', 'sphere')
 #: prefix of the spec text elements asking the world for an explicit ground contact pair
 GROUND_CONTACT_PREFIX = 'ground_contact/'
 
 COLLISION_GROUP = 3
 VISUAL_GROUP = 2
 _DEFAULT_RGBA = (0.7, 0.7, 0.7, 1.0)
-
-
-@dataclass
-class MujocoConfig:
-    """
-    The parsed ``<mujoco>`` block of a URDF.
-
-    :param parameters: the ``<ros2_control parameters=...>`` URI (str) or None.
-    :param contact: default contact attributes, dict with ``friction`` (3 floats),
-        ``solref`` (2), ``solimp`` (5), ``condim`` (int).
-    :param link_contact: dict link name -> dict of overriding contact attributes.
-    :param actuator: default actuator attributes, dict with ``kv``, ``kp`` (float) and
-        ``forcerange`` (2 floats, N or N m).
-    :param joint_actuator: dict joint name -> dict of overriding actuator attributes.
-    """
-
-    parameters: str = None
-    contact: dict = field(default_factory=lambda: dict(DEFAULT_CONTACT))
-    link_contact: dict = field(default_factory=dict)
-    actuator: dict = field(default_factory=lambda: dict(DEFAULT_ACTUATOR))
-    joint_actuator: dict = field(default_factory=dict)
-
-
-_CONTACT_SIZES = {'friction': (1, 3), 'solref': (2, 2), 'solimp': (3, 5),
-                  'solreffriction': (2, 2)}
-
-
-def _floats(text, name, where, sizes):
-    """Parse a space-separated float list of ``sizes[0]..sizes[1]`` entries."""
-    try:
-        values = tuple(float(v) for v in text.split())
-    except ValueError:
-        raise ValueError(f'<mujoco>: {where} {name}={text!r} must be numbers') from None
-    if not sizes[0] <= len(values) <= sizes[1] or not all(map(math.isfinite, values)):
-        raise ValueError(
-            f'<mujoco>: {where} {name}={text!r} must be {sizes[0]}..{sizes[1]} finite numbers')
-    return values
-
-
-def _contact_attrs(element, where):
-    """Return the contact attributes present on ``element`` as a dict."""
-    attrs = {}
-    for name, sizes in _CONTACT_SIZES.items():
-        if element.get(name) is not None:
-            attrs[name] = _floats(element.get(name), name, where, sizes)
-    if element.get('condim') is not None:
-        if element.get('condim') not in ('1', '3', '4', '6'):
-            raise ValueError(f'<mujoco>: {where} condim must be 1, 3, 4 or 6')
-        attrs['condim'] = int(element.get('condim'))
-    if element.get('shape') is not None:
-        if element.get('shape') not in CONTACT_SHAPES:
-            raise ValueError(f'<mujoco>: {where} shape must be one of {", ".join(CONTACT_SHAPES)}'
-                             f', found {element.get("shape")!r}')
-        attrs['shape'] = element.get('shape')
-    return attrs
-
-
-def _actuator_attrs(element, where):
-    """Return the actuator attributes present on ``element`` as a dict."""
-    attrs = {}
-    for name in ('kv', 'kp', 'ki', 'armature'):
-        if element.get(name) is not None:
-            value = _floats(element.get(name), name, where, (1, 1))[0]
-            if value < 0:
-                raise ValueError(f'<mujoco>: {where} {name} must be >= 0')
-            attrs[name] = value
-    if element.get('forcerange') is not None:
-        lo, hi = _floats(element.get('forcerange'), 'forcerange', where, (2, 2))
-        if lo > hi:
-            raise ValueError(f'<mujoco>: {where} forcerange must be "min max" with min <= max')
-        attrs['forcerange'] = (lo, hi)
-    return attrs
-
-
-def parse_mujoco_block(root):
-    """
-    Read the ``<mujoco>`` child of a URDF ``<robot>`` element.
-
-    :param root: the ``<robot>`` ``xml.etree.ElementTree.Element``.
-    :returns: a :class:`MujocoConfig` (defaults when there is no block).
-    :raises ValueError: one-line message for a malformed attribute.
-    """
-    config = MujocoConfig()
-    for block in root.findall('mujoco'):
-        rc = block.find('ros2_control')
-        if rc is not None and rc.get('parameters'):
-            config.parameters = rc.get('parameters').strip()
-        for element in block.findall('contact'):
-            config.contact.update(_contact_attrs(element, '<contact>'))
-        for element in block.findall('link'):
-            name = element.get('name')
-            if not name:
-                raise ValueError('<mujoco>: <link> without a name')
-            config.link_contact.setdefault(name, {}).update(
-                _contact_attrs(element, f'<link name={name!r}>'))
-        for element in block.findall('actuator'):
-            joint = element.get('joint')
-            if joint:
-                config.joint_actuator.setdefault(joint, {}).update(
-                    _actuator_attrs(element, f'<actuator joint={joint!r}>'))
-            else:
-                config.actuator.update(_actuator_attrs(element, '<actuator>'))
-    return config
 
 
 def resolve_uri(uri):
@@ -403,21 +286,6 @@ def _add_integral_velocity(spec, joint, iface, actuator, params):
     mj_joint.actfrcrange = list(params['forcerange'])
 
 
-def _load_urdf(urdf_xml):
-    """
-    Parse the URDF text with the package's one loader; return (ElementTree root, yourdfpy robot).
-
-    :raises ValueError: the loader's one line (:func:`amr_description.core.urdf_model.parse_urdf`
-        refuses non-finite numbers, duplicate names, unknown joint types, broken trees and
-        non-positive inertia on moving links, naming the element).
-    """
-    from amr_description.core.urdf_model import parse_urdf
-    if isinstance(urdf_xml, str):
-        urdf_xml = urdf_xml.encode('utf-8')
-    model = parse_urdf(urdf_xml, source='URDF')
-    return ET.fromstring(urdf_xml), model.urdf.robot
-
-
 def _root_link(robot):
     """Return the name of the single link that is no joint's child."""
     links = [link.name for link in robot.links]
@@ -442,7 +310,8 @@ def urdf_to_spec(urdf_xml, name='amr', pose=(0.0, 0.0, 0.0, 0.0, 0.0, 0.0), free
     Build a MuJoCo spec holding the robot described by a URDF.
 
     :param urdf_xml: the URDF document (str or bytes), with optional ``<ros2_control>``
-        and ``<mujoco>`` blocks.
+        and ``<mujoco>`` blocks, or its :class:`~amr_description.core.robot_description.
+        RobotDescription` (parsed once by the caller).
     :param name: the model name (``spec.modelname``), str.
     :param pose: initial pose of the root link in the world frame: (x, y, z) in m then
         either (roll, pitch, yaw) in rad (URDF fixed-axis convention) or a quaternion
@@ -456,9 +325,11 @@ def urdf_to_spec(urdf_xml, name='amr', pose=(0.0, 0.0, 0.0, 0.0, 0.0, 0.0), free
         unsupported joint type), a ``<ros2_control>`` joint is missing from the URDF, the
         ``<mujoco>`` block is malformed, or the pose is not 6/7 finite numbers.
     """
-    root_element, robot = _load_urdf(urdf_xml)
-    config = parse_mujoco_block(root_element)
-    hardware = parse_ros2_control(urdf_xml)
+    description = urdf_xml if isinstance(urdf_xml, RobotDescription) else \
+        RobotDescription(urdf_xml, source='URDF')
+    robot = description.model.urdf.robot
+    config = description.mujoco
+    hardware = description.hardware
     root_name = _root_link(robot)
     pose = [float(v) for v in pose]
     if len(pose) not in (6, 7) or not all(math.isfinite(v) for v in pose):

@@ -32,7 +32,7 @@ def build(robots, urdf_path):
     executor = SimTimeExecutor(sim_time)
 
     def factory(entity, hardware_factory, parameters_file):
-        return ControllerManager(entity.urdf, executor, hardware_factory, parameters_file,
+        return ControllerManager(entity.description, executor, hardware_factory, parameters_file,
                                  entity.namespace, use_sim_time=True)
     sim = Simulation(real_time_factor=0.0, controller_manager_factory=factory,
                      controller_manager_release=lambda cm: cm.destroy())

@@ -32,7 +32,7 @@ class FakeControllerManager:
         self.schedule = schedule
         self.log = log
         self.systems = []
-        for info in parse_ros2_control(entity.urdf):
+        for info in parse_ros2_control(entity.description.xml):
             system = hardware_factory(info)
             assert system.on_init(info)
             self.systems.append(system)

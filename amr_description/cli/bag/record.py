@@ -37,10 +37,6 @@ FLUSH_PERIOD = 1.0
 """Seconds between writes of the pending data and of a provisional metadata.yaml."""
 
 
-class _WriteFailed(Exception):
-    """Writing to the bag failed (the message names the bag and the reason)."""
-
-
 class Recorder:
     """
     Subscribes to the selected topics and writes what arrives into a rosbags ``Writer``.

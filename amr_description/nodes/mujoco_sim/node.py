@@ -153,7 +153,8 @@ class MujocoSim(Node):
             from amr_description.control.controller_manager import ControllerManager
         except ImportError as exc:
             raise ValueError(f'controller manager not available: {exc}') from None
-        return ControllerManager(entity.urdf, self._executor, hardware_factory=hardware_factory,
+        return ControllerManager(entity.description, self._executor,
+                                 hardware_factory=hardware_factory,
                                  parameters_file=parameters_file, namespace=entity.namespace,
                                  use_sim_time=True)
 

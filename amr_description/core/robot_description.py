@@ -1,0 +1,51 @@
+# Copyright 2026 The amr_description Authors
+# Licensed under the Apache License, Version 2.0
+"""
+A robot description parsed once: what every consumer of one spawn reads.
+
+The simulator parses the URDF of a spawned robot once into a :class:`RobotDescription` and
+hands it to the URDF -> MJCF converter, the resource manager and joint_state_broadcaster, so
+one spawn is one XML parse (test/unit/test_robot_description.py counts them).
+"""
+
+from amr_description.core.mujoco_block import parse_mujoco_block
+from amr_description.core.ros2_control_info import parse_ros2_control
+from amr_description.core.urdf_model import model_from_element
+from amr_description.core.urdf_model import parse_xml
+
+
+class RobotDescription:
+    """
+    A URDF document with its parsed parts.
+
+    :param xml: the URDF text (str or bytes).
+    :param source: what error messages name (a file path or parameter name).
+    :ivar xml: the URDF text (str), as given to controllers (``robot_description``).
+    :ivar root: the lxml ``<robot>`` element (comments removed).
+    :ivar name: the ``<robot name>``.
+    :ivar model: the kinematic :class:`~amr_description.core.urdf_model.RobotModel`.
+    :ivar hardware: the ``<ros2_control>`` blocks, list of
+        :class:`~amr_description.core.ros2_control_info.HardwareInfo`.
+    :ivar mujoco: the simulator settings, :class:`~amr_description.core.mujoco_block.
+        MujocoConfig`.
+    :raises ValueError: one line naming ``source`` (URDF), ``ros2_control`` or ``<mujoco>``
+        and the element at fault.
+    """
+
+    def __init__(self, xml, source='robot_description'):
+        """Parse ``xml`` once and read every part (see the class docstring)."""
+        self.xml = xml.decode('utf-8', errors='replace') if isinstance(xml, bytes) else xml
+        self.root = parse_xml(xml, source)
+        self.name = self.root.get('name')
+        self.model = model_from_element(self.root, source)
+        self.hardware = parse_ros2_control(self.root)
+        self.mujoco = parse_mujoco_block(self.root)
+
+    def joint_names(self, moving_only=False):
+        """
+        Return the URDF joint names in document order.
+
+        :param moving_only: True to leave out fixed joints (and joints without a type).
+        """
+        return [joint.get('name') for joint in self.root.findall('joint')
+                if not moving_only or joint.get('type') not in ('fixed', None)]
