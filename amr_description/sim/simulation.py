@@ -35,12 +35,13 @@ manager the cycle is :data:`IDLE_RATE` Hz of sim time.
 import collections
 import logging
 import math
-import re
 import threading
 import time
 
-from amr_description.core.robot_description import RobotDescription
-from amr_description.sim.sensors.registry import make_sensors
+from amr_description.sim.entity import Entity
+from amr_description.sim.entity import spawn_stages
+from amr_description.sim.entity import SpawnError
+from amr_description.sim.pacing import Pacer
 from amr_description.sim.world import World
 import mujoco
 
@@ -53,87 +54,9 @@ REQUEST_TIMEOUT = 30.0
 PAUSED_TICK = 0.1
 """Seconds (wall) between ``paused_tick`` hook calls while paused."""
 
-RTF_WINDOW = 5.0
-"""Seconds (wall) over which the achieved real-time factor is measured."""
-
-RTF_SHORTFALL = 0.9
-"""Warn (once) when the achieved real-time factor is below this fraction of the target."""
-
-_NAME_TOKEN = re.compile(r'^[A-Za-z_][A-Za-z0-9_]*$')
 _BAD_QPOS = int(mujoco.mjtWarning.mjWARN_BADQPOS)
 _BAD_QVEL = int(mujoco.mjtWarning.mjWARN_BADQVEL)
 _BAD_QACC = int(mujoco.mjtWarning.mjWARN_BADQACC)
-
-
-def normalize_namespace(namespace):
-    """
-    Return a ROS namespace in its absolute form, ``''`` for the root namespace.
-
-    Rules of rcl's ``rmw_validate_namespace`` as they apply to a node namespace: tokens of
-    letters, digits and ``_``, not starting with a digit, separated by single ``/``; no
-    trailing ``/``. A relative namespace (``r1``) is made absolute (``/r1``).
-
-    :param namespace: str, e.g. ``'r1'``, ``'/fleet/r1'``, ``''`` or ``'/'``.
-    :returns: ``''`` or ``'/r1'``-style str.
-    :raises ValueError: one line naming the namespace and the rule it breaks.
-    """
-    if namespace in ('', '/'):
-        return ''
-    text = namespace if namespace.startswith('/') else '/' + namespace
-    for token in text[1:].split('/'):
-        if not _NAME_TOKEN.match(token):
-            raise ValueError(
-                f'namespace {namespace!r} is not a valid ROS namespace: tokens of letters, '
-                'digits and "_" not starting with a digit, separated by single "/"')
-    return text
-
-
-class SpawnError(ValueError):
-    """
-    A refused spawn: one line, and the SpawnEntity result it stands for.
-
-    :ivar code: the name of the ``simulation_interfaces`` result constant:
-        ``'NAME_NOT_UNIQUE'``, ``'NAMESPACE_INVALID'``, ``'RESOURCE_PARSE_ERROR'`` (constants
-        of ``SpawnEntity.Response``) or ``'RESULT_OPERATION_FAILED'`` (of ``Result``).
-    """
-
-    def __init__(self, message, code='RESULT_OPERATION_FAILED'):
-        """Keep the one-line ``message`` and the result ``code`` (see the class docstring)."""
-        super().__init__(message)
-        self.code = code
-
-
-class Entity:
-    """
-    A spawned robot: its world entry, its namespace and its controller manager.
-
-    :ivar name: entity name, unique in the simulation (str).
-    :ivar namespace: ROS namespace, ``''`` or ``'/r1'`` (unique in the simulation).
-    :ivar robot: the :class:`~amr_description.sim.world.Robot` (bodies prefixed ``name/``).
-    :ivar description: the :class:`~amr_description.core.robot_description.RobotDescription`
-        it was spawned from (parsed once; ``description.xml`` is the URDF text).
-    :ivar controller_manager: the controller manager, or None (no ``<ros2_control>``).
-    :ivar systems: the ``MujocoSystem`` hardware components bound to the world.
-    :ivar sensors: its :class:`~amr_description.sim.sensors.base.Sensor` instances, made from
-        its description by the registered sensor factories.
-    :ivar steps_per_update: physics steps between two controller-manager updates (0: none).
-    """
-
-    def __init__(self, name, namespace, robot, description):
-        """Keep the fields (see the class docstring)."""
-        self.name = name
-        self.namespace = namespace
-        self.robot = robot
-        self.description = description
-        self.controller_manager = None
-        self.steps_per_update = 0
-        self.systems = []
-        self.sensors = []
-
-    @property
-    def frame_prefix(self):
-        """Return the TF frame prefix of the entity, ``''`` or ``'r1/'`` (REP 105 fleets)."""
-        return self.namespace[1:] + '/' if self.namespace else ''
 
 
 class _Request:
@@ -193,8 +116,8 @@ class Simulation:
         self.parameters_file = parameters_file
         self.logger = logger or logging.getLogger('simulation')
         self.sensor_settings = dict(sensor_settings or {})
-        self._factory = controller_manager_factory
-        self._release = controller_manager_release
+        self.controller_manager_factory = controller_manager_factory
+        self.controller_manager_release = controller_manager_release
         self.entities = {}          # name -> Entity (spawned; possibly still being set up)
         self.active = ()            # Entities set up and stepped with their controllers
         self._managers = ()         # (cm, steps_per_update, read, update, write)
@@ -209,14 +132,12 @@ class Simulation:
         self._thread = None
         self._pending_steps = 0
         self._step_waiters = []
-        self._anchor = None
+        self._pacer = Pacer(self.logger)
         self._external_time = None   # s, the clock we must not run ahead of (None: own clock)
         self._external = False
         self._halted = None          # message of the non-finite state that paused us
         self._warnings_seen = 0
         self._rebind()
-        self._rtf_window = None
-        self._rtf_warned = False
         self.update_errors = 0
         self.thread_error = None
 
@@ -253,9 +174,9 @@ class Simulation:
         self._managers = ()
         for entity in list(self.entities.values()):
             cm, entity.controller_manager = entity.controller_manager, None
-            if cm is not None and self._release is not None:
+            if cm is not None and self.controller_manager_release is not None:
                 try:
-                    self._release(cm)
+                    self.controller_manager_release(cm)
                 except Exception as exc:  # noqa: B902 - best effort at exit
                     self.logger.warning(f'controller manager of {entity.name!r}: {exc!r}')
 
@@ -356,46 +277,17 @@ class Simulation:
         """
         Return :meth:`spawn` as a generator, for a caller that must not block while it runs.
 
-        The generator yields functions to run on the simulation thread and is sent their
-        results (``send``); it returns the :class:`Entity` (``StopIteration.value``). The rest
-        (controller manager, ``setup``) runs on the driving thread. Same arguments and errors
-        as :meth:`spawn`; an error of a yielded function must be thrown into the generator.
+        See :func:`amr_description.sim.entity.spawn_stages` (same arguments and errors as
+        :meth:`spawn`).
         """
-        try:
-            namespace = normalize_namespace(namespace)
-        except ValueError as exc:
-            raise SpawnError(str(exc), 'NAMESPACE_INVALID') from None
-        try:
-            description = RobotDescription(urdf, source='URDF')  # the spawn's one parse
-        except ValueError as exc:
-            raise SpawnError(str(exc).splitlines()[0], 'RESOURCE_PARSE_ERROR') from None
-        name = name or description.name
-        has_control = bool(description.hardware)
-        entity = yield lambda: self._add(description, name, pose, namespace, allow_renaming)
-        cm = None
-        try:
-            if has_control and self._factory is not None:
-                cm = self._factory(entity, self._hardware_factory(entity),
-                                   self._parameters_file(description))
-                entity.controller_manager = cm
-            entity.sensors = make_sensors(entity, self.sensor_settings)
-            if setup is not None:
-                setup(entity)
-        except Exception as exc:  # noqa: B902 - any failure: undo, report one line
-            entity.controller_manager = None
-            if cm is not None and self._release is not None:
-                try:
-                    self._release(cm)
-                except Exception:  # noqa: B902 - the original error is what matters
-                    pass
-            yield lambda: self._remove(entity)
-            text = str(exc).splitlines()[0] if str(exc) else repr(exc)
-            raise SpawnError(text) from None
-        yield lambda: self._activate(entity)
-        return entity
+        return spawn_stages(self, urdf, name, pose, namespace, allow_renaming, setup)
 
-    def _add(self, description, name, pose, namespace, allow_renaming):
-        """Add the robot's bodies to the world (simulation thread)."""
+    def add_entity(self, description, name, pose, namespace, allow_renaming):
+        """
+        Add a robot's bodies to the world; return its :class:`Entity` (simulation thread).
+
+        :raises SpawnError: a taken name or namespace, a description MuJoCo cannot build.
+        """
         from amr_description.sim.urdf_to_mjcf import urdf_to_spec
         if name in self.entities and allow_renaming:
             index = 1
@@ -422,15 +314,15 @@ class Simulation:
         self._rebind()
         return entity
 
-    def _remove(self, entity):
+    def remove_entity(self, entity):
         """Take a (not yet active) entity out of the world (simulation thread)."""
         self.entities.pop(entity.name, None)
         if entity.name in self.world.robots:
             self.world.remove(entity.name)
         self._rebind()
 
-    def _activate(self, entity):
-        """Start stepping the entity's controller manager and calling hooks on it."""
+    def activate_entity(self, entity):
+        """Start stepping the entity's controller manager (simulation thread)."""
         cm = entity.controller_manager
         if cm is not None:
             rate = float(getattr(cm, 'update_rate', IDLE_RATE) or IDLE_RATE)
@@ -447,41 +339,13 @@ class Simulation:
             for system in entity.systems:
                 system.rebind(model, data)
 
-    def _hardware_factory(self, entity):
-        """Return ``(HardwareInfo) -> SystemInterface`` building MujocoSystem for ``entity``."""
-        from amr_description.control.resource_manager import default_hardware_factory
-        from amr_description.sim.mujoco_system import MujocoSystem
-
-        def factory(info):
-            if info.plugin == 'amr_description/MujocoSystem':
-                system = MujocoSystem(self.world.model, self.world.data,
-                                      prefix=entity.robot.prefix)
-                entity.systems.append(system)
-                return system
-            return default_hardware_factory(info)
-        return factory
-
-    def _parameters_file(self, description):
-        """Return the controllers YAML path of a robot (None when there is none)."""
-        import os
-        from amr_description.sim.urdf_to_mjcf import resolve_uri
-        path = self.parameters_file
-        if not path:
-            path = description.mujoco.parameters
-        if not path:
-            return None
-        path = resolve_uri(path)
-        if not os.path.isfile(path):
-            raise ValueError(f'controller parameters file {path!r} not found')
-        return path
-
     # ------------------------------------------------------------------ state changes
     def reset(self):
         """Reset every robot to its spawn pose at rest and the time to 0 s (thread-safe)."""
         def apply():
             self.world.reset()
             self.step_count = 0
-            self._anchor = None
+            self._pacer.reset()
             self._halted = None
             self._warnings_seen = 0
             for listener in self.on_reset:
@@ -492,7 +356,7 @@ class Simulation:
         """Pause or play (thread-safe). Playing after a non-finite halt needs a reset first."""
         def apply():
             self.paused = bool(paused)
-            self._anchor = None
+            self._pacer.reset()
         self.call(apply)
 
     def request_steps(self, steps):
@@ -664,11 +528,11 @@ class Simulation:
                     continue
                 if not self.paused and not self._external:
                     if self.real_time_factor > 0:
-                        self._pace(self.time, self.real_time_factor)
+                        self._pacer.pace(self.time, self.real_time_factor, len(self.active))
                     elif not self.active:
-                        self._pace(self.time, 1.0)  # fast-forward starts with the first entity
+                        self._pacer.pace(self.time, 1.0, 0)  # fast-forward starts with a robot
                     else:
-                        self._anchor = None
+                        self._pacer.reset()
         except Exception as exc:  # noqa: B902 - report instead of a silent thread death
             if self._running:
                 self.thread_error = exc
@@ -677,30 +541,6 @@ class Simulation:
             self._fail_requests()
             for _, event in self._step_waiters:
                 event.set()
-
-    def _pace(self, t, factor):
-        """Sleep so that sim time ``t`` (s) advances at ``factor`` times wall time."""
-        now = time.perf_counter()
-        window = self._rtf_window
-        if window is None or self._anchor is None:
-            self._rtf_window = (now, t)
-        elif now - window[0] >= RTF_WINDOW:
-            achieved = (t - window[1]) / (now - window[0])
-            self._rtf_window = (now, t)
-            if achieved < RTF_SHORTFALL * factor and self.active and not self._rtf_warned:
-                self._rtf_warned = True
-                self.logger.warning(
-                    f'real-time factor achieved {achieved:.2f} < real_time_factor '
-                    f'{factor:g} with {len(self.active)} entities: more robots than this '
-                    'machine simulates in real time')
-        if self._anchor is None:
-            self._anchor = (now, t)
-            return
-        target = self._anchor[0] + (t - self._anchor[1]) / factor
-        if target > now:
-            time.sleep(target - now)
-        elif now - target > 0.25:  # far behind (e.g. a spawn): do not try to catch up
-            self._anchor = (now, t)
 
 
 def _phases(cm):

@@ -1,0 +1,144 @@
+# Copyright 2026 The amr_description Authors
+# Licensed under the Apache License, Version 2.0
+"""
+A spawned robot (:class:`Entity`) and the stages of spawning one (:func:`spawn_stages`).
+
+No rclpy: the controller-manager factory and ``setup`` callbacks given to the
+:class:`~amr_description.sim.simulation.Simulation` bring the ROS side.
+"""
+
+import os
+
+from amr_description.control.resource_manager import default_hardware_factory
+from amr_description.core.robot_description import RobotDescription
+from amr_description.core.ros_names import normalize_namespace
+from amr_description.sim.mujoco_system import MujocoSystem
+from amr_description.sim.sensors.registry import make_sensors
+from amr_description.sim.urdf_to_mjcf import resolve_uri
+
+
+class SpawnError(ValueError):
+    """
+    A refused spawn: one line, and the SpawnEntity result it stands for.
+
+    :ivar code: the name of the ``simulation_interfaces`` result constant:
+        ``'NAME_NOT_UNIQUE'``, ``'NAMESPACE_INVALID'``, ``'RESOURCE_PARSE_ERROR'`` (constants
+        of ``SpawnEntity.Response``) or ``'RESULT_OPERATION_FAILED'`` (of ``Result``).
+    """
+
+    def __init__(self, message, code='RESULT_OPERATION_FAILED'):
+        """Keep the one-line ``message`` and the result ``code`` (see the class docstring)."""
+        super().__init__(message)
+        self.code = code
+
+
+class Entity:
+    """
+    A spawned robot: its world entry, its namespace and its controller manager.
+
+    :ivar name: entity name, unique in the simulation (str).
+    :ivar namespace: ROS namespace, ``''`` or ``'/r1'`` (unique in the simulation).
+    :ivar robot: the :class:`~amr_description.sim.world.Robot` (bodies prefixed ``name/``).
+    :ivar description: the :class:`~amr_description.core.robot_description.RobotDescription`
+        it was spawned from (parsed once; ``description.xml`` is the URDF text).
+    :ivar controller_manager: the controller manager, or None (no ``<ros2_control>``).
+    :ivar systems: the ``MujocoSystem`` hardware components bound to the world.
+    :ivar sensors: its :class:`~amr_description.sim.sensors.base.Sensor` instances, made from
+        its description by the registered sensor factories.
+    :ivar steps_per_update: physics steps between two controller-manager updates (0: none).
+    """
+
+    def __init__(self, name, namespace, robot, description):
+        """Keep the fields (see the class docstring)."""
+        self.name = name
+        self.namespace = namespace
+        self.robot = robot
+        self.description = description
+        self.controller_manager = None
+        self.steps_per_update = 0
+        self.systems = []
+        self.sensors = []
+
+    @property
+    def frame_prefix(self):
+        """Return the TF frame prefix of the entity, ``''`` or ``'r1/'`` (REP 105 fleets)."""
+        return self.namespace[1:] + '/' if self.namespace else ''
+
+
+def spawn_stages(sim, urdf, name='', pose=None, namespace='', allow_renaming=False, setup=None):
+    """
+    Return :meth:`Simulation.spawn` of ``sim`` as a generator (caller must not block).
+
+    Stages: parse the description once, add the robot to the world (simulation thread),
+    create its controller manager, sensors and the caller's ``setup`` (driving thread; on a
+    failure the robot is taken out again), activate it (simulation thread). The generator
+    yields functions to run on the simulation thread and is sent their results (``send``); it
+    returns the :class:`Entity` (``StopIteration.value``). Same arguments and errors as
+    :meth:`Simulation.spawn`; an error of a yielded function must be thrown into the
+    generator.
+    """
+    try:
+        namespace = normalize_namespace(namespace)
+    except ValueError as exc:
+        raise SpawnError(str(exc), 'NAMESPACE_INVALID') from None
+    try:
+        description = RobotDescription(urdf, source='URDF')  # the spawn's one parse
+    except ValueError as exc:
+        raise SpawnError(str(exc).splitlines()[0], 'RESOURCE_PARSE_ERROR') from None
+    name = name or description.name
+    has_control = bool(description.hardware)
+    entity = yield lambda: sim.add_entity(description, name, pose, namespace, allow_renaming)
+    cm = None
+    try:
+        if has_control and sim.controller_manager_factory is not None:
+            cm = sim.controller_manager_factory(
+                entity, hardware_factory(sim.world, entity),
+                parameters_file(sim.parameters_file, description))
+            entity.controller_manager = cm
+        entity.sensors = make_sensors(entity, sim.sensor_settings)
+        if setup is not None:
+            setup(entity)
+    except Exception as exc:  # noqa: B902 - any failure: undo, report one line
+        entity.controller_manager = None
+        if cm is not None and sim.controller_manager_release is not None:
+            try:
+                sim.controller_manager_release(cm)
+            except Exception:  # noqa: B902 - the original error is what matters
+                pass
+        yield lambda: sim.remove_entity(entity)
+        text = str(exc).splitlines()[0] if str(exc) else repr(exc)
+        raise SpawnError(text) from None
+    yield lambda: sim.activate_entity(entity)
+    return entity
+
+
+def hardware_factory(world, entity):
+    """Return ``(HardwareInfo) -> SystemInterface`` building MujocoSystem for ``entity``."""
+
+    def factory(info):
+        if info.plugin == 'amr_description/MujocoSystem':
+            system = MujocoSystem(world.model, world.data,
+                                  prefix=entity.robot.prefix)
+            entity.systems.append(system)
+            return system
+        return default_hardware_factory(info)
+    return factory
+
+
+def parameters_file(default, description):
+    """
+    Return the controllers YAML path of a robot (None when there is none).
+
+    :param default: the simulator's ``parameters_file`` ('' = each description's own).
+    :param description: the robot's RobotDescription (``<mujoco><ros2_control parameters>``).
+    :raises ValueError: the file does not exist.
+    """
+    path = default
+    if not path:
+        path = description.mujoco.parameters
+    if not path:
+        return None
+    path = resolve_uri(path)
+    if not os.path.isfile(path):
+        raise ValueError(f'controller parameters file {path!r} not found')
+    return path
