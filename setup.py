@@ -49,7 +49,7 @@ setup(
             'spawner = amr_description.nodes.spawner:main',
             'teleop_twist_keyboard = amr_description.nodes.teleop_twist_keyboard:main',
             'bringup = amr_description.launch.bringup:main',
-            'drive_square = amr_description.nodes.drive_square:main',
+            'drive_square = amr_description.nodes.drive_square.main:main',
             'physics_report = amr_description.tools.physics_report:main',
             'ros2 = amr_description.cli.main:main',
             'ros2_control_node = amr_description.nodes.ros2_control_node:main',

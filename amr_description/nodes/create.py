@@ -24,6 +24,8 @@ import time
 
 from amr_description.ros import shutdown
 from amr_description.ros.node import Node
+from amr_description.ros.simulation_services import RETRY_PERIOD
+from amr_description.ros.simulation_services import SimulationServices
 from geometry_msgs.msg import PoseStamped
 from rclpy.executors import ExternalShutdownException
 from rclpy.qos import DurabilityPolicy
@@ -32,10 +34,6 @@ from rclpy.qos import ReliabilityPolicy
 from std_msgs.msg import String
 
 DEFAULT_SERVICE = '/mujoco_sim/spawn_entity'
-
-
-CALL_TIMEOUT = 10.0
-"""Seconds to wait for the spawn service's answer before sending the request again."""
 
 
 def build_parser():
@@ -91,7 +89,8 @@ class Create(Node):
         self.opts = opts
         from simulation_interfaces.srv import SpawnEntity
         self._srv_type = SpawnEntity
-        self._client = self.create_client(SpawnEntity, opts.service)
+        self._simulation = SimulationServices(
+            self, lambda until: shutdown.spin(self, until=until), spawn_service=opts.service)
 
     def description(self):
         """
@@ -135,8 +134,7 @@ class Create(Node):
         """Call the spawn service; return (ok, message)."""
         opts = self.opts
         self.get_logger().info(f'Waiting for service {opts.service}...')
-        if not self._client.wait_for_service(
-                timeout_sec=opts.timeout if opts.timeout > 0 else None):
+        if not self._simulation.wait_for_spawn_service(opts.timeout if opts.timeout > 0 else None):
             return False, (f'service {opts.service} not available after {opts.timeout:g} s: '
                            'is mujoco_sim running?')
         request = self._srv_type.Request()
@@ -146,7 +144,9 @@ class Create(Node):
         request.entity_resource.resource_string = urdf
         request.initial_pose = pose_from_rpy(opts.x, opts.y, opts.z, opts.R, opts.P, opts.Y)
         self.get_logger().info('Requested creation of entity.')
-        response, lost_answer = self._call(request)
+        response, lost_answer = self._simulation.spawn(
+            request, timeout=opts.timeout + 30.0 if opts.timeout > 0 else None,
+            repeat=not opts.allow_renaming, on_retry=self._on_retry)
         if lost_answer:
             from amr_description.core.urdf_model import entity_name
             return True, (f'OK creation of entity [{entity_name(opts.name, urdf)}]. (the answer '
@@ -157,65 +157,10 @@ class Create(Node):
             return False, f'Failed request to create entity: {response.result.error_message}'
         return True, f'OK creation of entity [{response.entity_name}].'
 
-    def _call(self, request):
-        """
-        Send ``request``; send it again, from a new client, when no answer came in time.
-
-        A request can be lost when the server has not matched this client's request writer
-        (DDS discovery is not symmetric: the client may see the service first). Seen with
-        fleets of 16-32 robots starting at once: the simulator never received one robot's
-        request, repeated three times from the same client, while new clients were answered.
-        So every :data:`CALL_TIMEOUT` s without an answer the client is replaced (new DDS
-        endpoints, discovered afresh) and the request sent again, until an answer or the
-        deadline (``-timeout`` + 30 s; none when 0). Upstream's spawner repeats its calls for
-        the same reason. With ``-allow_renaming`` the request is never repeated (a lost answer
-        would create a second robot). When a repeated request is refused because the name
-        exists while an earlier one is unanswered, the earlier one created it and its answer
-        was lost.
-
-        :returns: ``(response or None, lost_answer)``; ``lost_answer`` True when the entity
-            was created by an earlier request whose answer was lost (``response`` is then the
-            refusal of the repeated request).
-        """
-        opts = self.opts
-        overall = time.monotonic() + (opts.timeout + 30.0 if opts.timeout > 0 else math.inf)
-        futures = []
-        attempt = 0
-        while True:
-            attempt += 1
-            futures.append(self._client.call_async(request))
-            deadline = overall if opts.allow_renaming else \
-                min(overall, time.monotonic() + CALL_TIMEOUT)
-            shutdown.spin(self, until=lambda: any(f.done() for f in futures) or
-                          time.monotonic() > deadline)
-            answered = [f for f in futures if f.done() and f.result() is not None]
-            if answered:
-                response = answered[0].result()
-                duplicate = response.result.result == self._srv_type.Response.NAME_NOT_UNIQUE
-                if duplicate and answered[0] is not futures[0]:
-                    return self._first_answer(futures[0], response)
-                return response, False
-            if time.monotonic() > overall:
-                return None, False
-            self.get_logger().warning(
-                f'Failed getting a result from calling {opts.service} in {CALL_TIMEOUT:g} s. '
-                f'(Attempt {attempt}.) Sending it again from a new client.')
-            self._client = self.create_client(self._srv_type, opts.service)
-            shutdown.spin(self, until=lambda: self._client.service_is_ready() or
-                          time.monotonic() > overall)
-
-    def _first_answer(self, first, refusal):
-        """
-        Wait a little for the first request's answer after a repeated one found the name taken.
-
-        :returns: ``(first answer, False)``, or ``(refusal, True)`` when none came: the first
-            request created the entity and its answer was lost.
-        """
-        deadline = time.monotonic() + CALL_TIMEOUT
-        shutdown.spin(self, until=lambda: first.done() or time.monotonic() > deadline)
-        if first.done() and first.result() is not None:
-            return first.result(), False
-        return refusal, True
+    def _on_retry(self, attempt):
+        self.get_logger().warning(
+            f'Failed getting a result from calling {self.opts.service} in {RETRY_PERIOD:g} s. '
+            f'(Attempt {attempt}.) Sending it again from a new client.')
 
 
 def main(args=None):

@@ -13,7 +13,8 @@ from amr_description.launch.actions import LaunchError
 from amr_description.launch.actions import Node
 from amr_description.launch.actions import OnProcessExit
 from amr_description.nodes import create
-from amr_description.nodes import drive_square
+from amr_description.nodes.drive_square import driver
+from amr_description.nodes.drive_square import report as drive_report
 from amr_description.tools.benchmark import common
 from amr_description.tools.benchmark import report
 import pytest
@@ -137,10 +138,10 @@ def test_create_accepts_robot_namespace():
 
 
 def test_robot_namespaces():
-    assert drive_square.robot_namespaces(1) == ['']
-    assert drive_square.robot_namespaces(3) == ['r1', 'r2', 'r3']
+    assert driver.robot_namespaces(1) == ['']
+    assert driver.robot_namespaces(3) == ['r1', 'r2', 'r3']
     with pytest.raises(ValueError):
-        drive_square.robot_namespaces(0)
+        driver.robot_namespaces(0)
 
 
 def _square_marks(origin, side=1.0, error=0.0):
@@ -161,7 +162,7 @@ def test_robot_table_one_row_per_robot_and_leg_summary():
     legs = square_course(1.0)
     robots = [('r1', _square_marks((0, 0, 0)), _square_marks((0, 0, 0), error=0.01), 0),
               ('r2', _square_marks((2, 0, 0)), _square_marks((2, 0, 0), error=0.03), 2)]
-    text = drive_square.format_robot_table(legs, robots)
+    text = drive_report.format_robot_table(legs, robots)
     rows = [line.split() for line in text.splitlines() if re.match(r'r\d', line)]
     assert [r[0] for r in rows] == ['r1', 'r2']
     assert float(rows[0][1]) == pytest.approx(0.0, abs=1e-9)
@@ -182,7 +183,7 @@ def test_fleet_plot_draws_every_robot(tmp_path):
                        'truth_path': [m[:2] for m in marks], 'odom_origin': (0.0, 0.0, 0.0),
                        'truth_origin': (x, y, 0.0)})
     path = tmp_path / 'path.png'
-    drive_square.write_fleet_plot(str(path), robots, 1.0)
+    drive_report.write_fleet_plot(str(path), robots, 1.0)
     assert path.read_bytes()[:8] == b'\x89PNG\r\n\x1a\n'
 
 
