@@ -39,7 +39,12 @@ import threading
 
 from amr_description.control import hardware_interface as hi
 from amr_description.control.controller_interface import parameters_from_dict
+from amr_description.control.realtime_loop import PendingSwitch
+from amr_description.control.realtime_loop import RealtimeLoop
 from amr_description.control.resource_manager import ResourceManager
+from amr_description.control.switch_plan import ControllerSpec
+from amr_description.control.switch_plan import plan_switch
+from amr_description.control.switch_plan import Resources
 from amr_description.core import ros_param_file
 from amr_description.ros.node import Node
 
@@ -78,18 +83,7 @@ def _list_value(value):
     return [str(v) for v in value]
 
 
-class _Switch:
-    """A pending switch request, executed by the update thread."""
-
-    def __init__(self, activate, deactivate):
-        self.activate = activate
-        self.deactivate = deactivate
-        self.done = threading.Event()
-        self.ok = False
-        self.message = ''
-
-
-class ControllerManager(Node):
+class ControllerManager(RealtimeLoop, Node):
     """
     The controller manager node (see the module docstring).
 
@@ -606,42 +600,8 @@ class ControllerManager(Node):
             strictness = BEST_EFFORT
         strict = strictness != BEST_EFFORT
         with self._lock:
-            act, deact, problems = [], [], []
-            for name in deactivate:
-                ctrl = self.controllers.get(name)
-                if ctrl is None:
-                    problems.append(f"Could not deactivate controller with name '{name}' "
-                                    'because no controller with this name exists')
-                elif ctrl.lifecycle_state != 'active':
-                    problems.append(f"Controller with name '{name}' can not be deactivated "
-                                    f'since it is not active (state: {ctrl.lifecycle_state})')
-                elif name not in deact:
-                    deact.append(name)
-            claims = {}
-            for name in activate:
-                ctrl = self.controllers.get(name)
-                if ctrl is None:
-                    problems.append(f"Could not activate controller with name '{name}' "
-                                    'because no controller with this name exists')
-                    continue
-                if ctrl.lifecycle_state == 'active':
-                    if name in deact:
-                        act.append(name)  # restart
-                    else:
-                        problems.append(f"Controller with name '{name}' is already active.")
-                    continue
-                if ctrl.lifecycle_state != 'inactive':
-                    problems.append(f"Controller with name '{name}' is not inactive so its "
-                                    f'state can not be changed to active (state: '
-                                    f'{ctrl.lifecycle_state}); configure it first')
-                    continue
-                conflict = self._claim_conflict(ctrl, deact, claims)
-                if conflict:
-                    problems.append(conflict)
-                    continue
-                for iface in ctrl.command_interface_configuration() or []:
-                    claims[iface] = name
-                act.append(name)
+            plan = plan_switch(activate, deactivate, self.specs(), self.resources())
+            act, deact, problems = plan.activate, plan.deactivate, plan.problems
             for problem in problems:
                 log.error(problem) if strict else log.warn(problem)
             if problems and strict:
@@ -660,7 +620,7 @@ class ControllerManager(Node):
                 log.info(f"Deactivating controllers: [ {' '.join(deact)} ]")
             if act:
                 log.info(f"Activating controllers: [ {' '.join(act)} ]")
-            request = _Switch(act, deact)
+            request = PendingSwitch(act, deact)
             request.problems = problems
             self._pending = request
         if not wait:
@@ -676,162 +636,24 @@ class ControllerManager(Node):
                     return False, message
         return request.ok, request.message
 
-    def _claim_conflict(self, ctrl, deactivating, claims):
+    def specs(self):
+        """Return dict name -> :class:`ControllerSpec` of every loaded controller."""
+        specs = {}
+        for name, ctrl in self.controllers.items():
+            state = ctrl.state_interface_configuration()
+            specs[name] = ControllerSpec(
+                name, getattr(ctrl, 'controller_type', ''), ctrl.lifecycle_state,
+                tuple(ctrl.command_interface_configuration() or ()),
+                None if state is None else tuple(state))
+        return specs
+
+    def resources(self):
+        """Return the resource manager's interfaces as a :class:`Resources`."""
         rm = self.resource_manager
-        name = ctrl.get_name()
-        for iface in ctrl.command_interface_configuration() or []:
-            if iface not in rm.command_interfaces:
-                return (f"Could not activate controller '{name}': command interface "
-                        f"'{iface}' does not exist")
-            if not rm.command_interface_available(iface):
-                return (f"Could not activate controller '{name}': command interface "
-                        f"'{iface}' is not available")
-            owner = rm.claimed.get(iface)
-            if owner is not None and owner not in deactivating:
-                return (f"Could not activate controller '{name}': command interface "
-                        f"'{iface}' is already claimed by '{owner}'")
-            if iface in claims:
-                return (f"Could not activate controller '{name}': command interface "
-                        f"'{iface}' is also requested by '{claims[iface]}'")
-        state = ctrl.state_interface_configuration()
-        for iface in (state or []):
-            if iface not in rm.state_interfaces:
-                return (f"Could not activate controller '{name}': state interface "
-                        f"'{iface}' does not exist")
-        return None
-
-    # ----------------------------------------------------------------- realtime side
-    def _deactivate(self, name):
-        ctrl = self.controllers[name]
-        if ctrl.lifecycle_state == 'active':
-            try:
-                ctrl.trigger_deactivate()
-            except Exception:  # noqa: B902 - e.g. context already shut down
-                ctrl.on_deactivate(None)
-        ctrl.release_interfaces()
-        self.resource_manager.release(name)
-
-    def _activate(self, name):
-        rm = self.resource_manager
-        ctrl = self.controllers[name]
-        try:
-            command = rm.claim(name, ctrl.command_interface_configuration() or [])
-        except ValueError as exc:
-            return f"Could not activate controller '{name}': {exc}"
-        wanted = ctrl.state_interface_configuration()
-        names = list(rm.state_interfaces) if wanted is None else wanted
-        state = {n: rm.state_interfaces[n] for n in names if n in rm.state_interfaces}
-        ctrl.assign_interfaces(command, state)
-        ctrl.last_update_time = None
-        self._last_update.pop(name, None)
-        ctrl.trigger_activate()
-        if ctrl.lifecycle_state != 'active':
-            ctrl.release_interfaces()
-            rm.release(name)
-            return (f"After activating, controller '{name}' is in state "
-                    f"'{ctrl.lifecycle_state}', expected 'active'")
-        return None
-
-    def _apply_switch(self, request):
-        errors = []
-        for name in request.deactivate:
-            self._deactivate(name)
-        for name in request.activate:
-            error = self._activate(name)
-            if error:
-                errors.append(error)
-                self.get_logger().error(error)
-        request.ok = not errors
-        if errors:
-            request.message = '; '.join(errors)
-        else:
-            self.get_logger().info('Successfully switched controllers!')
-            request.message = 'Successfully switched controllers!'
-            if request.activate:
-                request.message += f" Activated: [ {' '.join(request.activate)} ]"
-            if request.deactivate:
-                request.message += f" Deactivated: [ {' '.join(request.deactivate)} ]"
-        request.done.set()
-        return True
-
-    def read(self, time, period):
-        """
-        Read every active hardware component (``ResourceManager.read``).
-
-        Errors are logged once per component.
-
-        :param time: current time in seconds (sim time when simulated).
-        :param period: seconds since the previous read.
-        """
-        if self._destroyed:
-            return
-        with self._lock:
-            for failed in self.resource_manager.read(time, period):
-                self.get_logger().error(f"Error in read of hardware component '{failed}'",
-                                        once=True)
-
-    def update(self, time, period):
-        """
-        Apply a pending switch, then update the active controllers in load order.
-
-        A controller whose ``update_rate`` parameter is below the manager's is updated only
-        when ``1/update_rate`` seconds have passed since its last update (its ``period`` is
-        then that time), as upstream.
-
-        :param time: current time in seconds (sim time when simulated).
-        :param period: seconds since the previous update.
-        """
-        if self._destroyed or not self.context.ok():
-            return
-        switched = False
-        with self._lock:
-            if self._pending is not None:
-                request, self._pending = self._pending, None
-                switched = self._apply_switch(request)
-            log = self.get_logger()
-            for name, ctrl in list(self.controllers.items()):
-                if ctrl.lifecycle_state != 'active':
-                    continue
-                ctrl_period = period
-                rate = ctrl.update_rate
-                if 0 < rate < self.update_rate:
-                    last = self._last_update.get(name)
-                    if last is not None:
-                        ctrl_period = time - last
-                        if ctrl_period < 1.0 / rate - 0.5 / self.update_rate:
-                            continue
-                self._last_update[name] = time
-                try:
-                    ok = ctrl.update(time, ctrl_period)
-                except Exception as exc:  # noqa: B902 - a faulty controller must not stop us
-                    ok = False
-                    log.error(f"Exception in update of controller '{name}': {exc}")
-                if not ok:
-                    log.error(f"Error in update of controller '{name}': deactivating it")
-                    self._deactivate(name)
-                    switched = True
-        if switched:
-            self._publish_activity()
-
-    def write(self, time, period):
-        """
-        Write every active hardware component (``ResourceManager.write``).
-
-        :param time: current time in seconds (sim time when simulated).
-        :param period: seconds since the previous write.
-        """
-        if self._destroyed:
-            return
-        with self._lock:
-            for failed in self.resource_manager.write(time, period):
-                self.get_logger().error(f"Error in write of hardware component '{failed}'",
-                                        once=True)
-
-    def cycle(self, time, period):
-        """Run :meth:`read`, :meth:`update` and :meth:`write` (one control cycle)."""
-        self.read(time, period)
-        self.update(time, period)
-        self.write(time, period)
+        return Resources(
+            frozenset(rm.command_interfaces),
+            frozenset(n for n in rm.command_interfaces if rm.command_interface_available(n)),
+            dict(rm.claimed), frozenset(rm.state_interfaces))
 
     def shutdown(self):
         """Deactivate every controller, destroy their nodes and shut the hardware down."""
