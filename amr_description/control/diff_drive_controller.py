@@ -34,6 +34,14 @@ import math
 
 from amr_description.control.controller_interface import ControllerInterface
 from amr_description.control.controller_interface import TransitionCallbackReturn
+from amr_description.control.parameter_table import at_least_one
+from amr_description.control.parameter_table import attribute
+from amr_description.control.parameter_table import not_empty
+from amr_description.control.parameter_table import not_negative
+from amr_description.control.parameter_table import Parameter
+from amr_description.control.parameter_table import ParameterTable
+from amr_description.control.parameter_table import positive
+from amr_description.control.parameter_table import size
 from amr_description.core.odometry import Odometry
 from amr_description.core.speed_limiter import PARAMETER_NAMES as LIMIT_NAMES
 from amr_description.core.speed_limiter import SpeedLimiter
@@ -56,45 +64,57 @@ TF_QOS = QoSProfile(depth=100, history=HistoryPolicy.KEEP_LAST,
                     reliability=ReliabilityPolicy.RELIABLE,
                     durability=DurabilityPolicy.VOLATILE)
 
-NAN = math.nan
+PARAMETERS = ParameterTable('DiffDriveParameters', [
+    Parameter('left_wheel_names', [''], 'Names of the joints of the left-side wheels',
+              not_empty),
+    Parameter('right_wheel_names', [''], 'Names of the joints of the right-side wheels',
+              not_empty),
+    Parameter('wheel_separation', 0.0, 'Distance between the left and right wheels (m); a '
+              'wrong value makes the robot turn more or less than commanded', positive),
+    Parameter('wheel_radius', 0.0, 'Wheel radius (m), converting linear speed to wheel '
+              'rotation; a wrong value makes the robot faster or slower than commanded',
+              positive),
+    Parameter('wheel_separation_multiplier', 1.0, 'Correction factor of wheel_separation',
+              positive),
+    Parameter('left_wheel_radius_multiplier', 1.0,
+              'Correction factor of the left wheel radius', positive),
+    Parameter('right_wheel_radius_multiplier', 1.0,
+              'Correction factor of the right wheel radius', positive),
+    Parameter('tf_frame_prefix_enable', True, 'Prefix the odometry frames with tf_frame_prefix'),
+    Parameter('tf_frame_prefix', '', 'Prefix of the odometry frames; empty: the node namespace'),
+    Parameter('odom_frame_id', 'odom', 'Frame of the odometry (parent of the published TF)'),
+    Parameter('base_frame_id', 'base_link',
+              'Frame of the robot base (child of the published TF)'),
+    Parameter('pose_covariance_diagonal', [0.0] * 6, 'Diagonal of the pose covariance of the '
+              'odometry message (x, y, z, rx, ry, rz)', size(6)),
+    Parameter('twist_covariance_diagonal', [0.0] * 6, 'Diagonal of the twist covariance of '
+              'the odometry message (x, y, z, rx, ry, rz)', size(6)),
+    Parameter('open_loop', False,
+              'Integrate the odometry from the commands, not the wheel states'),
+    Parameter('position_feedback', True,
+              'Compute the odometry from wheel positions (true) or velocities (false)'),
+    Parameter('enable_odom_tf', True, 'Publish the odometry as a transform on /tf'),
+    Parameter('cmd_vel_timeout', 0.5, 'Time (s) after the last command before the robot is '
+              'stopped; 0 disables', not_negative),
+    Parameter('publish_limited_velocity', False,
+              'Publish the limited command on ~/cmd_vel_out'),
+    Parameter('velocity_rolling_window_size', 10, 'Number of samples of the rolling mean of '
+              'the odometry twist', at_least_one),
+    Parameter('publish_rate', 50.0, 'Rate of the odometry and TF messages (Hz)', positive),
+] + [Parameter(f'{channel}.{limit}', math.nan, f'Limit {limit} of {channel}; NaN: no limit')
+     for channel in ('linear.x', 'angular.z') for limit in LIMIT_NAMES])
+"""The parameters of upstream's diff_drive_controller (jazzy), names and defaults as its
+generate_parameter_library YAML, with the checks its ``on_configure`` makes."""
 
 
 class DiffDriveController(ControllerInterface):
     """Differential-drive controller (see the module docstring)."""
 
     def on_init(self):
-        """Declare every upstream parameter with its default; returns True."""
-        d = self.auto_declare
-        d('left_wheel_names', [''], 'Names of the joints of the left-side wheels')
-        d('right_wheel_names', [''], 'Names of the joints of the right-side wheels')
-        d('wheel_separation', 0.0, 'Distance between the left and right wheels (m); a wrong '
-          'value makes the robot turn more or less than commanded')
-        d('wheel_radius', 0.0, 'Wheel radius (m), converting linear speed to wheel rotation; '
-          'a wrong value makes the robot faster or slower than commanded')
-        d('wheel_separation_multiplier', 1.0, 'Correction factor of wheel_separation')
-        d('left_wheel_radius_multiplier', 1.0, 'Correction factor of the left wheel radius')
-        d('right_wheel_radius_multiplier', 1.0, 'Correction factor of the right wheel radius')
-        d('tf_frame_prefix_enable', True, 'Prefix the odometry frames with tf_frame_prefix')
-        d('tf_frame_prefix', '', 'Prefix of the odometry frames; empty: the node namespace')
-        d('odom_frame_id', 'odom', 'Frame of the odometry (parent of the published TF)')
-        d('base_frame_id', 'base_link', 'Frame of the robot base (child of the published TF)')
-        d('pose_covariance_diagonal', [0.0] * 6,
-          'Diagonal of the pose covariance of the odometry message (x, y, z, rx, ry, rz)')
-        d('twist_covariance_diagonal', [0.0] * 6,
-          'Diagonal of the twist covariance of the odometry message (x, y, z, rx, ry, rz)')
-        d('open_loop', False, 'Integrate the odometry from the commands, not the wheel states')
-        d('position_feedback', True, 'Compute the odometry from wheel positions (true) or '
-          'velocities (false)')
-        d('enable_odom_tf', True, 'Publish the odometry as a transform on /tf')
-        d('cmd_vel_timeout', 0.5, 'Time (s) after the last command before the robot is '
-          'stopped; 0 disables')
-        d('publish_limited_velocity', False, 'Publish the limited command on ~/cmd_vel_out')
-        d('velocity_rolling_window_size', 10, 'Number of samples of the rolling mean of the '
-          'odometry twist')
-        d('publish_rate', 50.0, 'Rate of the odometry and TF messages (Hz)')
-        for channel in ('linear.x', 'angular.z'):
-            for limit in LIMIT_NAMES:
-                d(f'{channel}.{limit}', NAN, f'Limit {limit} of {channel}; NaN: no limit')
+        """Declare every upstream parameter with its default (:data:`PARAMETERS`)."""
+        PARAMETERS.declare(self)
+        self.params = None  # the frozen values, read by on_configure
+        self.wheel_names = ([], [])
         self._odom_pub = self._tf_pub = self._limited_pub = self._cmd_sub = None
         self._last_cmd = None
         self._subscriber_active = False
@@ -106,100 +126,78 @@ class DiffDriveController(ControllerInterface):
 
     # ------------------------------------------------------------------ configure
     def _read_params(self):
-        p = self.param
-        cfg = {
-            'left': [n for n in p('left_wheel_names', ['']) if n],
-            'right': [n for n in p('right_wheel_names', ['']) if n],
-        }
-        if not cfg['left']:
-            raise ValueError("parameter 'left_wheel_names' is empty: wheel names are required")
-        if not cfg['right']:
-            raise ValueError("parameter 'right_wheel_names' is empty: wheel names are required")
-        if len(cfg['left']) != len(cfg['right']):
+        """
+        Return the validated parameters and what follows from them.
+
+        :returns: ``(params, wheels, limiters, frames)``: the frozen :data:`PARAMETERS`
+            values; ``(left, right)`` wheel joint names; the ``linear.x`` and ``angular.z``
+            :class:`SpeedLimiter`; ``(odom frame, base frame)`` with the TF prefix.
+        :raises ValueError: one line naming the parameter.
+        """
+        params = PARAMETERS.read(self)
+        left = [n for n in params.left_wheel_names if n]
+        right = [n for n in params.right_wheel_names if n]
+        if len(left) != len(right):
             raise ValueError(
-                f"The number of left wheels [{len(cfg['left'])}] and the number of right "
-                f"wheels [{len(cfg['right'])}] are different")
-        for name in ('wheel_separation', 'wheel_radius', 'wheel_separation_multiplier',
-                     'left_wheel_radius_multiplier', 'right_wheel_radius_multiplier',
-                     'publish_rate'):
-            value = p(name, 0.0)
-            if not value > 0.0:
-                raise ValueError(f"parameter '{name}' must be > 0, got {value}")
-            cfg[name] = value
-        for name in ('pose_covariance_diagonal', 'twist_covariance_diagonal'):
-            values = p(name, [0.0] * 6)
-            if len(values) != 6:
-                raise ValueError(f"parameter '{name}' must have 6 elements, got {len(values)}")
-            cfg[name] = values
-        window = p('velocity_rolling_window_size', 10)
-        if window < 1:
-            raise ValueError(
-                f"parameter 'velocity_rolling_window_size' must be >= 1, got {window}")
-        cfg['window'] = window
-        timeout = p('cmd_vel_timeout', 0.5)
-        if timeout < 0.0:
-            raise ValueError(f"parameter 'cmd_vel_timeout' must be >= 0, got {timeout}")
-        cfg['cmd_vel_timeout'] = timeout
-        for name in ('open_loop', 'position_feedback', 'enable_odom_tf',
-                     'publish_limited_velocity', 'tf_frame_prefix_enable'):
-            cfg[name] = p(name, False)
+                f'The number of left wheels [{len(left)}] and the number of right '
+                f'wheels [{len(right)}] are different')
+        limiters = []
         for channel in ('linear.x', 'angular.z'):
-            limits = {lim: p(f'{channel}.{lim}', NAN) for lim in LIMIT_NAMES}
+            limits = {lim: getattr(params, attribute(f'{channel}.{lim}')) for lim in LIMIT_NAMES}
             try:
-                cfg[channel] = SpeedLimiter(**limits)
+                limiters.append(SpeedLimiter(**limits))
             except ValueError as exc:
                 raise ValueError(f'parameter {channel}.{exc}') from None
         prefix = ''
-        if cfg['tf_frame_prefix_enable']:
-            prefix = p('tf_frame_prefix', '') or self.get_namespace()
-            prefix = prefix.lstrip('/')
+        if params.tf_frame_prefix_enable:
+            prefix = (params.tf_frame_prefix or self.get_namespace()).lstrip('/')
             if prefix and not prefix.endswith('/'):
                 prefix += '/'
-        cfg['odom_frame'] = prefix + p('odom_frame_id', 'odom')
-        cfg['base_frame'] = prefix + p('base_frame_id', 'base_link')
-        return cfg
+        frames = (prefix + params.odom_frame_id, prefix + params.base_frame_id)
+        return params, (left, right), tuple(limiters), frames
 
     def on_configure(self, state):
         """Validate parameters, create odometry, limiters, publishers and the subscriber."""
         try:
-            cfg = self._read_params()
+            params, self.wheel_names, self._limiters, frames = self._read_params()
         except ValueError as exc:
             self.get_logger().error(str(exc))
             return TransitionCallbackReturn.FAILURE
-        self.cfg = cfg
+        self.params = params
+        self.odom_frame, self.base_frame = frames
         self.odometry = Odometry(
-            cfg['wheel_separation'] * cfg['wheel_separation_multiplier'],
-            cfg['wheel_radius'] * cfg['left_wheel_radius_multiplier'],
-            cfg['wheel_radius'] * cfg['right_wheel_radius_multiplier'], cfg['window'])
-        self._limiters = (cfg['linear.x'], cfg['angular.z'])
-        self._cmd_vel_timeout = cfg['cmd_vel_timeout']
-        self._open_loop = cfg['open_loop']
-        self._position_feedback = cfg['position_feedback']
-        self._publish_period = 1.0 / cfg['publish_rate']
+            params.wheel_separation * params.wheel_separation_multiplier,
+            params.wheel_radius * params.left_wheel_radius_multiplier,
+            params.wheel_radius * params.right_wheel_radius_multiplier,
+            params.velocity_rolling_window_size)
+        self._cmd_vel_timeout = params.cmd_vel_timeout
+        self._open_loop = params.open_loop
+        self._position_feedback = params.position_feedback
+        self._publish_period = 1.0 / params.publish_rate
         self._reset_buffers()
         qos = QoSProfile(depth=10)
         if self._odom_pub is None:
             self._odom_pub = self.create_publisher(OdometryMsg, '~/odom', qos)
-        if cfg['enable_odom_tf'] and self._tf_pub is None:
+        if params.enable_odom_tf and self._tf_pub is None:
             self._tf_pub = self.create_publisher(TFMessage, '/tf', TF_QOS)
-        if cfg['publish_limited_velocity'] and self._limited_pub is None:
+        if params.publish_limited_velocity and self._limited_pub is None:
             self._limited_pub = self.create_publisher(TwistStamped, '~/cmd_vel_out', qos)
         if self._cmd_sub is None:
             self._cmd_sub = self.create_subscription(
                 TwistStamped, '~/cmd_vel', self._on_cmd_vel, qos)
-        self._build_messages(cfg)
+        self._build_messages(params)
         return TransitionCallbackReturn.SUCCESS
 
-    def _build_messages(self, cfg):
+    def _build_messages(self, params):
         """Create the Odometry and TF messages reused by every publication."""
         msg = OdometryMsg()
-        msg.header.frame_id = cfg['odom_frame']
-        msg.child_frame_id = cfg['base_frame']
+        msg.header.frame_id = self.odom_frame
+        msg.child_frame_id = self.base_frame
         pose_cov = [0.0] * 36
         twist_cov = [0.0] * 36
         for i in range(6):
-            pose_cov[7 * i] = cfg['pose_covariance_diagonal'][i]
-            twist_cov[7 * i] = cfg['twist_covariance_diagonal'][i]
+            pose_cov[7 * i] = params.pose_covariance_diagonal[i]
+            twist_cov[7 * i] = params.twist_covariance_diagonal[i]
         msg.pose.covariance = pose_cov
         msg.twist.covariance = twist_cov
         self._odom_msg = msg
@@ -209,10 +207,10 @@ class DiffDriveController(ControllerInterface):
         self._odom_linear = msg.twist.twist.linear
         self._odom_angular = msg.twist.twist.angular
         self._tf_msg = None
-        if self._tf_pub is not None and cfg['enable_odom_tf']:
+        if self._tf_pub is not None and params.enable_odom_tf:
             tf = TransformStamped()
-            tf.header.frame_id = cfg['odom_frame']
-            tf.child_frame_id = cfg['base_frame']
+            tf.header.frame_id = self.odom_frame
+            tf.child_frame_id = self.base_frame
             self._tf_msg = TFMessage(transforms=[tf])
             self._tf_stamp = tf.header.stamp
             self._tf_translation = tf.transform.translation
@@ -233,33 +231,30 @@ class DiffDriveController(ControllerInterface):
     # ------------------------------------------------------------------ interfaces
     def command_interface_configuration(self):
         """Return ``<wheel>/velocity`` for every left then right wheel."""
-        cfg = getattr(self, 'cfg', None)
-        if cfg is None:
+        if self.params is None:
             return []
-        return [f'{w}/velocity' for w in cfg['left'] + cfg['right']]
+        return [f'{w}/velocity' for w in self.wheel_names[0] + self.wheel_names[1]]
 
     def state_interface_configuration(self):
         """Return ``<wheel>/position`` (or ``/velocity`` without position feedback)."""
-        cfg = getattr(self, 'cfg', None)
-        if cfg is None:
+        if self.params is None:
             return []
-        iface = 'position' if cfg['position_feedback'] else 'velocity'
-        return [f'{w}/{iface}' for w in cfg['left'] + cfg['right']]
+        iface = 'position' if self.params.position_feedback else 'velocity'
+        return [f'{w}/{iface}' for w in self.wheel_names[0] + self.wheel_names[1]]
 
     def on_activate(self, state):
         """Look up the wheel handles; fails naming every wheel without its interfaces."""
-        cfg = self.cfg
-        iface = 'position' if cfg['position_feedback'] else 'velocity'
+        iface = 'position' if self.params.position_feedback else 'velocity'
         missing = []
         sides = []
-        for side in ('left', 'right'):
+        for side in self.wheel_names:
             wheels = []
-            for wheel in cfg[side]:
+            for wheel in side:
                 cmd = self.command_interfaces.get(f'{wheel}/velocity')
                 fb = self.state_interfaces.get(f'{wheel}/{iface}')
                 if cmd is None:
                     missing.append(f'{wheel}/velocity (command)')
-                if fb is None and not cfg['open_loop']:
+                if fb is None and not self.params.open_loop:
                     missing.append(f'{wheel}/{iface} (state)')
                 wheels.append((cmd, fb))
             sides.append(wheels)
@@ -309,7 +304,7 @@ class DiffDriveController(ControllerInterface):
                          'time, this message will only be shown once')
             stamp = now
         age = now - stamp
-        timeout = self.cfg['cmd_vel_timeout']
+        timeout = self.params.cmd_vel_timeout
         if timeout != 0.0 and age >= timeout:
             log.warn(f'Ignoring the received message (timestamp {stamp:.10f}) because it is '
                      f'older than the current time by {age:.10f} seconds, which exceeds the '
@@ -361,7 +356,7 @@ class DiffDriveController(ControllerInterface):
         if self._limited_pub is not None:
             out = TwistStamped()
             out.header.stamp = time_to_msg(time)
-            out.header.frame_id = self.cfg['base_frame']
+            out.header.frame_id = self.self.base_frame
             out.twist.linear.x = linear
             out.twist.angular.z = angular
             self._limited_pub.publish(out)
@@ -377,14 +372,13 @@ class DiffDriveController(ControllerInterface):
 
     def _report_nan_feedback(self):
         """Log the first NaN wheel state (left side first); returns True when one exists."""
-        cfg = self.cfg
-        for side_name, side in zip(('left', 'right'), self._feedback):
+        for side_name, names, side in zip(('left', 'right'), self.wheel_names, self._feedback):
             for index, handle in enumerate(side):
                 if math.isnan(handle.value):
-                    kind = 'position' if cfg['position_feedback'] else 'velocity'
+                    kind = 'position' if self.params.position_feedback else 'velocity'
                     self.get_logger().error(
                         f'Either the left or right wheel {kind} is invalid for index '
-                        f'[{index}] ({side_name} wheel {cfg[side_name][index]})')
+                        f'[{index}] ({side_name} wheel {names[index]})')
                     return True
         return False
 

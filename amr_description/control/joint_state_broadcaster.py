@@ -24,6 +24,8 @@ import xml.etree.ElementTree as ET
 
 from amr_description.control.controller_interface import ControllerInterface
 from amr_description.control.controller_interface import TransitionCallbackReturn
+from amr_description.control.parameter_table import Parameter
+from amr_description.control.parameter_table import ParameterTable
 from amr_description.ros.stamps import has_subscribers
 from amr_description.ros.stamps import set_stamp
 from rclpy.qos import QoSProfile
@@ -31,25 +33,25 @@ from sensor_msgs.msg import JointState
 
 FIELDS = ('position', 'velocity', 'effort')
 
+PARAMETERS = ParameterTable('JointStateBroadcasterParameters', [
+    Parameter('joints', [''], 'Joints to publish; empty: every joint with state interfaces'),
+    Parameter('interfaces', [''], 'State interfaces to publish; empty: all'),
+    Parameter('extra_joints', [''], 'Joints published with zero state, e.g. passive joints'),
+    Parameter('use_local_topics', False, 'Publish on ~/joint_states instead of /joint_states'),
+] + [Parameter(f'map_interface_to_joint_state.{field}', field,
+               f'State interface published as the JointState {field}') for field in FIELDS] + [
+    Parameter('use_urdf_to_filter', True, 'Publish only the joints of the robot description'),
+    Parameter('frame_id', 'base_link', 'frame_id of the published messages'),
+])
+"""The parameters of upstream's joint_state_broadcaster (jazzy), names and defaults."""
+
 
 class JointStateBroadcaster(ControllerInterface):
     """Broadcast joint states of the robot (see the module docstring)."""
 
     def on_init(self):
         """Declare the upstream parameters; returns True."""
-        self.auto_declare('joints', [''], 'Joints to publish; empty: every joint with state '
-                          'interfaces')
-        self.auto_declare('interfaces', [''], 'State interfaces to publish; empty: all')
-        self.auto_declare('extra_joints', [''], 'Joints published with zero state, e.g. '
-                          'passive joints')
-        self.auto_declare('use_local_topics', False, 'Publish on ~/joint_states instead of '
-                          '/joint_states')
-        for field in FIELDS:
-            self.auto_declare(f'map_interface_to_joint_state.{field}', field,
-                              f'State interface published as the JointState {field}')
-        self.auto_declare('use_urdf_to_filter', True, 'Publish only the joints of the robot '
-                          'description')
-        self.auto_declare('frame_id', 'base_link', 'frame_id of the published messages')
+        PARAMETERS.declare(self)
         self._publisher = None
         self._rows = []
         self._msg = None
