@@ -1,0 +1,161 @@
+# Copyright 2026 The amr_description Authors
+# Licensed under the Apache License, Version 2.0
+"""
+What every display shares: the frame manager (TF buffer, fixed frame, time) and rates.
+
+Times are seconds; ``time.monotonic()`` for rates and page refreshes, sim time (or wall time
+without ``/clock``) for stamps.
+"""
+
+import collections
+import time
+
+from amr_description.core.tf_buffer import TransformBuffer
+from amr_description.core.tf_buffer import TransformException
+import numpy as np
+from rclpy.qos import DurabilityPolicy
+from rclpy.qos import QoSProfile
+from rosgraph_msgs.msg import Clock as ClockMsg
+from tf2_msgs.msg import TFMessage
+
+RATE_WINDOW = 2.0
+"""Seconds (wall) over which topic rates and the real-time factor are measured."""
+
+POSE_TOLERANCE = 1e-5
+"""Largest change of a pose matrix entry (m, or rotation entry) not sent to the page."""
+
+
+def stamp_seconds(header):
+    """Return the seconds of a ``std_msgs/Header`` stamp."""
+    return header.stamp.sec + header.stamp.nanosec * 1e-9
+
+
+def moved(last, T, tolerance):
+    """Return True when ``last`` is None or a 4x4 pose entry differs by more than tolerance."""
+    return last is None or float(np.max(np.abs(last - T))) > tolerance
+
+
+class Rate:
+    """Arrival rate of a topic over the last :data:`RATE_WINDOW` seconds (wall clock)."""
+
+    def __init__(self):
+        """Start with no arrival."""
+        self.times = collections.deque()
+
+    def tick(self, now):
+        """Count one arrival at ``now`` (monotonic s)."""
+        self.times.append(now)
+
+    def hz(self, now):
+        """Return the rate (Hz) at ``now``; 0 with fewer than two arrivals in the window."""
+        while self.times and now - self.times[0] > RATE_WINDOW:
+            self.times.popleft()
+        if len(self.times) < 2:
+            return 0.0
+        return (len(self.times) - 1) / max(self.times[-1] - self.times[0], 1e-9)
+
+
+class FrameManager:
+    """
+    The viewer's TF buffer from ``/tf`` and ``/tf_static``, its fixed frame and its time.
+
+    A backward jump of ``/clock`` (a reset simulation) clears the buffer, as tf2's listener.
+
+    :param node: the viewer node (subscriptions, logger).
+    :ivar buffer: the :class:`~amr_description.core.tf_buffer.TransformBuffer`.
+    :ivar sim_time: the last ``/clock`` time (s), or None.
+    :ivar clock_samples: ``(wall, sim)`` pairs of the last :data:`RATE_WINDOW` s.
+    :ivar rates: ``{'/clock': Rate, '/tf': Rate}``.
+    """
+
+    def __init__(self, node):
+        """Subscribe ``/tf``, ``/tf_static`` (transient local) and ``/clock``."""
+        self.node = node
+        self.buffer = TransformBuffer()
+        self.sim_time = None
+        self.clock_samples = collections.deque()
+        self.rates = {'/clock': Rate(), '/tf': Rate()}
+        static_qos = QoSProfile(depth=100, durability=DurabilityPolicy.TRANSIENT_LOCAL)
+        node.create_subscription(TFMessage, '/tf', self._on_tf, 100)
+        node.create_subscription(TFMessage, '/tf_static', self._on_tf_static, static_qos)
+        node.create_subscription(ClockMsg, '/clock', self._on_clock, 10)
+
+    def _store(self, msg, static):
+        for t in msg.transforms:
+            tr, q = t.transform.translation, t.transform.rotation
+            try:
+                self.buffer.set_transform(t.header.frame_id, t.child_frame_id,
+                                          stamp_seconds(t.header), (tr.x, tr.y, tr.z),
+                                          (q.x, q.y, q.z, q.w), static=static)
+            except ValueError as exc:
+                self.node.get_logger().warning(f"{'/tf_static' if static else '/tf'}: {exc}",
+                                               throttle_duration_sec=5.0)
+
+    def _on_tf(self, msg):
+        self.rates['/tf'].tick(time.monotonic())
+        self._store(msg, False)
+
+    def _on_tf_static(self, msg):
+        self._store(msg, True)
+
+    def _on_clock(self, msg):
+        now = time.monotonic()
+        self.rates['/clock'].tick(now)
+        sim = msg.clock.sec + msg.clock.nanosec * 1e-9
+        if self.sim_time is not None and sim < self.sim_time:
+            self.clock_samples.clear()  # the simulation was reset
+            self.buffer.clear()
+        self.sim_time = sim
+        self.clock_samples.append((now, sim))
+        while self.clock_samples and now - self.clock_samples[0][0] > RATE_WINDOW:
+            self.clock_samples.popleft()
+
+
+class DrawContext:
+    """
+    One scene update: the fixed frame and the poses looked up in it so far.
+
+    :param frames: the :class:`FrameManager`.
+    :param fixed: the fixed frame of this update.
+    :param note: why it differs from the one asked for ('' when it does not).
+    :ivar missing: frames a display could not place (for the status).
+    """
+
+    def __init__(self, frames, fixed, note=''):
+        """Start with no pose looked up."""
+        self.frames = frames
+        self.fixed = fixed
+        self.note = note
+        self.missing = []
+        self._poses = {}
+
+    def pose(self, frame):
+        """Return the pose of ``frame`` in the fixed frame (4x4) or None, looked up once."""
+        if frame not in self._poses:
+            try:
+                self._poses[frame] = self.frames.buffer.lookup(self.fixed, frame)[0]
+            except TransformException:
+                self._poses[frame] = None
+        return self._poses[frame]
+
+
+class Display:
+    """
+    A display of the viewer: controls on the page, subscriptions, drawing.
+
+    :param node: the viewer node (subscriptions, parameters, logger).
+    :param server: the viser server (``scene``, ``gui``).
+    :param frames: the shared :class:`FrameManager`.
+    """
+
+    def __init__(self, node, server, frames):
+        """Keep the shared parts; a subclass subscribes here."""
+        self.node = node
+        self.server = server
+        self.frames = frames
+
+    def build(self, gui):
+        """Add this display's controls to the page (in the panel the viewer opened)."""
+
+    def draw(self, context):
+        """Bring the scene up to date for one :class:`DrawContext` (inside the batch)."""

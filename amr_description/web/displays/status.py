@@ -1,0 +1,95 @@
+# Copyright 2026 The amr_description Authors
+# Licensed under the Apache License, Version 2.0
+"""
+Status: what RViz's status panel and time panel say, as one text on the page.
+
+Description errors, the fixed frame (and why another is shown), frames without a transform,
+sim time and real-time factor from ``/clock``, and the rates of ``/clock``, ``/joint_states``
+(as remapped), the first odometry topic and ``/tf``. Refreshed every :data:`PERIOD` s, and at
+once when a robot description arrives.
+"""
+
+import time
+
+from amr_description.web.displays.base import Display
+from amr_description.web.displays.base import Rate
+from amr_description.web.displays.base import RATE_WINDOW
+from rclpy.qos import qos_profile_sensor_data
+from sensor_msgs.msg import JointState
+
+PERIOD = 0.5
+"""Seconds (wall) between two refreshes of the text."""
+
+
+class StatusDisplay(Display):
+    """
+    The status text.
+
+    :param robot_model: the :class:`~amr_description.web.displays.robot_model.
+        RobotModelDisplay` (its robots, errors and topics).
+    :param trails: the :class:`~amr_description.web.displays.trails.TrailsDisplay` (the rate
+        of its first topic).
+    """
+
+    def __init__(self, node, server, frames, robot_model, trails):
+        """Count ``/joint_states`` (taken raw, never converted to a Python message)."""
+        super().__init__(node, server, frames)
+        self._robot_model = robot_model
+        self._trails = trails
+        self._joint_states_rate = Rate()
+        subscription = node.create_subscription(
+            JointState, '/joint_states',
+            lambda msg: self._joint_states_rate.tick(time.monotonic()),
+            qos_profile_sensor_data, raw=True)
+        self.joint_states = subscription.topic_name  # as remapped
+        self._next = 0.0
+
+    def build(self, gui):
+        """Add the status text (at the top of the panel)."""
+        self._text = gui.add_markdown('Waiting for data...')
+
+    def rates(self):
+        """Return ``[(topic, Rate)]`` in the order shown."""
+        rates = [('/clock', self.frames.rates['/clock']),
+                 (self.joint_states, self._joint_states_rate)]
+        if self._trails.rated_topic is not None:
+            rates.append((self._trails.rated_topic, self._trails.rate))
+        return rates + [('/tf', self.frames.rates['/tf'])]
+
+    def draw(self, context):
+        """Refresh the text every :data:`PERIOD` s, or at once after a description came."""
+        now = time.monotonic()
+        if now < self._next and not self._robot_model.changed:
+            return
+        self._robot_model.changed = False
+        self._next = now + PERIOD
+        self._text.content = '\n\n'.join(self._lines(context, now))
+
+    def _lines(self, context, now):
+        robot_model, frames = self._robot_model, self.frames
+        lines = [f'**Robot description error** ({topic}): {error}'
+                 for topic, error in robot_model.errors.items()]
+        if not robot_model.robots:
+            lines.append('Waiting for ' + ', '.join(f'`{t}`' for t in robot_model.topics)
+                         + '...')
+        lines.append(f'Fixed Frame: **{context.fixed}**'
+                     + (f' ({context.note})' if context.note else ''))
+        missing = sorted(set(context.missing))
+        if missing and robot_model.robots:
+            lines.append(f'No transform to {", ".join(missing[:4])}'
+                         + (' ...' if len(missing) > 4 else ''))
+        samples = frames.clock_samples
+        running = bool(samples) and now - samples[-1][0] < RATE_WINDOW
+        if frames.sim_time is not None and running:
+            rtf = ''
+            if len(samples) >= 2:
+                (w0, s0), (w1, s1) = samples[0], samples[-1]
+                if w1 > w0:
+                    rtf = f', real-time factor **{(s1 - s0) / (w1 - w0):.2f}**'
+            lines.append(f'Sim time **{frames.sim_time:.2f} s**{rtf}')
+        elif frames.sim_time is not None:
+            lines.append(f'Sim time **{frames.sim_time:.2f} s** (paused or stopped)')
+        else:
+            lines.append('No `/clock`: wall time')
+        lines.append(' · '.join(f'`{name}` {rate.hz(now):.1f} Hz' for name, rate in self.rates()))
+        return lines

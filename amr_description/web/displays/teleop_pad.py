@@ -1,0 +1,97 @@
+# Copyright 2026 The amr_description Authors
+# Licensed under the Apache License, Version 2.0
+"""
+Teleop pad (no RViz peer): drive the robot from the page.
+
+Hold a button, or a key while the page has focus (arrows or ``I J L`` and ``K`` to stop; ``,``
+is not available to page hotkeys), to publish ``geometry_msgs/TwistStamped`` on
+``cmd_vel_topic`` at :data:`RATE` Hz, stamped with the node clock (``use_sim_time`` aware),
+``header.frame_id`` = ``frame_id``; one zero twist on release. Dead-man
+(:mod:`amr_description.core.teleop_pad`): a control that the page stops refreshing (released,
+page closed, focus lost, connection dropped) is released within :data:`BUTTON_HOLD` s
+(buttons) or :data:`KEY_HOLD` s (keys, which repeat only after the keyboard's auto-repeat
+delay). Speed (m/s) and turn rate (rad/s) are set on the page.
+"""
+
+import threading
+import time
+
+from amr_description.core import teleop_pad
+from amr_description.web.displays.base import Display
+from geometry_msgs.msg import TwistStamped
+from rclpy.clock import Clock
+from rclpy.clock import ClockType
+
+RATE = 20.0
+"""Hz of the commands while a control is held."""
+BUTTON_HOLD = 0.25
+"""Seconds a button press lasts unless the page refreshes it."""
+KEY_HOLD = 0.6
+"""Seconds a key press lasts unless the page refreshes it."""
+
+
+class TeleopPadDisplay(Display):
+    """
+    The pad: a ``Teleop`` folder with sliders and buttons, and hotkeys.
+
+    :param cmd_vel_topic: where the commands go.
+    :param frame_id: their ``header.frame_id``.
+    :param speed: initial speed, m/s.
+    :param turn: initial turn rate, rad/s.
+    """
+
+    def __init__(self, node, server, frames, cmd_vel_topic, frame_id, speed, turn):
+        """Create the publisher (the :data:`RATE` Hz timer starts with the page)."""
+        super().__init__(node, server, frames)
+        self._lock = threading.Lock()
+        self._deadman = teleop_pad.DeadMan(BUTTON_HOLD)
+        self._frame_id = frame_id
+        self._initial = (speed, turn)
+        self._publisher = node.create_publisher(TwistStamped, cmd_vel_topic, 10)
+
+    def build(self, gui):
+        """Add the ``Teleop`` folder and the hotkeys; a disconnected page releases all."""
+        with gui.add_folder('Teleop'):
+            self._speed = gui.add_slider('speed (m/s)', min=0.0, max=2.0, step=0.01,
+                                         initial_value=self._initial[0])
+            self._turn = gui.add_slider('turn (rad/s)', min=0.0, max=4.0, step=0.01,
+                                        initial_value=self._initial[1])
+            for label, control in (('Forward', 'forward'), ('Left', 'left'),
+                                   ('Right', 'right'), ('Back', 'back')):
+                button = gui.add_button(label)
+                button.on_hold(self._callback(control, BUTTON_HOLD), callback_hz=RATE)
+            stop = gui.add_button('Stop')
+            stop.on_click(self._callback('stop', BUTTON_HOLD))
+            gui.add_markdown('Hold a button, or a key while the page has focus: arrows or '
+                             '**I** forward, **J** / **L** turn, **K** stop.')
+        for key, control in teleop_pad.KEYS.items():
+            hotkey = key.lower() if key.startswith('Arrow') else key.upper()
+            if hotkey == ',':
+                continue  # not a key viser's hotkeys accept
+            command = gui.add_command(f'teleop {control}', hotkey=hotkey)
+            command.on_trigger(self._callback(control, KEY_HOLD))
+        self.server.on_client_disconnect(lambda _: self._release_all())
+        self.node.create_timer(1.0 / RATE, self._tick,
+                               clock=Clock(clock_type=ClockType.STEADY_TIME))
+
+    def _callback(self, control, hold):
+        def press(_):
+            with self._lock:
+                self._deadman.press(control, time.monotonic(), hold)
+        return press
+
+    def _release_all(self):
+        with self._lock:
+            self._deadman.release_all()
+
+    def _tick(self):
+        with self._lock:
+            command = self._deadman.command(time.monotonic(), self._speed.value,
+                                            self._turn.value)
+        if command is None:
+            return
+        msg = TwistStamped()
+        msg.header.stamp = self.node.get_clock().now().to_msg()
+        msg.header.frame_id = self._frame_id
+        msg.twist.linear.x, msg.twist.angular.z = command
+        self._publisher.publish(msg)

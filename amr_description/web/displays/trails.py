@@ -1,0 +1,172 @@
+# Copyright 2026 The amr_description Authors
+# Licensed under the Apache License, Version 2.0
+"""
+Odometry: the trail of every odometry topic in the fixed frame (RViz's Odometry display).
+
+One colour per topic with a legend and a Clear button. A trail whose ``header.frame_id`` is
+not in TF (the simulator's ``world``) is drawn as if that frame were the fixed frame, and the
+legend says so.
+"""
+
+import math
+import threading
+import time
+
+from amr_description.core.tf_buffer import TransformException
+from amr_description.web.displays.base import Display
+from amr_description.web.displays.base import moved
+from amr_description.web.displays.base import Rate
+from nav_msgs.msg import Odometry
+import numpy as np
+
+COLOURS = [((255, 140, 0), 'orange'), ((0, 170, 0), 'green'), ((200, 0, 200), 'magenta'),
+           ((0, 160, 200), 'cyan')]
+MIN_STEP = 0.01
+"""Metres between two points of a trail."""
+MAX_POINTS = 20000
+"""Points of a trail before the older half is forgotten."""
+CHUNK = 200
+"""Points per scene node: only the newest chunk is sent again as points arrive."""
+RATE = 10.0
+"""Trail redraws per second at most."""
+TOLERANCE = 1e-4
+"""Largest move of a trail's frame in the fixed frame (pose entry) that is not redrawn."""
+
+
+class _Trail:
+    """The points of one odometry topic and the scene nodes drawing them."""
+
+    def __init__(self, rgb, colour):
+        self.rgb, self.colour = rgb, colour
+        self.frame = ''
+        self.points = []
+        self.dirty = False
+        self.reset = False
+        self.chunks = []
+        self.chunk_start = 0
+        self.T = None
+        self.fixed = None
+        self.in_tf = True
+
+
+class TrailsDisplay(Display):
+    """
+    The trails of ``topics`` (nav_msgs/Odometry, depth 10).
+
+    :param topics: odometry topics; the first one's arrival rate is :attr:`rate`.
+    :ivar rated_topic: the first topic (None when there is none).
+    :ivar rate: its :class:`~amr_description.web.displays.base.Rate`.
+    """
+
+    def __init__(self, node, server, frames, topics):
+        """Subscribe every odometry topic."""
+        super().__init__(node, server, frames)
+        self._lock = threading.Lock()
+        self._trails = {}
+        self._next = 0.0
+        topics = [t for t in topics if t]
+        self.rated_topic = topics[0] if topics else None
+        self.rate = Rate()
+        for topic in topics:
+            rgb, colour = COLOURS[len(self._trails) % len(COLOURS)]
+            self._trails[topic] = _Trail(rgb, colour)
+            node.create_subscription(
+                Odometry, topic, lambda msg, topic=topic: self._on_odometry(topic, msg), 10)
+
+    def build(self, gui):
+        """Add the ``Odometry trails`` checkbox, the legend and the Clear button."""
+        self._show = gui.add_checkbox('Odometry trails', True)
+        self._legend = gui.add_markdown('')
+        clear = gui.add_button('Clear trails')
+        clear.on_click(lambda _: self.clear())
+
+    def _on_odometry(self, topic, msg):
+        if topic == self.rated_topic:
+            self.rate.tick(time.monotonic())
+        p = msg.pose.pose.position
+        point = (p.x, p.y, p.z)
+        if not all(math.isfinite(v) for v in point):
+            return
+        trail = self._trails[topic]
+        frame = msg.header.frame_id.lstrip('/')
+        if frame != trail.frame:
+            trail.frame = frame
+            trail.points = []
+            trail.reset = True
+        points = trail.points
+        if points and math.dist(point, points[-1]) < MIN_STEP:
+            return
+        points.append(point)
+        trail.dirty = True
+        if len(points) > MAX_POINTS:  # forget the older half and redraw
+            del points[:MAX_POINTS // 2]
+            trail.reset = True
+
+    def clear(self):
+        """Forget every trail's points."""
+        with self._lock:
+            for trail in self._trails.values():
+                trail.points = []
+                trail.reset = True
+
+    def draw(self, context):
+        """
+        Draw the trails in the fixed frame, at most :data:`RATE` times a second.
+
+        A trail is drawn in chunks of :data:`CHUNK` points: only the newest chunk's points are
+        sent again when points arrive (as new points of its scene node, not as a new node);
+        every chunk is redrawn when the trail's frame moved in the fixed frame, the fixed frame
+        changed or the trail was cleared.
+        """
+        now = time.monotonic()
+        if now < self._next:
+            return
+        self._next = now + 1.0 / RATE
+        fixed, show = context.fixed, self._show.value
+        with self._lock:
+            for topic, trail in self._trails.items():
+                self._draw_trail(topic, trail, fixed, show)
+        legend = '  \n'.join(
+            f'{trail.colour}: `{topic}`' + (
+                f' (frame `{trail.frame}` not in TF: drawn in {fixed})'
+                if trail.frame and not trail.in_tf else '')
+            for topic, trail in self._trails.items())
+        if legend != self._legend.content:
+            self._legend.content = legend
+
+    def _draw_trail(self, topic, trail, fixed, show):
+        T, trail.in_tf = np.eye(4), True
+        if trail.frame and trail.frame != fixed:
+            try:
+                T, _ = self.frames.buffer.lookup(fixed, trail.frame)
+            except TransformException:
+                trail.in_tf = False
+        if moved(trail.T, T, TOLERANCE) or trail.reset or trail.fixed != fixed:
+            for node in trail.chunks:
+                node.remove()
+            trail.chunks, trail.chunk_start = [], 0
+            trail.T, trail.fixed, trail.reset = T, fixed, False
+            trail.dirty = True
+        for node in trail.chunks:
+            if node.visible != show:
+                node.visible = show
+        if not trail.dirty:
+            return
+        trail.dirty = False
+        points = trail.points
+        name = topic.strip('/').replace('/', '_')
+        while len(points) - trail.chunk_start >= 2:
+            start = trail.chunk_start
+            chunk = np.asarray(points[start:start + CHUNK + 1], dtype=float)
+            chunk = chunk @ T[:3, :3].T + T[:3, 3]
+            index = start // CHUNK
+            segments = np.stack([chunk[:-1], chunk[1:]], axis=1).astype(np.float32)
+            if index < len(trail.chunks):  # the growing chunk: replace its points
+                trail.chunks[index].points = segments
+            else:
+                trail.chunks.append(self.server.scene.add_line_segments(
+                    f'/trails/{name}/{index}', segments, trail.rgb, thickness=3.0,
+                    thickness_units='screen', visible=show))
+            if len(chunk) < CHUNK + 1:
+                break  # the newest chunk, still growing
+            trail.chunk_start = start + CHUNK
