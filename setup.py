@@ -42,7 +42,7 @@ setup(
             'joint_state_publisher = amr_description.nodes.joint_state_publisher:main',
             'joint_state_publisher_gui = amr_description.nodes.joint_state_publisher_gui:main',
             'viewer = amr_description.nodes.viewer:main',
-            'check_model = amr_description.core.model_check:main',
+            'check_model = amr_description.nodes.check_model:main',
             'render = amr_description.nodes.render:main',
             'mujoco_sim = amr_description.nodes.mujoco_sim.node:main',
             'create = amr_description.nodes.create:main',

@@ -9,7 +9,16 @@ import shutil
 import warnings as python_warnings
 
 from amr_description.core import model_check as mc
+from amr_description.core.model_check import controllers as controller_checks
+from amr_description.core.model_check import controllers_yaml
+from amr_description.core.model_check import installed
+from amr_description.core.model_check import links
+from amr_description.core.model_check import wheels
+from amr_description.core.model_check.findings import ERROR
+from amr_description.core.model_check.findings import INFO
+from amr_description.core.model_check.findings import WARNING
 from amr_description.core.urdf_model import parse_urdf
+from amr_description.nodes import check_model as check_model_command
 import numpy as np
 import pytest
 import yaml
@@ -27,7 +36,7 @@ def urdf_xml():
 
 @pytest.fixture(scope='module')
 def controllers():
-    return mc.load_controllers(YAML_PATH)
+    return controllers_yaml.load_controllers(YAML_PATH)
 
 
 def tutorial_urdf(urdf_xml):
@@ -42,11 +51,11 @@ def run(xml, controllers=None):
 
 
 def errors(findings):
-    return [f for f in findings if f.severity == mc.ERROR]
+    return [f for f in findings if f.severity == ERROR]
 
 
 def warnings(findings):
-    return [f for f in findings if f.severity == mc.WARNING]
+    return [f for f in findings if f.severity == WARNING]
 
 
 def link_block(xml, name):
@@ -70,7 +79,7 @@ def remove_element(xml, link, tag):
 def test_amr_passes_with_zero_errors_and_warnings(urdf_xml, controllers):
     findings = run(urdf_xml, controllers)
     assert errors(findings) == [] and warnings(findings) == []
-    ok = [str(f) for f in findings if f.severity == mc.INFO]
+    ok = [str(f) for f in findings if f.severity == INFO]
     assert sum('drives forward' in line for line in ok) == 4
     assert any('wheel_separation 0.3 m matches' in line for line in ok)
     assert any('wheel_radius 0.1 m matches' in line for line in ok)
@@ -145,18 +154,18 @@ def test_root_link_with_inertia_is_a_warning(urdf_xml):
 
 
 def test_closed_form_inertias():
-    np.testing.assert_allclose(np.diag(mc.box_inertia(5.0, (0.5, 0.3, 0.1))),
+    np.testing.assert_allclose(np.diag(links.box_inertia(5.0, (0.5, 0.3, 0.1))),
                                [5 * 0.1 / 12, 5 * 0.26 / 12, 5 * 0.34 / 12])
-    np.testing.assert_allclose(np.diag(mc.cylinder_inertia(0.5, 0.1, 0.04)),
+    np.testing.assert_allclose(np.diag(links.cylinder_inertia(0.5, 0.1, 0.04)),
                                [0.5 * 0.0316 / 12, 0.5 * 0.0316 / 12, 0.0025])
-    np.testing.assert_allclose(mc.sphere_inertia(2.0, 0.5), np.eye(3) * 0.2)
+    np.testing.assert_allclose(links.sphere_inertia(2.0, 0.5), np.eye(3) * 0.2)
 
 
 def test_drive_direction_closed_form():
-    np.testing.assert_allclose(mc.drive_direction((0, 1, 0)), [1, 0, 0])
-    np.testing.assert_allclose(mc.drive_direction((0, -1, 0)), [-1, 0, 0])
-    np.testing.assert_allclose(mc.drive_direction((1, 0, 0)), [0, -1, 0])
-    np.testing.assert_allclose(mc.drive_direction((0, 0, 1)), [0, 0, 0])
+    np.testing.assert_allclose(wheels.drive_direction((0, 1, 0)), [1, 0, 0])
+    np.testing.assert_allclose(wheels.drive_direction((0, -1, 0)), [-1, 0, 0])
+    np.testing.assert_allclose(wheels.drive_direction((1, 0, 0)), [0, -1, 0])
+    np.testing.assert_allclose(wheels.drive_direction((0, 0, 1)), [0, 0, 0])
 
 
 @pytest.mark.parametrize('key, value, words', [
@@ -170,7 +179,7 @@ def test_controllers_yaml_mismatch(tmp_path, urdf_xml, key, value, words):
     data['/**/diff_drive_controller']['ros__parameters'][key] = value
     path = tmp_path / 'controllers.yaml'
     path.write_text(yaml.safe_dump(data))
-    found = errors(run(urdf_xml, mc.load_controllers(str(path))))
+    found = errors(run(urdf_xml, controllers_yaml.load_controllers(str(path))))
     assert len(found) == 1 and words in str(found[0]), [str(f) for f in found]
 
 
@@ -181,7 +190,8 @@ def test_separation_within_one_millimetre(urdf_xml, controllers):
 
 
 @pytest.mark.parametrize('multiplier, severity', [
-    (4.2, mc.WARNING), (1.0, mc.WARNING), (2.6, mc.INFO), (25.0 / 9.0, mc.INFO)])
+    (4.2, WARNING), (1.0, WARNING), (2.6, INFO),
+    (25.0 / 9.0, INFO)])
 def test_separation_multiplier_against_coulomb_value(urdf_xml, controllers, multiplier,
                                                      severity):
     data = yaml.safe_load(yaml.safe_dump(controllers))
@@ -192,7 +202,7 @@ def test_separation_multiplier_against_coulomb_value(urdf_xml, controllers, mult
     # the message names the formula and the geometry it used: a = 0.2 m, b = 0.15 m -> 2.78
     assert '(a^2 + b^2) / b^2' in found[0].message and 'a = 0.2 m' in found[0].message
     assert 'b = 0.15 m' in found[0].message
-    if severity == mc.WARNING:
+    if severity == WARNING:
         assert found[0].expected == '2.78 (+-10 %)' and found[0].found == str(multiplier)
 
 
@@ -226,30 +236,30 @@ def test_mujoco_block_unknown_link(urdf_xml):
 def test_installed_copy(tmp_path):
     source = tmp_path / 'src.urdf'
     source.write_text('<robot name="a"/>')
-    assert mc.compare_installed(str(source), str(source)).severity == mc.INFO
+    assert installed.compare_installed(str(source), str(source)).severity == INFO
     copy = tmp_path / 'copy.urdf'
     shutil.copy(source, copy)
-    assert mc.compare_installed(str(source), str(copy)).severity == mc.INFO
+    assert installed.compare_installed(str(source), str(copy)).severity == INFO
     copy.write_text('<robot name="b"/>')
-    assert mc.compare_installed(str(source), str(copy)).severity == mc.ERROR
-    assert mc.compare_installed(str(source), None).severity == mc.WARNING
+    assert installed.compare_installed(str(source), str(copy)).severity == ERROR
+    assert installed.compare_installed(str(source), None).severity == WARNING
 
 
 def test_cli_exit_codes(tmp_path, capsys, urdf_xml):
-    assert mc.main(['--controllers', YAML_PATH, URDF_PATH]) == 0
+    assert check_model_command.main(['--controllers', YAML_PATH, URDF_PATH]) == 0
     out = capsys.readouterr().out
     assert "robot 'amr', 6 links, 5 joints: 0 error(s), 0 warning(s)" in out
     broken = tmp_path / 'tutorial.urdf'
     broken.write_text(tutorial_urdf(urdf_xml))
-    assert mc.main(['-q', str(broken)]) == 1
+    assert check_model_command.main(['-q', str(broken)]) == 1
     assert 'BACKWARDS' in capsys.readouterr().out
     bad = tmp_path / 'bad.urdf'
     bad.write_text('<robot name="x"><link name="a">')
-    assert mc.main([str(bad)]) == 2
+    assert check_model_command.main([str(bad)]) == 2
     err = capsys.readouterr().err.strip()
     assert err.startswith(f'check_model: {bad}: not well-formed XML') and '\n' not in err
-    assert mc.main([str(tmp_path / 'missing.urdf')]) == 2
-    assert mc.main(['--controllers', str(bad), URDF_PATH]) == 2
+    assert check_model_command.main([str(tmp_path / 'missing.urdf')]) == 2
+    assert check_model_command.main(['--controllers', str(bad), URDF_PATH]) == 2
 
 
 @pytest.mark.parametrize('old, new, element, words', [
@@ -266,7 +276,7 @@ def test_cli_reports_what_the_loader_refuses(tmp_path, capsys, urdf_xml, old, ne
     bad.write_text(urdf_xml.replace(old, new, 1))
     with python_warnings.catch_warnings():
         python_warnings.simplefilter('error')  # a numpy RuntimeWarning fails the test
-        assert mc.main([str(bad)]) == 1
+        assert check_model_command.main([str(bad)]) == 1
     out, err = capsys.readouterr()
     lines = out.splitlines()
     assert lines[0].startswith(f'ERROR   {element}: ') and words in lines[0], out
@@ -276,7 +286,7 @@ def test_cli_reports_what_the_loader_refuses(tmp_path, capsys, urdf_xml, old, ne
 
 
 def test_unknown_hardware_plugin(urdf_xml):
-    assert 'amr_description/MujocoSystem' in mc.hardware_plugins()
+    assert 'amr_description/MujocoSystem' in controller_checks.hardware_plugins()
     xml = urdf_xml.replace('<plugin>amr_description/MujocoSystem</plugin>',
                            '<plugin>gz_ros2_control/GazeboSimSystem</plugin>')
     found = errors(run(xml))

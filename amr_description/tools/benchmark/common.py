@@ -60,7 +60,7 @@ def wheel_speeds(twist, config_path):
     """
     import yaml
 
-    from amr_description.core.model_check import node_parameters
+    from amr_description.core.model_check.controllers_yaml import node_parameters
     with open(config_path) as f:
         params = node_parameters(yaml.safe_load(f), 'diff_drive_controller')
     track = params['wheel_separation'] * params.get('wheel_separation_multiplier', 1.0)
