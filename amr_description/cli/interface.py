@@ -13,7 +13,7 @@ unless ``--all-comments``; ``--no-comments`` drops them at the top level too.
 import os
 
 from amr_description.cli.common import fail
-from amr_description.core.message_yaml import INTERFACE_KINDS
+from amr_description.core.message_yaml.utilities import INTERFACE_KINDS
 
 
 def interface_path(identifier):

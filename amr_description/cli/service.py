@@ -74,8 +74,8 @@ def _type(args):
 
 
 def _call(args):
-    from amr_description.core.message_yaml import get_service
-    from amr_description.core.message_yaml import message_from_values
+    from amr_description.core.message_yaml.utilities import get_service
+    from amr_description.core.message_yaml.set_message import message_from_values
     try:
         srv_class = get_service(args.service_type)
     except ValueError:

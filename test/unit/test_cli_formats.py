@@ -13,7 +13,7 @@ from amr_description.cli.param.api import parameter_value_from_string
 from amr_description.cli.param.change import dump_yaml
 from amr_description.cli.topic.rates import format_bandwidth
 from amr_description.cli.topic.rates import format_delay
-from amr_description.core.message_yaml import message_to_csv
+from amr_description.core.message_yaml.convert import message_to_csv
 import pytest
 
 

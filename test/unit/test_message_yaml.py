@@ -5,7 +5,13 @@
 
 import math
 
-from amr_description.core import message_yaml as my
+from amr_description.core.message_yaml.convert import message_to_ordereddict
+from amr_description.core.message_yaml.convert import message_to_yaml
+from amr_description.core.message_yaml.set_message import message_from_values
+from amr_description.core.message_yaml.set_message import set_message_fields
+from amr_description.core.message_yaml.utilities import get_message
+from amr_description.core.message_yaml.utilities import get_service
+from amr_description.core.message_yaml.utilities import type_name_of
 from builtin_interfaces.msg import Duration
 from builtin_interfaces.msg import Time
 from geometry_msgs.msg import PoseWithCovariance
@@ -25,18 +31,18 @@ from std_srvs.srv import SetBool
 
 
 def test_type_lookup_accepts_three_and_two_part_names():
-    assert my.get_message('std_msgs/msg/String') is String
-    assert my.get_message('std_msgs/String') is String
-    assert my.get_service('std_srvs/srv/SetBool') is SetBool
-    assert my.get_service('std_srvs/SetBool') is SetBool
-    assert my.type_name_of(String()) == 'std_msgs/msg/String'
+    assert get_message('std_msgs/msg/String') is String
+    assert get_message('std_msgs/String') is String
+    assert get_service('std_srvs/srv/SetBool') is SetBool
+    assert get_service('std_srvs/SetBool') is SetBool
+    assert type_name_of(String()) == 'std_msgs/msg/String'
 
 
 @pytest.mark.parametrize('name', ['String', 'a/b/c/d', 'std_msgs/msg/Nope', 'nope_msgs/msg/X',
                                   'std_msgs/foo/String', 'std_msgs/srv/String'])
 def test_type_lookup_rejects_bad_names(name):
     with pytest.raises(ValueError):
-        my.get_message(name)
+        get_message(name)
 
 
 def test_nested_message_yaml_is_exact():
@@ -45,107 +51,107 @@ def test_nested_message_yaml_is_exact():
     msg.header.frame_id = 'base_link'
     msg.twist.linear.x = 0.5
     msg.twist.angular.z = -1.0
-    assert my.message_to_yaml(msg) == (
+    assert message_to_yaml(msg) == (
         'header:\n  stamp:\n    sec: 1\n    nanosec: 2\n  frame_id: base_link\n'
         'twist:\n  linear:\n    x: 0.5\n    y: 0.0\n    z: 0.0\n'
         '  angular:\n    x: 0.0\n    y: 0.0\n    z: -1.0\n')
 
 
 def test_strings_are_quoted_like_yaml_dump_and_no_str_abbreviates():
-    assert my.message_to_yaml(String(data='Hello World: 3')) == "data: 'Hello World: 3'\n"
-    assert my.message_to_yaml(String(data='')) == "data: ''\n"
-    assert my.message_to_yaml(String(data='abc'), no_str=True) == "data: '<string length: <3>>'\n"
-    assert my.message_to_yaml(String(data='abcdef'), truncate_length=2) == 'data: ab...\n'
+    assert message_to_yaml(String(data='Hello World: 3')) == "data: 'Hello World: 3'\n"
+    assert message_to_yaml(String(data='')) == "data: ''\n"
+    assert message_to_yaml(String(data='abc'), no_str=True) == "data: '<string length: <3>>'\n"
+    assert message_to_yaml(String(data='abcdef'), truncate_length=2) == 'data: ab...\n'
 
 
 def test_float_specials_and_bool():
-    assert my.message_to_yaml(Float64(data=math.nan)) == 'data: .nan\n'
-    assert my.message_to_yaml(Float64(data=math.inf)) == 'data: .inf\n'
-    assert my.message_to_yaml(Float64(data=-math.inf)) == 'data: -.inf\n'
-    assert my.message_to_yaml(Bool(data=True)) == 'data: true\n'
+    assert message_to_yaml(Float64(data=math.nan)) == 'data: .nan\n'
+    assert message_to_yaml(Float64(data=math.inf)) == 'data: .inf\n'
+    assert message_to_yaml(Float64(data=-math.inf)) == 'data: -.inf\n'
+    assert message_to_yaml(Bool(data=True)) == 'data: true\n'
 
 
 def test_fixed_array_numpy_truncation_and_no_arr():
     msg = PoseWithCovariance()
     msg.covariance[0] = 1.5
-    text = my.message_to_yaml(msg, truncate_length=2)
+    text = message_to_yaml(msg, truncate_length=2)
     assert text.endswith("covariance:\n- 1.5\n- 0.0\n- '...'\n")
-    assert my.message_to_ordereddict(msg)['covariance'] == [1.5] + [0.0] * 35
-    assert my.message_to_yaml(msg, no_arr=True).endswith(
+    assert message_to_ordereddict(msg)['covariance'] == [1.5] + [0.0] * 35
+    assert message_to_yaml(msg, no_arr=True).endswith(
         "covariance: '<array type: double[36]>'\n")
 
 
 def test_bounded_and_unbounded_sequences_no_arr():
     msg = SolidPrimitive(dimensions=[1.0, 2.0])
-    assert my.message_to_yaml(msg, no_arr=True) == (
+    assert message_to_yaml(msg, no_arr=True) == (
         'type: 0\n'
         "dimensions: '<sequence type: double[3], length: 2>'\n"
         "polygon:\n  points: '<sequence type: geometry_msgs/msg/Point32, length: 0>'\n")
-    assert my.message_to_yaml(Float64MultiArray(data=[1.0]), no_arr=True) == (
+    assert message_to_yaml(Float64MultiArray(data=[1.0]), no_arr=True) == (
         "layout:\n  dim: '<sequence type: std_msgs/msg/MultiArrayDimension, length: 0>'\n"
         "  data_offset: 0\ndata: '<sequence type: double, length: 1>'\n")
 
 
 def test_bytes_and_uint8():
-    assert my.message_to_yaml(Byte(data=b'A')) == 'data: A\n'
-    assert my.message_to_yaml(ByteMultiArray(data=[b'a', b'\x00'])).endswith(
+    assert message_to_yaml(Byte(data=b'A')) == 'data: A\n'
+    assert message_to_yaml(ByteMultiArray(data=[b'a', b'\x00'])).endswith(
         'data:\n- a\n- "\\0"\n')
-    assert my.message_to_yaml(UInt8MultiArray(data=[1, 255])).endswith('data:\n- 1\n- 255\n')
+    assert message_to_yaml(UInt8MultiArray(data=[1, 255])).endswith('data:\n- 1\n- 255\n')
 
 
 def test_flow_style():
-    assert my.message_to_yaml(String(data='x'), flow_style=True) == '{data: x}\n'
+    assert message_to_yaml(String(data='x'), flow_style=True) == '{data: x}\n'
 
 
 def test_yaml_to_nested_message_round_trip():
     text = ('{header: {stamp: {sec: 3, nanosec: 4}, frame_id: odom}, '
             'twist: {linear: {x: 1}, angular: {z: -0.25}}}')
-    msg, setters = my.message_from_values(TwistStamped, text)
+    msg, setters = message_from_values(TwistStamped, text)
     assert setters == []
     assert msg.header.stamp == Time(sec=3, nanosec=4)
     assert msg.header.frame_id == 'odom'
     assert msg.twist.linear.x == 1.0 and isinstance(msg.twist.linear.x, float)
     assert msg.twist.angular.z == -0.25
-    assert my.message_from_values(TwistStamped, my.message_to_yaml(msg))[0] == msg
+    assert message_from_values(TwistStamped, message_to_yaml(msg))[0] == msg
 
 
 def test_sequences_arrays_bytes_bool_specials_from_yaml():
-    assert list(my.message_from_values(UInt8MultiArray, '{data: [1, 2, 255]}')[0].data) == [
+    assert list(message_from_values(UInt8MultiArray, '{data: [1, 2, 255]}')[0].data) == [
         1, 2, 255]
-    assert my.message_from_values(ByteMultiArray, '{data: [97, 0]}')[0].data == [b'a', b'\x00']
-    assert my.message_from_values(Byte, '{data: 65}')[0].data == b'A'
-    assert my.message_from_values(Bool, '{data: true}')[0].data is True
-    assert math.isnan(my.message_from_values(Float64, '{data: .nan}')[0].data)
-    assert my.message_from_values(Float64, '{data: -.inf}')[0].data == -math.inf
-    assert my.message_from_values(Float64, '{data: 1e-3}')[0].data == 0.001
-    assert my.message_from_values(Float64, '{data: nan}')[0].data != 0.0
-    cov = my.message_from_values(PoseWithCovariance, {'covariance': list(range(36))})[0]
+    assert message_from_values(ByteMultiArray, '{data: [97, 0]}')[0].data == [b'a', b'\x00']
+    assert message_from_values(Byte, '{data: 65}')[0].data == b'A'
+    assert message_from_values(Bool, '{data: true}')[0].data is True
+    assert math.isnan(message_from_values(Float64, '{data: .nan}')[0].data)
+    assert message_from_values(Float64, '{data: -.inf}')[0].data == -math.inf
+    assert message_from_values(Float64, '{data: 1e-3}')[0].data == 0.001
+    assert message_from_values(Float64, '{data: nan}')[0].data != 0.0
+    cov = message_from_values(PoseWithCovariance, {'covariance': list(range(36))})[0]
     assert cov.covariance[35] == 35.0
-    prim = my.message_from_values(
+    prim = message_from_values(
         SolidPrimitive, '{dimensions: [1, 2, 3], polygon: {points: [{x: 1}, {y: 2}]}}')[0]
     assert list(prim.dimensions) == [1.0, 2.0, 3.0]
     assert prim.polygon.points[1].y == 2.0
 
 
 def test_time_and_duration_as_fields_or_seconds():
-    assert my.message_from_values(Time, {'sec': 5, 'nanosec': 6})[0] == Time(sec=5, nanosec=6)
-    stamped = my.message_from_values(TwistStamped, '{header: {stamp: 1.25}}')[0]
+    assert message_from_values(Time, {'sec': 5, 'nanosec': 6})[0] == Time(sec=5, nanosec=6)
+    stamped = message_from_values(TwistStamped, '{header: {stamp: 1.25}}')[0]
     assert stamped.header.stamp == Time(sec=1, nanosec=250000000)
     msg = Duration()
-    my.set_message_fields(msg, {'sec': -1, 'nanosec': 0})
+    set_message_fields(msg, {'sec': -1, 'nanosec': 0})
     assert msg.sec == -1
 
 
 def test_header_auto_and_stamp_now_hooks():
-    msg, setters = my.message_from_values(TwistStamped, '{header: auto}', True, True)
+    msg, setters = message_from_values(TwistStamped, '{header: auto}', True, True)
     assert len(setters) == 1
     setters[0](Time(sec=7, nanosec=8))
     assert msg.header.stamp == Time(sec=7, nanosec=8)
-    msg, setters = my.message_from_values(TwistStamped, '{header: {stamp: now}}', True, True)
+    msg, setters = message_from_values(TwistStamped, '{header: {stamp: now}}', True, True)
     setters[0](Time(sec=9))
     assert msg.header.stamp.sec == 9
     with pytest.raises(TypeError):   # not expanded unless asked
-        my.message_from_values(TwistStamped, '{header: auto}')
+        message_from_values(TwistStamped, '{header: auto}')
 
 
 @pytest.mark.parametrize('cls, text, error, message', [
@@ -177,12 +183,12 @@ def test_header_auto_and_stamp_now_hooks():
 ])
 def test_bad_values_raise_one_line_errors(cls, text, error, message):
     with pytest.raises(error) as info:
-        my.message_from_values(cls, text)
+        message_from_values(cls, text)
     text = info.value.args[0]
     assert text.startswith(message)
     assert '\n' not in text
 
 
 def test_empty_values_give_default_message():
-    assert my.message_from_values(String, '')[0] == String()
-    assert my.message_from_values(String, '{}')[0] == String()
+    assert message_from_values(String, '')[0] == String()
+    assert message_from_values(String, '{}')[0] == String()

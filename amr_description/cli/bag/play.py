@@ -25,7 +25,7 @@ DEFAULT_CLOCK_HZ = 40.0
 
 
 def _play(args):
-    from amr_description.core.message_yaml import get_message
+    from amr_description.core.message_yaml.utilities import get_message
     if args.rate <= 0.0:
         raise CliError('Invalid rate: must be positive')
     with api.open_reader(args.bag_path) as reader:

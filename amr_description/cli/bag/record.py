@@ -97,7 +97,7 @@ class Recorder:
         from rclpy.qos import QoSDurabilityPolicy
         from rclpy.qos import QoSProfile
         from rclpy.qos import QoSReliabilityPolicy
-        from amr_description.core.message_yaml import get_message
+        from amr_description.core.message_yaml.utilities import get_message
         try:
             msg_class = get_message(msgtype)
             store = api.typestore_for([msgtype])

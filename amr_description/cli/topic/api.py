@@ -47,7 +47,7 @@ def message_class(type_name):
     :returns: the class.
     :raises CliError: ``The passed message type is invalid`` (upstream's wording).
     """
-    from amr_description.core.message_yaml import get_message
+    from amr_description.core.message_yaml.utilities import get_message
     try:
         return get_message(type_name)
     except ValueError:

@@ -60,8 +60,8 @@ def format_value(value, *, csv=False, truncate_length=None, no_arr=False, no_str
     :param flow_style: YAML flow style.
     :returns: the text, ending with ``---\n`` (YAML and plain values) or ``\n`` (CSV).
     """
-    from amr_description.core.message_yaml import message_to_csv
-    from amr_description.core.message_yaml import message_to_yaml
+    from amr_description.core.message_yaml.convert import message_to_csv
+    from amr_description.core.message_yaml.convert import message_to_yaml
     if not hasattr(value, 'get_fields_and_field_types'):
         return f'{value}\n---\n'
     if csv:

@@ -24,7 +24,7 @@ from amr_description.cli.topic.api import qos_from_args
 
 
 def _pub(args):
-    from amr_description.core.message_yaml import message_from_values
+    from amr_description.core.message_yaml.set_message import message_from_values
     from rclpy.qos import QoSDurabilityPolicy
     from rclpy.qos import QoSProfile
     from rclpy.qos import QoSReliabilityPolicy
