@@ -32,7 +32,6 @@ controller manager's ``1 / update_rate`` (rounded to physics steps); with no con
 manager the cycle is :data:`IDLE_RATE` Hz of sim time.
 """
 
-import collections
 import logging
 import math
 import threading
@@ -41,9 +40,12 @@ import time
 from amr_description.sim.entity import Entity
 from amr_description.sim.entity import spawn_stages
 from amr_description.sim.entity import SpawnError
+from amr_description.sim.non_finite import BAD_STATE_WARNINGS
+from amr_description.sim.non_finite import first_bad_body
 from amr_description.sim.pacing import Pacer
+from amr_description.sim.requests import Request
+from amr_description.sim.requests import RequestQueue
 from amr_description.sim.world import World
-import mujoco
 
 IDLE_RATE = 100.0
 """Hz of sim time of the cycle (and of the ``after_cycle`` hook) while no controller runs."""
@@ -53,28 +55,6 @@ REQUEST_TIMEOUT = 30.0
 
 PAUSED_TICK = 0.1
 """Seconds (wall) between ``paused_tick`` hook calls while paused."""
-
-_BAD_QPOS = int(mujoco.mjtWarning.mjWARN_BADQPOS)
-_BAD_QVEL = int(mujoco.mjtWarning.mjWARN_BADQVEL)
-_BAD_QACC = int(mujoco.mjtWarning.mjWARN_BADQACC)
-
-
-class _Request:
-    """A function to run in the simulation thread and its outcome."""
-
-    __slots__ = ('function', 'done', 'result', 'error', 'callback')
-
-    def __init__(self, function, callback=None):
-        self.function = function
-        self.done = threading.Event()
-        self.result = None
-        self.error = None
-        self.callback = callback
-
-    def finish(self):
-        self.done.set()
-        if self.callback is not None:
-            self.callback(self.result, self.error)
 
 
 class Simulation:
@@ -126,8 +106,8 @@ class Simulation:
         self.after_cycle = []
         self.paused_tick = []
         self.on_reset = []
-        self._requests = collections.deque()
         self._wake = threading.Event()
+        self._requests = RequestQueue(self._wake)
         self._running = False
         self._thread = None
         self._pending_steps = 0
@@ -192,9 +172,8 @@ class Simulation:
         """
         if self._thread is None or threading.current_thread() is self._thread:
             return function()
-        request = _Request(function)
-        self._requests.append(request)
-        self._wake.set()
+        request = Request(function)
+        self._requests.put(request)
         if not request.done.wait(timeout):
             raise TimeoutError('the simulation thread did not answer')
         if request.error is not None:
@@ -210,37 +189,13 @@ class Simulation:
         first. Both run directly on the caller's thread when no simulation thread is running.
         An event-driven caller (an rclpy coroutine) can go on serving other requests meanwhile.
         """
-        request = _Request(function, callback)
+        request = Request(function, callback)
         if self._thread is None or threading.current_thread() is self._thread:
-            self._run_request(request)
+            request.run()
             return
-        self._requests.append(request)
-        self._wake.set()
+        self._requests.put(request)
         if self._thread is None:  # stopped meanwhile: nobody else will answer it
-            self._fail_requests()
-
-    @staticmethod
-    def _run_request(request):
-        try:
-            request.result = request.function()
-        except Exception as exc:  # noqa: B902 - reported to the caller, loop goes on
-            request.error = exc
-        request.finish()
-
-    def _process_requests(self):
-        requests = self._requests
-        while requests:
-            self._run_request(requests.popleft())
-
-    def _fail_requests(self):
-        requests = self._requests
-        while requests:
-            try:
-                request = requests.popleft()
-            except IndexError:
-                break
-            request.error = RuntimeError('the simulation thread stopped')
-            request.finish()
+            self._requests.fail_all()
 
     # ------------------------------------------------------------------ spawn
     def spawn(self, urdf, name='', pose=None, namespace='', allow_renaming=False, setup=None):
@@ -334,7 +289,7 @@ class Simulation:
 
     def _rebind(self):
         model, data = self.world.model, self.world.data
-        self._warning_stats = tuple(data.warning[i] for i in (_BAD_QPOS, _BAD_QVEL, _BAD_QACC))
+        self._warning_stats = tuple(data.warning[i] for i in BAD_STATE_WARNINGS)
         for entity in self.entities.values():
             for system in entity.systems:
                 system.rebind(model, data)
@@ -467,31 +422,11 @@ class Simulation:
         if self._halted is not None:
             return
         self._halted = (f'non-finite state at t = {self.time:.3f} s in body '
-                        f'{self._bad_body()!r}: the simulation is paused (reset it to go on)')
+                        f'{first_bad_body(self.world.model, self.world.data)!r}: the '
+                        'simulation is paused (reset it to go on)')
         self.paused = True
         self._pending_steps = 0
         self.logger.error(self._halted)
-
-    def _bad_body(self):
-        """Return the name of the first body with a non-finite state (``'?'`` if none)."""
-        import numpy as np
-        model, data = self.world.model, self.world.data
-        for i in range(1, model.nbody):
-            if not (np.isfinite(data.xpos[i]).all() and np.isfinite(data.cvel[i]).all()):
-                return model.body(i).name
-        for i in range(model.nq):
-            if not math.isfinite(data.qpos[i]):
-                joint = max(j for j in range(model.njnt) if model.jnt_qposadr[j] <= i)
-                return model.body(int(model.jnt_bodyid[joint])).name
-        for kind in (_BAD_QPOS, _BAD_QVEL, _BAD_QACC):
-            if data.warning[kind].number:
-                index = int(data.warning[kind].lastinfo)
-                if kind == _BAD_QPOS and 0 <= index < model.nq:
-                    joint = max(j for j in range(model.njnt) if model.jnt_qposadr[j] <= index)
-                    return model.body(int(model.jnt_bodyid[joint])).name
-                if 0 <= index < model.nv:
-                    return model.body(int(model.dof_bodyid[index])).name
-        return '?'
 
     def _release_step_waiters(self):
         waiting = []
@@ -509,7 +444,7 @@ class Simulation:
         try:
             while self._running:
                 if requests:
-                    self._process_requests()
+                    requests.run_all()
                 if self.paused and self._pending_steps == 0:
                     if self._step_waiters:
                         self._release_step_waiters()
@@ -538,7 +473,7 @@ class Simulation:
                 self.thread_error = exc
                 self.logger.error(f'simulation thread stopped: {exc!r}')
         finally:
-            self._fail_requests()
+            self._requests.fail_all()
             for _, event in self._step_waiters:
                 event.set()
 

@@ -44,7 +44,8 @@ import numpy as np
 #: wheel link name suffixes of the tutorial robot, left side first
 WHEELS = ('front_left', 'back_left', 'front_right', 'back_right')
 CONTROL_PERIOD = 0.01  # s, the controller manager's 100 Hz
-#: targets of issue 11
+#: what the physics must meet: all four wheels in contact, jitter, turn-rate error, tracking,
+#: odometry error, time to rest and creep (figures in docs/simulation.md)
 TARGETS = {'all4': 0.95, 'jitter_mm': 1.0, 'turn_ratio': 0.10, 'tracking': 0.02,
            'odometry': 0.005, 'rest_s': 1.0, 'creep_mm': 1.0}
 TURN_SPEEDS = (0.1, 0.5, 1.0, 2.0, 5.0, 10.0)  # rad/s, wheel speeds turning in place

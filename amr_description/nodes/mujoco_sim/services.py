@@ -156,52 +156,52 @@ class SimulationServices:
         return response
 
     def _on_state(self, request, response):
-        S, R = msg.SimulationState, msg.Result
+        State, Result = msg.SimulationState, msg.Result
         Response = srv.SetSimulationState.Response
         target = request.state.state
-        if target == S.STATE_QUITTING:
+        if target == State.STATE_QUITTING:
             self._node.quit_requested.set()
-            response.result = _result(R.RESULT_OK)
+            response.result = _result(Result.RESULT_OK)
             return response
-        if target not in (S.STATE_PLAYING, S.STATE_PAUSED, S.STATE_STOPPED):
+        if target not in (State.STATE_PLAYING, State.STATE_PAUSED, State.STATE_STOPPED):
             response.result = _result(Response.INCORRECT_TRANSITION,
                                       f'cannot go to state {target}')
             return response
-        if target == S.STATE_PLAYING and self._sim.halted:
-            response.result = _result(R.RESULT_OPERATION_FAILED, self._sim.halted)
+        if target == State.STATE_PLAYING and self._sim.halted:
+            response.result = _result(Result.RESULT_OPERATION_FAILED, self._sim.halted)
             return response
-        want_paused = target != S.STATE_PLAYING
-        if target != S.STATE_STOPPED and want_paused == self._sim.paused:
+        want_paused = target != State.STATE_PLAYING
+        if target != State.STATE_STOPPED and want_paused == self._sim.paused:
             response.result = _result(
                 Response.ALREADY_IN_TARGET_STATE,
                 'already ' + ('paused' if self._sim.paused else 'playing'))
             return response
         self._sim.set_paused(want_paused)
-        if target == S.STATE_STOPPED:
+        if target == State.STATE_STOPPED:
             self._sim.reset()
         self._node.get_logger().info('simulation ' + {
-            S.STATE_PLAYING: 'playing', S.STATE_PAUSED: 'paused',
-            S.STATE_STOPPED: 'stopped'}[target])
-        response.result = _result(R.RESULT_OK)
+            State.STATE_PLAYING: 'playing', State.STATE_PAUSED: 'paused',
+            State.STATE_STOPPED: 'stopped'}[target])
+        response.result = _result(Result.RESULT_OK)
         return response
 
     def _on_step(self, request, response):
-        R = msg.Result
+        Result = msg.Result
         if not self._sim.paused:
-            response.result = _result(R.RESULT_OPERATION_FAILED,
+            response.result = _result(Result.RESULT_OPERATION_FAILED,
                                       'step_simulation needs a paused simulation')
             return response
         if self._sim.halted:
-            response.result = _result(R.RESULT_OPERATION_FAILED, self._sim.halted)
+            response.result = _result(Result.RESULT_OPERATION_FAILED, self._sim.halted)
             return response
         if request.steps < 1:
-            response.result = _result(R.RESULT_OK)
+            response.result = _result(Result.RESULT_OK)
             return response
         done = self._sim.request_steps(request.steps)
         if not done.wait(REQUEST_TIMEOUT + request.steps * 1e-3):
-            response.result = _result(R.RESULT_OPERATION_FAILED, 'stepping timed out')
+            response.result = _result(Result.RESULT_OPERATION_FAILED, 'stepping timed out')
             return response
-        response.result = _result(R.RESULT_OK)
+        response.result = _result(Result.RESULT_OK)
         return response
 
 
