@@ -350,15 +350,15 @@ def model_from_element(root_element, source='robot_description'):
 
 def parse_urdf_file(path):
     """
-    Read and parse a URDF file.
+    Read and parse a URDF file (a ``.xacro`` file is expanded first).
 
-    :param path: file path.
+    :param path: file path, ``package://`` or ``$(find pkg)`` URI.
     :returns: ``(urdf_xml str, RobotModel)``.
     :raises ValueError: one line naming ``path`` when the file cannot be read or parsed.
     """
+    from amr_description.core.description_file import read_description
     try:
-        with open(path, 'rb') as f:
-            data = f.read()
-    except OSError as exc:
-        raise URDFError(path, '', f'cannot read: {exc.strerror}') from None
-    return data.decode('utf-8', errors='replace'), parse_urdf(data, source=path)
+        text = read_description(path)
+    except ValueError as exc:
+        raise URDFError(path, '', str(exc).partition(f'{path}: ')[2] or str(exc)) from None
+    return text, parse_urdf(text, source=path)

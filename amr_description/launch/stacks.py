@@ -18,6 +18,8 @@ str values of ``name:=value`` pairs (see
 import math
 import os
 
+from amr_description.core.description_file import parse_xacro_args
+from amr_description.core.description_file import read_description
 from amr_description.launch.actions import ComposableNode
 from amr_description.launch.actions import ComposableNodeContainer
 from amr_description.launch.actions import DeclareLaunchArgument
@@ -50,23 +52,43 @@ def urdf_path():
     return os.path.join(share, 'urdf', 'amr.urdf')
 
 
-def read_urdf(path=None):
+def read_urdf(path=None, xacro_args=''):
     """
     Return the URDF text given to robot_state_publisher as ``robot_description``.
 
-    :param path: URDF file (default: :func:`urdf_path`).
-    :returns: the file contents, str.
-    :raises LaunchError: when the file cannot be read or is empty.
+    As ``Command(['xacro ', path])`` in a launch file: a ``.xacro`` file is expanded with
+    ``xacro_args`` (``'name:=value ...'``); a URDF file is read as it is.
+
+    :param path: URDF or xacro file, path or ``package://`` URI (default: :func:`urdf_path`).
+    :param xacro_args: xacro arguments, ``name:=value`` words.
+    :returns: the URDF text, str.
+    :raises LaunchError: one line when the file cannot be read, is empty or xacro fails.
     """
     path = path or urdf_path()
     try:
-        with open(path, 'r') as f:
-            text = f.read()
-    except OSError as exc:
-        raise LaunchError(f"cannot read URDF '{path}': {exc.strerror}") from None
-    if not text.strip():
-        raise LaunchError(f"URDF '{path}' is empty")
-    return text
+        return read_description(path, parse_xacro_args(xacro_args))
+    except ValueError as exc:
+        cause = str(exc).partition(f'{path}: ')[2] or str(exc)
+        if cause.startswith('cannot read: '):
+            raise LaunchError(f"cannot read URDF '{path}': {cause[13:]}") from None
+        raise LaunchError(f"robot description '{path}': {cause}") from None
+
+
+DESCRIPTION_ARGUMENTS = [
+    DeclareLaunchArgument('description', '', 'Robot description file, URDF or xacro (path or '
+                          'package:// URI); empty: urdf/amr.urdf of this package'),
+    DeclareLaunchArgument('model', '', 'The same as description (the name used by '
+                          'urdf_tutorial display.launch.py)'),
+    DeclareLaunchArgument('xacro_args', '', 'Arguments of a xacro description, '
+                          '"name:=value name:=value"'),
+]
+"""The robot description arguments every stack declares."""
+
+
+def _description(args):
+    """Return the URDF text the stack's ``description``/``model``/``xacro_args`` name."""
+    path = args.get('description') or args.get('model') or None
+    return read_urdf(path, args.get('xacro_args', ''))
 
 
 DISPLAY_ARGUMENTS = [
@@ -76,7 +98,7 @@ DISPLAY_ARGUMENTS = [
     DeclareLaunchArgument('viewer', 'true', 'Start the viewer (RViz stand-in in the browser)'),
     DeclareLaunchArgument('viewer_port', '8080', 'TCP port of the viewer page'),
     DeclareLaunchArgument('gui_port', '8081', 'TCP port of the joint_state_publisher_gui page'),
-]
+] + DESCRIPTION_ARGUMENTS
 
 SIM_ARGUMENTS = [
     DeclareLaunchArgument('use_sim_time', 'true', 'Use simulation (/clock) time if true'),
@@ -90,7 +112,9 @@ SIM_ARGUMENTS = [
     DeclareLaunchArgument('yaw', '0.0', 'Spawn heading about z (rad)'),
     DeclareLaunchArgument('viewer', 'true', 'Start the viewer (RViz stand-in in the browser)'),
     DeclareLaunchArgument('viewer_port', '8080', 'TCP port of the viewer page'),
-]
+    DeclareLaunchArgument('controllers', ','.join(CONTROLLERS),
+                          'Controllers to spawn, in that order (comma-separated names)'),
+] + DESCRIPTION_ARGUMENTS
 
 
 FLEET_ARGUMENTS = [
@@ -106,7 +130,7 @@ FLEET_ARGUMENTS = [
                           'each if false)'),
     DeclareLaunchArgument('viewer', 'true', 'Start the viewer (RViz stand-in in the browser)'),
     DeclareLaunchArgument('viewer_port', '8080', 'TCP port of the viewer page'),
-]
+] + DESCRIPTION_ARGUMENTS
 
 
 def _port(args, name):
@@ -147,7 +171,7 @@ def display(args):
     use_sim_time = parse_bool(args['use_sim_time'], 'use_sim_time')
     gui = parse_bool(args['gui'], 'gui')
     viewer = parse_bool(args['viewer'], 'viewer')
-    description = read_urdf()
+    description = _description(args)
     actions = [
         Node(PACKAGE, 'robot_state_publisher', output='screen',
              parameters=[{'robot_description': description, 'use_sim_time': use_sim_time}]),
@@ -195,7 +219,7 @@ def sim(args):
     pose = {k: parse_float(args[k], k) for k in ('x', 'y', 'z', 'yaw')}
     viewer = parse_bool(args['viewer'], 'viewer')
     viewer_port = _port(args, 'viewer_port')
-    description = read_urdf()
+    description = _description(args)
 
     mujoco_sim = Node(
         PACKAGE, 'mujoco_sim', output='screen',
@@ -209,9 +233,13 @@ def sim(args):
         arguments=['-topic', 'robot_description', '-name', robot,
                    '-x', repr(pose['x']), '-y', repr(pose['y']), '-z', repr(pose['z']),
                    '-Y', repr(pose['yaw'])])
+    controllers = [name.strip() for name in args['controllers'].split(',') if name.strip()]
+    if not controllers:
+        raise LaunchError("launch argument 'controllers': expected comma-separated controller "
+                          f"names, got '{args['controllers']}'")
     spawner = Node(
         PACKAGE, 'spawner', output='screen',
-        arguments=list(CONTROLLERS))
+        arguments=controllers)
     actions = [
         mujoco_sim,
         robot_state_publisher,
@@ -291,7 +319,7 @@ def fleet(args):
     use_composition = parse_bool(args['use_composition'], 'use_composition')
     viewer = parse_bool(args['viewer'], 'viewer')
     viewer_port = _port(args, 'viewer_port')
-    description = read_urdf()
+    description = _description(args)
     names = [f'r{i}' for i in range(1, count + 1)]
     grid = fleet_grid(count, spacing)
     actions = [Node(

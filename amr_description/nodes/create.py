@@ -102,13 +102,14 @@ class Create(Node):
         if opts.string is not None:
             return opts.string
         if opts.file is not None:
-            from amr_description.sim.urdf_to_mjcf import resolve_uri
+            from amr_description.core.description_file import read_description
             try:
-                with open(resolve_uri(opts.file), 'r') as f:
-                    return f.read()
-            except (OSError, ValueError) as exc:
-                raise RuntimeError(
-                    f'cannot read -file {opts.file}: {getattr(exc, "strerror", None) or exc}')
+                return read_description(opts.file)  # a URDF, or a xacro expanded
+            except ValueError as exc:
+                cause = str(exc).partition(f'{opts.file}: ')[2] or str(exc)
+                cause = cause[len('cannot read: '):] if cause.startswith('cannot read: ') \
+                    else cause
+                raise RuntimeError(f'cannot read -file {opts.file}: {cause}') from None
         if opts.param is not None:
             value = self.declare_parameter(opts.param, '').value
             if not value:

@@ -74,11 +74,8 @@ def main(args=None):
     options = _parse(shutdown.remove_ros_args(argv)[1:])
     try:
         if options.urdf:
-            try:
-                with open(options.urdf) as f:
-                    urdf_xml = f.read()
-            except OSError as exc:
-                raise ValueError(f'{options.urdf}: cannot read: {exc.strerror}') from None
+            from amr_description.core.description_file import read_description
+            urdf_xml = read_description(options.urdf)  # a URDF, or a xacro expanded
         else:
             urdf_xml = _description_from_topic(argv, options.timeout)
             if urdf_xml is None:

@@ -10,11 +10,11 @@ No rclpy: the controller-manager factory and ``setup`` callbacks given to the
 import os
 
 from amr_description.control.resource_manager import default_hardware_factory
+from amr_description.core.description_file import resolve_uri
 from amr_description.core.robot_description import RobotDescription
 from amr_description.core.ros_names import normalize_namespace
 from amr_description.sim.mujoco_system import MujocoSystem
 from amr_description.sim.sensors.registry import make_sensors
-from amr_description.sim.urdf_to_mjcf import resolve_uri
 
 
 class SpawnError(ValueError):

@@ -52,6 +52,7 @@ import logging
 import math
 import os
 
+from amr_description.core.description_file import resolve_uri
 from amr_description.core.mujoco_block import DEFAULT_CONTACT
 from amr_description.core.robot_description import RobotDescription
 import mujoco
@@ -65,32 +66,6 @@ GROUND_CONTACT_PREFIX = 'ground_contact/'
 COLLISION_GROUP = 3
 VISUAL_GROUP = 2
 _DEFAULT_RGBA = (0.7, 0.7, 0.7, 1.0)
-
-
-def resolve_uri(uri):
-    """
-    Resolve ``package://PKG/path``, ``$(find PKG)/path`` or ``file://path`` to a file path.
-
-    :param uri: the URI (str).
-    :returns: an absolute or relative file-system path (str).
-    :raises ValueError: when the package is not in the ament index.
-    """
-    pkg = rest = None
-    if uri.startswith('package://'):
-        pkg, _, rest = uri[len('package://'):].partition('/')
-    elif uri.startswith('$(find '):
-        pkg, _, rest = uri[len('$(find '):].partition(')')
-        rest = rest.lstrip('/')
-    elif uri.startswith('file://'):
-        return uri[len('file://'):]
-    else:
-        return uri
-    from ament_index_python.packages import get_package_share_directory
-    from ament_index_python.packages import PackageNotFoundError
-    try:
-        return os.path.join(get_package_share_directory(pkg), rest)
-    except PackageNotFoundError:
-        raise ValueError(f'cannot resolve {uri!r}: package {pkg!r} not found') from None
 
 
 def _mat_to_quat(rotation):

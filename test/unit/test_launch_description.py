@@ -103,7 +103,8 @@ def test_stack_names():
 
 
 def test_sim_stack_layout(monkeypatch):
-    monkeypatch.setattr(stacks, 'read_urdf', lambda path=None: '<robot name="amr"/>')
+    monkeypatch.setattr(stacks, 'read_urdf',
+                        lambda path=None, xacro_args='': '<robot name="amr"/>')
     args = stacks.resolve('sim', ['rtf:=0', 'robot:=r2', 'x:=1', 'yaw:=1.57', 'viewer:=false'])
     mujoco_sim, rsp, create, on_create = stacks.sim(args)
     assert mujoco_sim.executable == 'mujoco_sim'
@@ -130,7 +131,8 @@ def test_sim_stack_layout(monkeypatch):
 
 
 def test_display_stack_layout(monkeypatch):
-    monkeypatch.setattr(stacks, 'read_urdf', lambda path=None: '<robot name="amr"/>')
+    monkeypatch.setattr(stacks, 'read_urdf',
+                        lambda path=None, xacro_args='': '<robot name="amr"/>')
     rsp, jsp = stacks.display(stacks.resolve('display', ['gui:=false', 'viewer:=false']))
     assert (rsp.executable, jsp.executable) == ('robot_state_publisher', 'joint_state_publisher')
     assert rsp.parameters == [{'robot_description': '<robot name="amr"/>',

@@ -10,9 +10,9 @@ a coroutine awaiting it, so the executor serves other callbacks meanwhile.
 
 import math
 
+from amr_description.core.description_file import read_description
 from amr_description.core.ros_names import normalize_namespace
 from amr_description.sim.simulation import SpawnError
-from amr_description.sim.urdf_to_mjcf import resolve_uri
 from rclpy.task import Future
 from simulation_interfaces import msg
 from simulation_interfaces import srv
@@ -24,16 +24,16 @@ def read_resource(resource):
     """
     Return the URDF text of a ``simulation_interfaces/Resource`` (content or URI).
 
+    A URI names a URDF or xacro file (path, ``package://``, ``file://``).
+
     :raises SpawnError: ``NO_RESOURCE`` when both are empty; ``RESULT_OPERATION_FAILED``
-        when the URI cannot be read.
+        when the URI cannot be read or expanded (one line naming it).
     """
     if resource.uri:
-        path = resolve_uri(resource.uri)
         try:
-            with open(path, 'r') as f:
-                return f.read()
-        except OSError as exc:
-            raise SpawnError(f'cannot read {resource.uri!r}: {exc.strerror}') from None
+            return read_description(resource.uri)  # a URDF, or a xacro expanded
+        except ValueError as exc:
+            raise SpawnError(str(exc)) from None
     if resource.resource_string.strip():
         return resource.resource_string
     raise SpawnError('entity_resource is empty: give uri or resource_string', 'NO_RESOURCE')
