@@ -74,6 +74,8 @@ setup(
         ],
         'amr_description.hardware': [
             'amr_description/MujocoSystem = amr_description.sim.mujoco_system:MujocoSystem',
+            'gz_ros2_control/GazeboSimSystem = amr_description.sim.mujoco_system:MujocoSystem',
+            'ign_ros2_control/IgnitionSystem = amr_description.sim.mujoco_system:MujocoSystem',
             'mock_components/GenericSystem = '
             'amr_description.control.generic_system:GenericSystem',
         ],

@@ -18,20 +18,12 @@ controller or hardware component changes lifecycle state.
 Controllers are found by their ``type`` in the entry-point group
 ``amr_description.controllers``; each is a lifecycle node named after it, with its parameters
 from the YAML (and ``use_sim_time``), the node arguments of ``<name>.node_options_args`` (e.g.
-``['-r', '~/cmd_vel:=/x']``), which win over the process' global arguments. The
-owner's control thread (the simulator, or :func:`main`'s wall-clock loop) calls, each cycle,
-:meth:`ControllerManager.read`, :meth:`ControllerManager.update` and
-:meth:`ControllerManager.write` with ``(time, period)`` in seconds: ``update`` applies pending
-switches and updates the active controllers in load order (each at its own ``update_rate``
-parameter, default the manager's). A controller whose update fails (returns False, raises,
-or sees NaN feedback) is deactivated with an error log. Switches requested through the
-service happen at the next update; the service waits for it up to the request's timeout (0:
-1 s), as upstream. :meth:`ControllerManager.shutdown` destroys every controller node and
-:meth:`ControllerManager.destroy_node` everything of the manager, leaving nothing in the ROS
-graph.
-
-Run standalone with :mod:`amr_description.nodes.ros2_control_node` (upstream's
-``ros2_control_node``).
+``['-r', '~/cmd_vel:=/x']``), which win over the process' global arguments. The owner's
+control thread calls ``read``, ``update`` and ``write`` each cycle
+(:mod:`amr_description.control.realtime_loop`). Switches requested through the service happen
+at the next update; the service waits for it up to the request's timeout (0: 1 s), as
+upstream. :meth:`ControllerManager.destroy` leaves nothing of the manager in the ROS graph.
+Run standalone with :mod:`amr_description.nodes.ros2_control_node`.
 """
 
 from importlib.metadata import entry_points
@@ -92,29 +84,37 @@ class ControllerManager(RealtimeLoop, Node):
         parses a spawned robot once and hands it on).
     :param executor: rclpy executor; the manager adds itself and every controller node.
     :param hardware_factory: ``(HardwareInfo) -> SystemInterface`` (default: entry points).
-    :param parameters_file: path of the controllers YAML, or None.
+    :param parameters_file: path of the controllers YAML, a list of paths (a later file
+        overrides an earlier one, as rcl's ``--params-file``), or None.
     :param namespace: node namespace of the manager and its controllers.
     :param use_sim_time: set ``use_sim_time`` on the manager and every controller.
+    :param name: node name (gz_ros2_control's ``<controller_manager_name>``).
+    :param remappings: remapping rules (``from:=to``) of the manager and its controllers
+        (gz_ros2_control's ``<ros><remapping>``).
     :raises ValueError: one line when the URDF, its ``<ros2_control>`` blocks or the
         parameter file are invalid.
     """
 
     def __init__(self, urdf_xml, executor, hardware_factory=None, parameters_file=None,
-                 namespace='', use_sim_time=True):
+                 namespace='', use_sim_time=True, name='controller_manager', remappings=()):
         """Create the node, the hardware and the services (see the class docstring)."""
+        self._remap_args = ['--ros-args'] + [a for rule in remappings for a in ('-r', rule)] \
+            if remappings else []
         self._yaml_files = []
         own = {}
-        if parameters_file:
-            data = ros_param_file.load_yaml(parameters_file)
-            self._yaml_files.append((parameters_file, data))
-            own = ros_param_file.parameters_for_node(
-                data, 'controller_manager', namespace, parameters_file)
+        files = [parameters_file] if isinstance(parameters_file, str) else parameters_file
+        for path in files or ():  # a later file overrides an earlier one, as --params-file
+            data = ros_param_file.load_yaml(path)
+            self._yaml_files.append((path, data))
+            own.update(ros_param_file.parameters_for_node(
+                data, name, namespace, path))
         own['use_sim_time'] = bool(use_sim_time)
         overrides, skipped = parameters_from_dict(own)
         super().__init__(
-            'controller_manager', namespace=namespace, context=executor.context,
+            name, namespace=namespace, context=executor.context,
             parameter_overrides=overrides, allow_undeclared_parameters=True,
-            automatically_declare_parameters_from_overrides=False)
+            automatically_declare_parameters_from_overrides=False,
+            cli_args=self._remap_args or None)
         self._executor = executor
         self._destroyed = False
         try:
@@ -344,6 +344,8 @@ class ControllerManager(RealtimeLoop, Node):
         args = _list_value(self.get_parameter(key).value) if self.has_parameter(key) else []
         if args and args[0] != '--ros-args':
             args = ['--ros-args'] + args
+        if self._remap_args:  # the manager's remappings reach its controllers too
+            args = self._remap_args + args[1:] if args else list(self._remap_args)
         return args
 
     def load_controller(self, name):

@@ -46,6 +46,59 @@ class MujocoConfig:
     link_contact: dict = field(default_factory=dict)
     actuator: dict = field(default_factory=lambda: dict(DEFAULT_ACTUATOR))
     joint_actuator: dict = field(default_factory=dict)
+    present: bool = False
+
+
+DRIVE_DEFAULTS = {'kv': 5.0, 'ki': 100.0, 'armature': 0.05}
+"""The wheel drive of a description without ``<mujoco>``: the PI velocity servo, gains and
+rotor inertia measured for the tutorial robot (docs/simulation.md, "Contact and actuators")."""
+
+WHEEL_CONTACT_DEFAULTS = {'shape': 'sphere'}
+"""The wheel-ground contact of a description without ``<mujoco>``: one point below the axle
+(MuJoCo's cylinder-plane contact puts two on the rim edges). Not the slower friction reference
+of urdf/amr.urdf: without acceleration limits in the controllers YAML (the tutorial's has
+none) it lets the wheels slip when a command steps (0.95 m driven for 1.00 m of odometry,
+docs/gazebo.md)."""
+
+DEFAULT_EFFORT = 20.0
+"""N m (or N) a drive may exert when the URDF joint gives no ``<limit effort>``."""
+
+
+def add_drive_defaults(config, model, hardware, simulator_systems):
+    """
+    Give a description without a ``<mujoco>`` block the settings Gazebo users expect.
+
+    Gazebo describes no contact shape or servo gains: its velocity command is a servo solved
+    with the contacts, bounded by the joint's URDF ``<limit effort>``
+    (docs/gazebo.md). For every joint with a velocity command interface in a
+    ``<ros2_control>`` block of the simulator (``simulator_systems``): the drive becomes
+    :data:`DRIVE_DEFAULTS` with ``forcerange`` +-effort (:data:`DEFAULT_EFFORT` without
+    one), and its child link, when its collision is a cylinder (a wheel), touches the ground
+    as :data:`WHEEL_CONTACT_DEFAULTS`. A description with a block is left as it is.
+
+    :param config: the :class:`MujocoConfig` to complete (changed in place).
+    :param model: the :class:`~amr_description.core.urdf_model.RobotModel`.
+    :param hardware: the ``<ros2_control>`` blocks (``HardwareInfo`` list).
+    :param simulator_systems: hardware plugin names of the simulator.
+    """
+    if config.present:
+        return
+    for info in hardware:
+        if info.plugin not in simulator_systems:
+            continue
+        for component in info.joints:
+            joint = model.joints.get(component.name)
+            if joint is None or 'velocity' not in component.command_interface_names():
+                continue
+            effort = joint.limit.effort if joint.limit is not None and joint.limit.effort \
+                else 0.0
+            effort = effort if effort and effort > 0 else DEFAULT_EFFORT
+            drive = dict(DRIVE_DEFAULTS, forcerange=(-effort, effort))
+            config.joint_actuator.setdefault(component.name, drive)
+            link = model.links.get(joint.child)
+            if link is not None and link.collisions and \
+                    link.collisions[0].geometry.cylinder is not None:
+                config.link_contact.setdefault(joint.child, dict(WHEEL_CONTACT_DEFAULTS))
 
 
 _CONTACT_SIZES = {'friction': (1, 3), 'solref': (2, 2), 'solimp': (3, 5),
@@ -111,6 +164,7 @@ def parse_mujoco_block(root):
     """
     config = MujocoConfig()
     for block in root.findall('mujoco'):
+        config.present = True
         rc = block.find('ros2_control')
         if rc is not None and rc.get('parameters'):
             config.parameters = rc.get('parameters').strip()

@@ -8,6 +8,9 @@ hands it to the URDF -> MJCF converter, the resource manager and joint_state_bro
 one spawn is one XML parse (test/unit/test_robot_description.py counts them).
 """
 
+from amr_description.core.gazebo_tags import parse_control_plugin
+from amr_description.core.gazebo_tags import SIMULATOR_SYSTEMS
+from amr_description.core.mujoco_block import add_drive_defaults
 from amr_description.core.mujoco_block import parse_mujoco_block
 from amr_description.core.ros2_control_info import parse_ros2_control
 from amr_description.core.urdf_model import model_from_element
@@ -28,6 +31,8 @@ class RobotDescription:
         :class:`~amr_description.core.ros2_control_info.HardwareInfo`.
     :ivar mujoco: the simulator settings, :class:`~amr_description.core.mujoco_block.
         MujocoConfig`.
+    :ivar control_plugin: gz_ros2_control's ``<gazebo><plugin>``, a
+        :class:`~amr_description.core.gazebo_tags.ControlPlugin`, or None.
     :raises ValueError: one line naming ``source`` (URDF), ``ros2_control`` or ``<mujoco>``
         and the element at fault.
     """
@@ -40,6 +45,19 @@ class RobotDescription:
         self.model = model_from_element(self.root, source)
         self.hardware = parse_ros2_control(self.root)
         self.mujoco = parse_mujoco_block(self.root)
+        add_drive_defaults(self.mujoco, self.model, self.hardware, SIMULATOR_SYSTEMS)
+        self.control_plugin = parse_control_plugin(self.root)
+
+    def parameters_files(self):
+        """
+        Return the controllers YAML files this description names, in order (URIs as written).
+
+        ``<mujoco><ros2_control parameters>`` when given, else gz_ros2_control's
+        ``<parameters>`` (every one, a later file overriding an earlier one); [] for none.
+        """
+        if self.mujoco.parameters:
+            return [self.mujoco.parameters]
+        return list(self.control_plugin.parameters) if self.control_plugin else []
 
     def joint_names(self, moving_only=False):
         """

@@ -11,6 +11,7 @@ import os
 
 from amr_description.control.resource_manager import default_hardware_factory
 from amr_description.core.description_file import resolve_uri
+from amr_description.core.gazebo_tags import SIMULATOR_SYSTEMS
 from amr_description.core.robot_description import RobotDescription
 from amr_description.core.ros_names import normalize_namespace
 from amr_description.sim.mujoco_system import MujocoSystem
@@ -86,6 +87,9 @@ def spawn_stages(sim, urdf, name='', pose=None, namespace='', allow_renaming=Fal
     except ValueError as exc:
         raise SpawnError(str(exc).splitlines()[0], 'RESOURCE_PARSE_ERROR') from None
     name = name or description.name
+    plugin = description.control_plugin
+    if not namespace and plugin is not None and plugin.namespace:
+        namespace = plugin.namespace  # gz_ros2_control's <ros><namespace>
     has_control = bool(description.hardware)
     entity = yield lambda: sim.add_entity(description, name, pose, namespace, allow_renaming)
     cm = None
@@ -116,7 +120,7 @@ def hardware_factory(world, entity):
     """Return ``(HardwareInfo) -> SystemInterface`` building MujocoSystem for ``entity``."""
 
     def factory(info):
-        if info.plugin == 'amr_description/MujocoSystem':
+        if info.plugin in SIMULATOR_SYSTEMS:
             system = MujocoSystem(world.model, world.data,
                                   prefix=entity.robot.prefix)
             entity.systems.append(system)
@@ -127,18 +131,18 @@ def hardware_factory(world, entity):
 
 def parameters_file(default, description):
     """
-    Return the controllers YAML path of a robot (None when there is none).
+    Return the controllers YAML paths of a robot, in order ([] when there is none).
 
     :param default: the simulator's ``parameters_file`` ('' = each description's own).
-    :param description: the robot's RobotDescription (``<mujoco><ros2_control parameters>``).
-    :raises ValueError: the file does not exist.
+    :param description: the robot's RobotDescription (``<mujoco><ros2_control parameters>``,
+        else every ``<parameters>`` of gz_ros2_control's plugin).
+    :raises ValueError: one line naming a file that does not exist.
     """
-    path = default
-    if not path:
-        path = description.mujoco.parameters
-    if not path:
-        return None
-    path = resolve_uri(path)
-    if not os.path.isfile(path):
-        raise ValueError(f'controller parameters file {path!r} not found')
-    return path
+    paths = [default] if default else description.parameters_files()
+    resolved = []
+    for path in paths:
+        found = resolve_uri(path)
+        if not os.path.isfile(found):
+            raise ValueError(f'controller parameters file {found!r} not found')
+        resolved.append(found)
+    return resolved

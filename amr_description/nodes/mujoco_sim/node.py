@@ -153,10 +153,12 @@ class MujocoSim(Node):
             from amr_description.control.controller_manager import ControllerManager
         except ImportError as exc:
             raise ValueError(f'controller manager not available: {exc}') from None
-        return ControllerManager(entity.description, self._executor,
-                                 hardware_factory=hardware_factory,
-                                 parameters_file=parameters_file, namespace=entity.namespace,
-                                 use_sim_time=True)
+        plugin = entity.description.control_plugin  # gz_ros2_control's, or None
+        return ControllerManager(
+            entity.description, self._executor, hardware_factory=hardware_factory,
+            parameters_file=parameters_file, namespace=entity.namespace, use_sim_time=True,
+            name=plugin.controller_manager_name if plugin else 'controller_manager',
+            remappings=plugin.remappings if plugin else ())
 
     def setup_entity(self, entity):
         """Create one publisher per sensor of ``entity`` (executor thread, before it runs)."""
