@@ -244,8 +244,8 @@ class Simulation:
         :raises SpawnError: a taken name or namespace, a description MuJoCo cannot build.
         """
         from amr_description.sim.urdf_to_mjcf import urdf_to_spec
-        if name in self.entities and allow_renaming:
-            index = 1
+        if name in self.entities and allow_renaming:  # gz-sim's UserCommands: X_0, X_1, ...
+            index = 0
             while f'{name}_{index}' in self.entities:
                 index += 1
             name = f'{name}_{index}'

@@ -146,7 +146,7 @@ def test_robots_collide_with_each_other():
 
 def test_names_and_namespaces_unique_first_keeps_running():
     log, released = [], []
-    sim = _simulation({'a': _forward, 'a_1': _forward}, log, released)
+    sim = _simulation({'a': _forward, 'a_0': _forward}, log, released)
     sim.spawn(tutorial_urdf(), 'a', None, namespace='r1')
     with pytest.raises(ValueError, match="an entity named 'a' already exists"):
         sim.spawn(tutorial_urdf(), 'a', None, namespace='r2')
@@ -156,9 +156,9 @@ def test_names_and_namespaces_unique_first_keeps_running():
         sim.spawn(tutorial_urdf(), 'c', None, namespace='1bad')
     assert list(sim.entities) == ['a'] and len(sim.world.robots) == 1
     renamed = sim.spawn(tutorial_urdf(), 'a', None, namespace='r3', allow_renaming=True)
-    assert renamed.name == 'a_1'
+    assert renamed.name == 'a_0'
     sim.run_cycle()
-    assert {n for n, _, _, _ in log} == {'a', 'a_1'}
+    assert {n for n, _, _, _ in log} == {'a', 'a_0'}
 
 
 def test_failed_setup_undoes_the_spawn_and_releases_the_controller_manager():
