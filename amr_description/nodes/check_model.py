@@ -17,6 +17,32 @@ from amr_description.core.urdf_model import parse_urdf_file
 from amr_description.core.urdf_model import URDFError
 
 
+def _controllers_of(urdf_xml):
+    """
+    Return ``(controllers dict, last path)`` of the YAML files a description names, or Nones.
+
+    Several gz_ros2_control ``<parameters>`` files are merged per node section, a later file
+    overriding an earlier one (rcl's ``--params-file`` rule).
+
+    :raises ValueError: one line naming a file that cannot be read.
+    """
+    from amr_description.core.description_file import resolve_uri
+    from amr_description.core.robot_description import RobotDescription
+    paths = [resolve_uri(p) for p in RobotDescription(urdf_xml).parameters_files()]
+    merged = None
+    for path in paths:
+        data = load_controllers(path)
+        merged = merged or {}
+        for section, values in data.items():
+            target = merged.setdefault(section, {})
+            for key, value in (values or {}).items():
+                if isinstance(value, dict) and isinstance(target.get(key), dict):
+                    target[key] = {**target[key], **value}
+                else:
+                    target[key] = value
+    return merged, (paths[-1] if paths else None)
+
+
 def main(argv=None):
     """
     Check a URDF (and optionally its controllers.yaml); print findings.
@@ -33,7 +59,9 @@ def main(argv=None):
         'ros2_control block and controllers.yaml.')
     parser.add_argument('urdf', help='URDF file')
     parser.add_argument('--controllers', metavar='YAML',
-                        help='controllers.yaml (ros2_control format) to check against the URDF')
+                        help='controllers.yaml (ros2_control format) to check against the URDF '
+                        '(default: the file the description names, <mujoco><ros2_control '
+                        'parameters> or the <parameters> of gz_ros2_control)')
     parser.add_argument('-q', '--quiet', action='store_true', help='print errors and warnings '
                         'only')
     args = parser.parse_args(sys.argv[1:] if argv is None else argv)
@@ -46,6 +74,8 @@ def main(argv=None):
                 raise
             findings = [Finding(ERROR, exc.element, exc.problem)]
         controllers = load_controllers(args.controllers) if args.controllers else None
+        if controllers is None and model is not None:
+            controllers, args.controllers = _controllers_of(urdf_xml)
     except ValueError as exc:
         print(f'check_model: {exc}', file=sys.stderr)
         return 2

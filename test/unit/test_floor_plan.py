@@ -124,3 +124,15 @@ def test_the_reader_sees_every_form_of_import(tmp_path, source, expected):
     path.write_text(source)
     names = _imports('amr_description.control.probe', str(path))
     assert expected in {_folder_of(name) for name in names}
+
+
+def test_test_modules_have_distinct_names():
+    # test/ has no __init__.py: pytest imports each test file by its base name, so two
+    # files of one name in unit/ and integration/ stop the whole suite at collection.
+    seen = {}
+    for folder, _, files in os.walk(os.path.join(ROOT, 'test')):
+        for name in files:
+            if name.startswith('test_') and name.endswith('.py'):
+                seen.setdefault(name, []).append(os.path.relpath(folder, ROOT))
+    twice = {name: where for name, where in seen.items() if len(where) > 1}
+    assert not twice, f'test files sharing a name: {twice}'

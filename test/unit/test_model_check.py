@@ -288,12 +288,12 @@ def test_cli_reports_what_the_loader_refuses(tmp_path, capsys, urdf_xml, old, ne
 def test_unknown_hardware_plugin(urdf_xml):
     assert 'amr_description/MujocoSystem' in controller_checks.hardware_plugins()
     xml = urdf_xml.replace('<plugin>amr_description/MujocoSystem</plugin>',
-                           '<plugin>gz_ros2_control/GazeboSimSystem</plugin>')
+                           '<plugin>acme_robotics/CanBusSystem</plugin>')
     found = errors(run(xml))
     assert len(found) == 1, [str(f) for f in found]
     assert found[0].element.startswith('ros2_control ')
     assert 'unknown hardware plugin' in found[0].message
-    assert found[0].found == 'gz_ros2_control/GazeboSimSystem'
+    assert found[0].found == 'acme_robotics/CanBusSystem'
 
 
 @pytest.mark.parametrize('base, odom_tf, warned', [

@@ -36,10 +36,12 @@ command is :mod:`amr_description.nodes.check_model`. One module per group of che
 
 from amr_description.core.model_check.controllers import check_ros2_control
 from amr_description.core.model_check.controllers_yaml import diff_drive_params
+from amr_description.core.model_check.gazebo import check_gazebo
 from amr_description.core.model_check.links import check_links
 from amr_description.core.model_check.mujoco import check_mujoco_block
 from amr_description.core.model_check.wheels import check_wheels
 from amr_description.core.model_check.wheels import wheel_joints
+from lxml import etree
 
 
 def check_model(model, urdf_xml, controllers=None):
@@ -58,4 +60,6 @@ def check_model(model, urdf_xml, controllers=None):
     findings += check_wheels(model, wheel_joints(model, controllers), base)
     findings += check_ros2_control(model, urdf_xml, controllers)
     findings += check_mujoco_block(model, urdf_xml)
+    findings += check_gazebo(etree.fromstring(
+        urdf_xml.encode('utf-8') if isinstance(urdf_xml, str) else urdf_xml))
     return findings

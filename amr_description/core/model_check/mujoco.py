@@ -5,7 +5,7 @@
 
 from amr_description.core.model_check.findings import ERROR
 from amr_description.core.model_check.findings import Finding
-from amr_description.core.model_check.findings import WARNING
+from amr_description.core.model_check.findings import INFO
 from amr_description.core.mujoco_block import parse_mujoco_block
 from amr_description.core.ros2_control_info import parse_ros2_control
 from lxml import etree
@@ -26,7 +26,8 @@ def check_mujoco_block(model, urdf_xml):
     root = etree.fromstring(urdf_xml)
     blocks = root.findall('mujoco')
     if not blocks:
-        return [Finding(WARNING, '<mujoco>', 'no simulator block; the simulator uses defaults')]
+        return [Finding(INFO, '<mujoco>', 'no simulator block: the measured defaults of '
+                        'docs/gazebo.md apply')]
     findings = []
     try:
         parse_mujoco_block(root)

@@ -132,3 +132,24 @@ def test_stacks_take_a_xacro_description_its_arguments_and_the_controllers():
         stacks.sim(stacks.resolve('sim', ['controllers:= , ']))
     with pytest.raises(LaunchError, match="cannot read URDF '/nothing.urdf.xacro'"):
         stacks.sim(stacks.resolve('sim', ['description:=/nothing.urdf.xacro']))
+
+
+def test_check_model_reads_the_dialect(tmp_path, capsys):
+    from amr_description.nodes import check_model
+    urdf = tmp_path / 'robot.urdf'
+    text = read_description(os.path.join(DATA, 'robot.urdf.xacro'),
+                            {'controllers': os.path.join(DATA, 'controllers.yaml')})
+    text = text.replace('</robot>', '<gazebo reference="front_left_wheel"><mu1>0.8</mu1>'
+                        '</gazebo><gazebo><plugin filename="gz-sim-diff-drive-system" '
+                        'name="gz::sim::systems::DiffDrive"/></gazebo></robot>')
+    urdf.write_text(text)
+    assert check_model.main([str(urdf)]) == 0
+    out = capsys.readouterr().out
+    assert 'OK      <gazebo><plugin gz_ros2_control::GazeboSimROS2ControlPlugin>: ' \
+        'gz_ros2_control: starts the controller manager' in out
+    assert 'WARNING <gazebo reference="front_left_wheel"><mu1>: not read' in out
+    assert 'WARNING <gazebo><plugin gz::sim::systems::DiffDrive>: system plugin not ' \
+        'simulated' in out
+    # the controllers YAML came from <parameters>: the wheels of diff_drive_controller
+    assert 'unknown hardware plugin' not in out
+    assert 'diff_drive_controller: wheel_radius 0.1 m matches' in out
