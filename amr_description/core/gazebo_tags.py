@@ -52,19 +52,28 @@ class ControlPlugin:
     position_proportional_gain: float = 0.1
 
 
-def _text(element):
-    """Return the value of a Gazebo tag: its ``value`` attribute or its text, stripped."""
+def tag_text(element):
+    """
+    Return the value of a Gazebo tag: its ``value`` attribute or its text, stripped.
+
+    As sdformat 14's URDF reader: the attribute wins over the text (``<mu1 value="0.5"/>``).
+    """
     value = element.get('value')
     return (value if value is not None else element.text or '').strip()
 
 
-def _bool(element, where):
-    text = _text(element).lower()
-    if text in ('true', '1'):
+def tag_bool(element, where):
+    """
+    Return the boolean value of a Gazebo tag (``true``/``1``/``yes``, ``false``/``0``/``no``).
+
+    :raises ValueError: one line naming ``where`` for any other value.
+    """
+    text = tag_text(element).lower()
+    if text in ('true', '1', 'yes'):
         return True
-    if text in ('false', '0'):
+    if text in ('false', '0', 'no'):
         return False
-    raise ValueError(f'{where}: expected true or false, found {_text(element)!r}')
+    raise ValueError(f'{where}: expected true or false, found {tag_text(element)!r}')
 
 
 def is_control_plugin(plugin):
@@ -91,27 +100,111 @@ def parse_control_plugin(root):
 def _read_plugin(plugin):
     where = f"<gazebo><plugin name=\"{plugin.get('name', '')}\">"
     result = ControlPlugin()
-    result.parameters = [_text(p) for p in plugin.findall('parameters')]
+    result.parameters = [tag_text(p) for p in plugin.findall('parameters')]
     if not result.parameters or not all(result.parameters):
         raise ValueError(f'{where}: <parameters> (the controllers YAML) is required and must '
                          'not be empty, as gz_ros2_control needs it')
     element = plugin.find('controller_manager_name')
-    if element is not None and _text(element):
-        result.controller_manager_name = _text(element)
+    if element is not None and tag_text(element):
+        result.controller_manager_name = tag_text(element)
     ros = plugin.find('ros')
     if ros is not None:
         namespace = ros.find('namespace')
-        if namespace is not None and _text(namespace).strip('/'):
-            result.namespace = '/' + _text(namespace).strip('/')
-        result.remappings = [_text(r) for r in ros.findall('remapping') if _text(r)]
+        if namespace is not None and tag_text(namespace).strip('/'):
+            result.namespace = '/' + tag_text(namespace).strip('/')
+        result.remappings = [tag_text(r) for r in ros.findall('remapping') if tag_text(r)]
     element = plugin.find('hold_joints')
     if element is not None:
-        result.hold_joints = _bool(element, f'{where}<hold_joints>')
+        result.hold_joints = tag_bool(element, f'{where}<hold_joints>')
     element = plugin.find('position_proportional_gain')
     if element is not None:
         try:
-            result.position_proportional_gain = float(_text(element))
+            result.position_proportional_gain = float(tag_text(element))
         except ValueError:
             raise ValueError(f'{where}<position_proportional_gain>: expected a number, found '
-                             f'{_text(element)!r}') from None
+                             f'{tag_text(element)!r}') from None
     return result
+
+
+FRICTION_TAGS = ('mu1', 'mu2')
+"""``<gazebo reference>`` tags the simulator maps to contact friction."""
+
+IGNORED_AS_HARMONIC = ('fdir1', 'kp', 'kd', 'minDepth', 'maxVel', 'maxContacts', 'laserRetro',
+                       'stopCfm', 'stopErp', 'provideFeedback', 'implicitSpringDamper',
+                       'cfmDamping', 'fudgeFactor')
+"""``<gazebo reference>`` tags read and ignored: Harmonic's default engine (DART) ignores them
+too (gz-physics 7 ``dartsim/src/SDFFeatures.cc``); ``fdir1`` is ignored as MuJoCo's contact
+friction is isotropic."""
+
+
+def parse_reference_tags(root):
+    """
+    Return the ``<gazebo reference="...">`` tags of a URDF, per reference.
+
+    As sdformat 14's URDF reader: blocks are merged per reference in document order (a later
+    tag overrides an earlier one), a value is the ``value`` attribute or the text. Tags with
+    children (``<sensor>``, ``<plugin>``, ``<visual>``) are left out.
+
+    :param root: the ``<robot>`` element.
+    :returns: dict reference (link or joint name) -> dict tag -> value (str).
+    """
+    tags = {}
+    for gazebo in root.findall('gazebo'):
+        reference = gazebo.get('reference')
+        if not reference:
+            continue
+        for child in gazebo:
+            if isinstance(child.tag, str) and len(child) == 0:
+                tags.setdefault(reference, {})[child.tag] = tag_text(child)
+    return tags
+
+
+def surface_friction(tags, where):
+    """
+    Return the MuJoCo sliding friction of one link's Gazebo tags, or None without mu1/mu2.
+
+    Gazebo's friction pyramid has ``mu1`` along ``fdir1`` and ``mu2`` across; MuJoCo's
+    contact friction is isotropic, so the smaller one is taken (the direction that slips
+    first); one given alone stands for both. With the ground, Gazebo (ODE and DART) combines
+    the two surfaces' coefficients by their minimum, and the Gazebo ground is rougher (mu
+    100 in gz-sim's ``empty.sdf``), so the link's value is the contact's: the converter gives
+    such a geom MuJoCo's contact priority.
+
+    :param tags: dict tag -> value of one ``<gazebo reference>`` link.
+    :param where: what errors name (``<gazebo reference="caster">``).
+    :raises ValueError: one line when mu1 or mu2 is not a number >= 0.
+    """
+    values = []
+    for tag in FRICTION_TAGS:
+        if tag in tags:
+            try:
+                value = float(tags[tag])
+            except ValueError:
+                value = -1.0
+            if not value >= 0.0 or value == float('inf'):
+                raise ValueError(f'{where}<{tag}>: expected a number >= 0, found '
+                                 f'{tags[tag]!r}')
+            values.append(value)
+    return min(values) if values else None
+
+
+def apply_surface_tags(config, tags, model):
+    """
+    Give every link with ``mu1``/``mu2`` tags its friction, unless ``<mujoco>`` sets one.
+
+    :param config: the :class:`~amr_description.core.mujoco_block.MujocoConfig` (changed in
+        place: ``link_contact[link]`` gets ``friction`` and ``priority`` 1).
+    :param tags: :func:`parse_reference_tags`.
+    :param model: the :class:`~amr_description.core.urdf_model.RobotModel`.
+    :raises ValueError: as :func:`surface_friction`.
+    """
+    for reference, link_tags in tags.items():
+        if reference not in model.links:
+            continue
+        mu = surface_friction(link_tags, f'<gazebo reference="{reference}">')
+        contact = config.link_contact.get(reference, {})
+        if mu is None or 'friction' in contact:
+            continue
+        contact = dict(contact, friction=(mu,) + tuple(config.contact['friction'][1:]),
+                       priority=1)
+        config.link_contact[reference] = contact

@@ -8,7 +8,10 @@ hands it to the URDF -> MJCF converter, the resource manager and joint_state_bro
 one spawn is one XML parse (test/unit/test_robot_description.py counts them).
 """
 
+from amr_description.core.gazebo_systems import parse_gazebo_systems
+from amr_description.core.gazebo_tags import apply_surface_tags
 from amr_description.core.gazebo_tags import parse_control_plugin
+from amr_description.core.gazebo_tags import parse_reference_tags
 from amr_description.core.gazebo_tags import SIMULATOR_SYSTEMS
 from amr_description.core.mujoco_block import add_drive_defaults
 from amr_description.core.mujoco_block import parse_mujoco_block
@@ -33,6 +36,11 @@ class RobotDescription:
         MujocoConfig`.
     :ivar control_plugin: gz_ros2_control's ``<gazebo><plugin>``, a
         :class:`~amr_description.core.gazebo_tags.ControlPlugin`, or None.
+    :ivar gz_systems: the gz-sim system plugins, a
+        :class:`~amr_description.core.gazebo_systems.GazeboSystems`.
+    :ivar gazebo_tags: the ``<gazebo reference>`` tags, dict reference -> dict tag -> value.
+    :ivar system_hardware: the joints those systems command, as ``HardwareInfo`` blocks of
+        the simulator's system (their actuators are made as for ``<ros2_control>``).
     :raises ValueError: one line naming ``source`` (URDF), ``ros2_control`` or ``<mujoco>``
         and the element at fault.
     """
@@ -45,8 +53,14 @@ class RobotDescription:
         self.model = model_from_element(self.root, source)
         self.hardware = parse_ros2_control(self.root)
         self.mujoco = parse_mujoco_block(self.root)
-        add_drive_defaults(self.mujoco, self.model, self.hardware, SIMULATOR_SYSTEMS)
         self.control_plugin = parse_control_plugin(self.root)
+        self.gz_systems = parse_gazebo_systems(self.root, self.joint_names(moving_only=True))
+        self.system_hardware = self.gz_systems.hardware()
+        _check_one_command_source(self.hardware, self.system_hardware)
+        add_drive_defaults(self.mujoco, self.model, self.hardware + self.system_hardware,
+                           SIMULATOR_SYSTEMS)
+        self.gazebo_tags = parse_reference_tags(self.root)
+        apply_surface_tags(self.mujoco, self.gazebo_tags, self.model)
 
     def parameters_files(self):
         """
@@ -67,3 +81,15 @@ class RobotDescription:
         """
         return [joint.get('name') for joint in self.root.findall('joint')
                 if not moving_only or joint.get('type') not in ('fixed', None)]
+
+
+def _check_one_command_source(hardware, system_hardware):
+    """Refuse a joint commanded both by ``<ros2_control>`` and by a gz-sim system."""
+    claimed = {joint.name: info.name for info in hardware for joint in info.joints
+               if joint.command_interfaces}
+    for info in system_hardware:
+        for joint in info.joints:
+            if joint.name in claimed:
+                raise ValueError(
+                    f'joint {joint.name!r} is commanded by ros2_control {claimed[joint.name]!r}'
+                    ' and by the gz-sim DiffDrive plugin: keep one of them')

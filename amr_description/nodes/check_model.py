@@ -27,8 +27,16 @@ def _controllers_of(urdf_xml):
     :raises ValueError: one line naming a file that cannot be read.
     """
     from amr_description.core.description_file import resolve_uri
-    from amr_description.core.robot_description import RobotDescription
-    paths = [resolve_uri(p) for p in RobotDescription(urdf_xml).parameters_files()]
+    from amr_description.core.gazebo_tags import parse_control_plugin
+    from amr_description.core.mujoco_block import parse_mujoco_block
+    from amr_description.core.urdf_model import parse_xml
+    root = parse_xml(urdf_xml, 'URDF')
+    try:  # the same choice as RobotDescription.parameters_files; the checks report errors
+        block, plugin = parse_mujoco_block(root), parse_control_plugin(root)
+    except ValueError:
+        return None, None
+    uris = [block.parameters] if block.parameters else (plugin.parameters if plugin else [])
+    paths = [resolve_uri(p) for p in uris]
     merged = None
     for path in paths:
         data = load_controllers(path)

@@ -16,6 +16,8 @@ from amr_description.core.robot_description import RobotDescription
 from amr_description.core.ros_names import normalize_namespace
 from amr_description.sim.mujoco_system import MujocoSystem
 from amr_description.sim.sensors.registry import make_sensors
+from amr_description.sim.systems import make_systems
+from amr_description.sim.systems import SystemGroup
 
 
 class SpawnError(ValueError):
@@ -47,6 +49,10 @@ class Entity:
     :ivar sensors: its :class:`~amr_description.sim.sensors.base.Sensor` instances, made from
         its description by the registered sensor factories.
     :ivar steps_per_update: physics steps between two controller-manager updates (0: none).
+    :ivar gz_systems: its gz-sim systems
+        (:class:`~amr_description.sim.systems.SystemGroup`), or None without any.
+    :ivar inputs: the topics its systems listen to
+        (:class:`~amr_description.sim.systems.base.Input` list).
     """
 
     def __init__(self, name, namespace, robot, description):
@@ -59,6 +65,8 @@ class Entity:
         self.steps_per_update = 0
         self.systems = []
         self.sensors = []
+        self.gz_systems = None
+        self.inputs = []
 
     @property
     def frame_prefix(self):
@@ -99,7 +107,15 @@ def spawn_stages(sim, urdf, name='', pose=None, namespace='', allow_renaming=Fal
                 entity, hardware_factory(sim.world, entity),
                 parameters_file(sim.parameters_file, description))
             entity.controller_manager = cm
+        systems = make_systems(entity, sim.world, sim.world.name)
         entity.sensors = make_sensors(entity, sim.sensor_settings)
+        if systems:
+            entity.gz_systems = SystemGroup(systems)
+            entity.sensors += [output for system in systems for output in system.outputs]
+            entity.inputs = [item for system in systems for item in system.inputs]
+        for name in description.gz_systems.unknown:  # gz-sim would run it: say it does not
+            sim.logger.warning(f'entity {entity.name!r}: gz-sim system plugin {name!r} is not '
+                               'simulated (docs/gazebo.md)')
         if setup is not None:
             setup(entity)
     except Exception as exc:  # noqa: B902 - any failure: undo, report one line

@@ -26,10 +26,14 @@ controller-manager factory and the entity ``setup``/``release`` callbacks run on
 that calls :meth:`Simulation.spawn` (the ROS node's executor thread), so that a user of rclpy
 creates and destroys its entities on one thread and the simulation thread never does.
 
+A robot's gz-sim systems (:class:`~amr_description.sim.systems.SystemGroup`: DiffDrive and
+the like) are stepped as a controller manager with ``update`` only, at their own rate.
+
 Time: sim time ``t = step_count * physics_step`` (s), exact multiples of the physics step;
 MuJoCo's ``data.time`` is not used for it. Control instants are the multiples of each
 controller manager's ``1 / update_rate`` (rounded to physics steps); with no controller
-manager the cycle is :data:`IDLE_RATE` Hz of sim time.
+manager the cycle is :data:`IDLE_RATE` Hz of sim time. A cycle also ends at every multiple
+of a sensor's period, so that each sensor is measured at its own rate.
 """
 
 import logging
@@ -101,6 +105,7 @@ class Simulation:
         self.entities = {}          # name -> Entity (spawned; possibly still being set up)
         self.active = ()            # Entities set up and stepped with their controllers
         self._managers = ()         # (cm, steps_per_update, read, update, write)
+        self._periods = (self._steps(IDLE_RATE),)  # steps between the cycle's instants
         self.step_count = 0
         self.before_update = []
         self.after_cycle = []
@@ -283,9 +288,23 @@ class Simulation:
             rate = float(getattr(cm, 'update_rate', IDLE_RATE) or IDLE_RATE)
             entity.steps_per_update = max(1, int(round(1.0 / (rate * self.physics_step))))
         self.active = self.active + (entity,)
-        self._managers = tuple(
-            (e.controller_manager, e.steps_per_update) + _phases(e.controller_manager)
-            for e in self.active if e.controller_manager is not None)
+        managers = []
+        for e in self.active:
+            if e.controller_manager is not None:
+                managers.append((e.controller_manager, e.steps_per_update)
+                                + _phases(e.controller_manager))
+            if e.gz_systems is not None:
+                managers.append((e.gz_systems, self._steps(e.gz_systems.update_rate), None,
+                                 e.gz_systems.update, None))
+        self._managers = tuple(managers)
+        self._periods = tuple(sorted(
+            {m[1] for m in managers} | {s.period_steps(self.physics_step)
+                                        for e in self.active for s in e.sensors}
+            | (set() if managers else {self._steps(IDLE_RATE)})))
+
+    def _steps(self, rate):
+        """Return the physics steps of one period at ``rate`` Hz of sim time (>= 1)."""
+        return max(1, int(round(1.0 / (rate * self.physics_step))))
 
     def _rebind(self):
         model, data = self.world.model, self.world.data
@@ -303,6 +322,9 @@ class Simulation:
             self._pacer.reset()
             self._halted = None
             self._warnings_seen = 0
+            for entity in self.entities.values():
+                if entity.gz_systems is not None:
+                    entity.gz_systems.reset()
             for listener in self.on_reset:
                 listener()
         self.call(apply)
@@ -344,12 +366,9 @@ class Simulation:
 
     # ------------------------------------------------------------------ the cycle
     def _due_steps(self):
-        """Return physics steps to the next control instant (>= 1)."""
+        """Return physics steps to the next instant a manager or a sensor is due (>= 1)."""
         count = self.step_count
-        if not self._managers:
-            per = max(1, int(round(1.0 / (IDLE_RATE * self.physics_step))))
-            return per - count % per
-        return min(per - count % per for _, per, _, _, _ in self._managers)
+        return min(per - count % per for per in self._periods)
 
     def run_cycle(self):
         """

@@ -304,7 +304,7 @@ def urdf_to_spec(urdf_xml, name='amr', pose=(0.0, 0.0, 0.0, 0.0, 0.0, 0.0), free
         RobotDescription(urdf_xml, source='URDF')
     robot = description.model.urdf.robot
     config = description.mujoco
-    hardware = description.hardware
+    hardware = description.hardware + description.system_hardware
     root_name = _root_link(robot)
     pose = [float(v) for v in pose]
     if len(pose) not in (6, 7) or not all(math.isfinite(v) for v in pose):
@@ -364,6 +364,7 @@ def urdf_to_spec(urdf_xml, name='amr', pose=(0.0, 0.0, 0.0, 0.0, 0.0, 0.0), free
             geom.solref = list(contact['solref'])
             geom.solimp = _pad(contact['solimp'], DEFAULT_CONTACT['solimp'])
             geom.condim = contact['condim']
+            geom.priority = int(contact.get('priority', 0))  # Gazebo friction tags win
             geom.rgba = [0.5, 0.5, 0.9, 0.4]
         for index, visual in enumerate(link.visuals):
             geom = _add_geometry(spec, body, visual.geometry, visual.origin,

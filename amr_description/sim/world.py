@@ -86,7 +86,11 @@ class World:
     bodies already present is kept); holders of the old objects must re-read them.
 
     :param physics_step: physics time step in seconds (default 1 ms).
+    :ivar name: the world's name in gz topics (``/world/<name>/...``): ``'empty'``, the name of
+        the empty world of the Gazebo tutorials (gz-sim's ``empty.sdf``).
     """
+
+    name = 'empty'
 
     def __init__(self, physics_step=0.001):
         """Build and compile the empty world (see the class docstring)."""

@@ -140,15 +140,18 @@ def test_check_model_reads_the_dialect(tmp_path, capsys):
     text = read_description(os.path.join(DATA, 'robot.urdf.xacro'),
                             {'controllers': os.path.join(DATA, 'controllers.yaml')})
     text = text.replace('</robot>', '<gazebo reference="front_left_wheel"><mu1>0.8</mu1>'
-                        '</gazebo><gazebo><plugin filename="gz-sim-diff-drive-system" '
-                        'name="gz::sim::systems::DiffDrive"/></gazebo></robot>')
+                        '<kp>1e6</kp><selfCollide>true</selfCollide></gazebo><gazebo>'
+                        '<plugin filename="gz-sim-sensors-system" '
+                        'name="gz::sim::systems::Sensors"/></gazebo></robot>')
     urdf.write_text(text)
     assert check_model.main([str(urdf)]) == 0
     out = capsys.readouterr().out
     assert 'OK      <gazebo><plugin gz_ros2_control::GazeboSimROS2ControlPlugin>: ' \
         'gz_ros2_control: starts the controller manager' in out
-    assert 'WARNING <gazebo reference="front_left_wheel"><mu1>: not read' in out
-    assert 'WARNING <gazebo><plugin gz::sim::systems::DiffDrive>: system plugin not ' \
+    assert 'OK      <gazebo reference="front_left_wheel"><mu1>: contact friction 0.8' in out
+    assert 'OK      <gazebo reference="front_left_wheel"><kp>: ignored' in out
+    assert 'WARNING <gazebo reference="front_left_wheel"><selfCollide>: not read' in out
+    assert 'WARNING <gazebo><plugin gz::sim::systems::Sensors>: system plugin not ' \
         'simulated' in out
     # the controllers YAML came from <parameters>: the wheels of diff_drive_controller
     assert 'unknown hardware plugin' not in out

@@ -1,15 +1,23 @@
 # Copyright 2026 The amr_description Authors
 # Licensed under the Apache License, Version 2.0
 """
-The Gazebo dialect of a description: what the simulator uses of each ``<gazebo>`` element.
+The Gazebo dialect of a description: what the simulator does with each ``<gazebo>`` element.
 
-gz_ros2_control's system plugin is used (it starts the controller manager, docs/gazebo.md);
-every other ``<gazebo>`` element (gz-sim system plugins, ``<gazebo reference>`` tags, sensors)
-is reported, by name, as not read by the simulator yet.
+Every ``<gazebo>`` child gets one finding (docs/gazebo.md has the table): gz_ros2_control's
+plugin and the gz-sim systems the simulator runs (DiffDrive, JointStatePublisher,
+OdometryPublisher) are used; ``mu1``/``mu2`` are mapped to contact friction; the tags
+Harmonic's default engine ignores are ignored here too; everything else is reported as not
+read by the simulator (yet).
 """
 
+from amr_description.core.gazebo_systems import parse_gazebo_systems
+from amr_description.core.gazebo_systems import system_class
+from amr_description.core.gazebo_tags import FRICTION_TAGS
+from amr_description.core.gazebo_tags import IGNORED_AS_HARMONIC
 from amr_description.core.gazebo_tags import is_control_plugin
 from amr_description.core.gazebo_tags import parse_control_plugin
+from amr_description.core.gazebo_tags import surface_friction
+from amr_description.core.gazebo_tags import tag_text
 from amr_description.core.model_check.findings import ERROR
 from amr_description.core.model_check.findings import Finding
 from amr_description.core.model_check.findings import INFO
@@ -20,14 +28,22 @@ NOT_YET = 'not read by the simulator yet (docs/gazebo.md)'
 
 def check_gazebo(root):
     """
-    Report every ``<gazebo>`` element: used, or not read.
+    Report every ``<gazebo>`` element: used, mapped, ignored or not read.
 
     :param root: the ``<robot>`` element.
     :returns: list of :class:`~amr_description.core.model_check.findings.Finding`: an error
-        for a malformed gz_ros2_control plugin, ok for a used one, a warning per element the
-        simulator does not read.
+        for a malformed plugin or tag, ok for a used, mapped or ignored one, a warning per
+        element the simulator does not read.
     """
     findings = []
+    moving = [j.get('name') for j in root.findall('joint') if j.get('type') != 'fixed']
+    try:
+        systems = parse_gazebo_systems(root, moving)
+    except ValueError as exc:
+        element, _, message = str(exc).partition(': ')
+        findings.append(Finding(ERROR, element, message))
+        systems = None
+    links = {link.get('name') for link in root.findall('link')}
     for gazebo in root.findall('gazebo'):
         reference = gazebo.get('reference')
         where = f'<gazebo reference="{reference}">' if reference else '<gazebo>'
@@ -37,12 +53,35 @@ def check_gazebo(root):
             if child.tag == 'plugin' and is_control_plugin(child):
                 findings += _control_plugin(root, f"{where}<plugin {child.get('name', '')}>")
             elif child.tag == 'plugin':
-                name = child.get('name') or child.get('filename') or '?'
-                findings.append(Finding(WARNING, f'{where}<plugin {name}>',
-                                        f'system plugin not simulated: {NOT_YET}'))
+                findings.append(_system(child, where, reference, systems))
+            elif reference in links and child.tag in FRICTION_TAGS:
+                findings.append(_friction(child, where))
+            elif child.tag in IGNORED_AS_HARMONIC:
+                findings.append(Finding(INFO, f'{where}<{child.tag}>', 'ignored, as Gazebo '
+                                        "Harmonic's default physics engine (DART) does"))
             else:
                 findings.append(Finding(WARNING, f'{where}<{child.tag}>', NOT_YET))
     return findings
+
+
+def _system(plugin, where, reference, systems):
+    name = system_class(plugin) or plugin.get('filename') or '?'
+    element = f"{where}<plugin {plugin.get('name') or name}>"
+    if systems is None:
+        return Finding(INFO, element, 'not checked further (see the error above)')
+    if reference or name in systems.unknown:
+        return Finding(WARNING, element, f'system plugin not simulated: {NOT_YET}')
+    return Finding(INFO, element, f'simulated as gz-sim\'s {name.rsplit("::", 1)[-1]}')
+
+
+def _friction(tag, where):
+    element = f'{where}<{tag.tag}>'
+    try:
+        mu = surface_friction({tag.tag: tag_text(tag)}, where)
+    except ValueError as exc:
+        return Finding(ERROR, element, str(exc).split(': ', 1)[-1])
+    return Finding(INFO, element, f'contact friction {mu:g} (MuJoCo is isotropic: the smaller '
+                   'of mu1 and mu2)')
 
 
 def _control_plugin(root, where):

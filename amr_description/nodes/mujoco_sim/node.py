@@ -57,6 +57,20 @@ class _Published:
         self.steps = steps
 
 
+def _guarded(callback, topic, logger):
+    """Return ``callback`` that logs (once per kind of error) instead of raising."""
+    seen = set()
+
+    def call(msg):
+        try:
+            callback(msg)
+        except Exception as exc:  # noqa: B902 - garbage on a topic must not stop the node
+            if type(exc) not in seen:
+                seen.add(type(exc))
+                logger.error(f'{topic}: message ignored: {exc!r}')
+    return call
+
+
 class MujocoSim(Node):
     """Node ``mujoco_sim``: see :mod:`amr_description.nodes.mujoco_sim`."""
 
@@ -161,11 +175,19 @@ class MujocoSim(Node):
             remappings=plugin.remappings if plugin else ())
 
     def setup_entity(self, entity):
-        """Create one publisher per sensor of ``entity`` (executor thread, before it runs)."""
+        """
+        Create the publishers and subscriptions of ``entity`` (executor thread, before it runs).
+
+        One publisher per sensor, one subscription per input of its gz-sim systems; both use
+        ros_gz_bridge's ROS-side QoS: reliable, volatile, keep last 10.
+        """
         self._pending[entity.name] = [
             _Published(sensor, self.create_publisher(sensor.message_type, sensor.topic, 10),
                        sensor.period_steps(self.physics_step))
             for sensor in entity.sensors]
+        for item in entity.inputs:
+            self.create_subscription(item.message_type, item.topic,
+                                     _guarded(item.callback, item.topic, self.get_logger()), 10)
 
     def _on_spawned(self, entity):
         """Publish the new entity's sensors from the next cycle on (executor thread)."""
