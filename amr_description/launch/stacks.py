@@ -20,6 +20,7 @@ import os
 
 from amr_description.core.description_file import parse_xacro_args
 from amr_description.core.description_file import read_description
+from amr_description.core.urdf_model import parse_xml
 from amr_description.launch.actions import ComposableNode
 from amr_description.launch.actions import ComposableNodeContainer
 from amr_description.launch.actions import DeclareLaunchArgument
@@ -114,6 +115,8 @@ SIM_ARGUMENTS = [
     DeclareLaunchArgument('viewer_port', '8080', 'TCP port of the viewer page'),
     DeclareLaunchArgument('controllers', ','.join(CONTROLLERS),
                           'Controllers to spawn, in that order (comma-separated names)'),
+    DeclareLaunchArgument('bridge_config', '',
+                          'ros_gz_bridge YAML naming the ROS side of the gz-sim topics'),
 ] + DESCRIPTION_ARGUMENTS
 
 
@@ -202,7 +205,9 @@ def sim(args):
     spawners with ``OnProcessExit``; upstream's spawner takes several names and activates
     them in that order, and one process instead of two started one after the other saves a
     Python start-up, ~0.3 s of CPU, from the critical path); the viewer (Fixed Frame
-    ``odom``, port ``viewer_port``) unless ``viewer:=false``.
+    ``odom``, port ``viewer_port``) unless ``viewer:=false``. A description without
+    ``<ros2_control>`` (driven by gz-sim systems) gets no spawner; ``bridge_config:=FILE``
+    is the simulator's ``bridge_config`` parameter.
 
     :param args: dict of launch-argument values (see ``SIM_ARGUMENTS``; missing ones take
         their declared defaults).
@@ -223,7 +228,8 @@ def sim(args):
 
     mujoco_sim = Node(
         PACKAGE, 'mujoco_sim', output='screen',
-        parameters=[{'real_time_factor': rtf, 'headless': headless}],
+        parameters=[{'real_time_factor': rtf, 'headless': headless,
+                     'bridge_config': args['bridge_config']}],
         remappings=[('/diff_drive_controller/odom', '/odom')])
     robot_state_publisher = Node(
         PACKAGE, 'robot_state_publisher', output='screen',
@@ -240,12 +246,9 @@ def sim(args):
     spawner = Node(
         PACKAGE, 'spawner', output='screen',
         arguments=controllers)
-    actions = [
-        mujoco_sim,
-        robot_state_publisher,
-        create,
-        OnProcessExit(create, [spawner], only_on_success=True),
-    ]
+    actions = [mujoco_sim, robot_state_publisher, create]
+    if parse_xml(description, 'description').find('ros2_control') is not None:
+        actions.append(OnProcessExit(create, [spawner], only_on_success=True))
     if viewer:
         actions.append(Node(PACKAGE, 'viewer', output='screen',
                             parameters=[{'use_sim_time': use_sim_time, 'fixed_frame': 'odom',

@@ -29,14 +29,15 @@ def _yaw(q):
 class GzPeer(Peer):
     """Peer plus /cmd_vel (Twist) and the DiffDrive and JointStatePublisher topics."""
 
-    def __init__(self, domain_id, cmd_topic='/cmd_vel', odom_topic='/odom'):
+    def __init__(self, domain_id, cmd_topic='/cmd_vel', odom_topic='/odom', stamped=False):
         from geometry_msgs.msg import Twist
+        from geometry_msgs.msg import TwistStamped
         from nav_msgs.msg import Odometry
         from sensor_msgs.msg import JointState
         from tf2_msgs.msg import TFMessage
         super().__init__(domain_id)
-        self.Twist = Twist
-        self.cmd = self.node.create_publisher(Twist, cmd_topic, 10)
+        self.Twist = TwistStamped if stamped else Twist
+        self.cmd = self.node.create_publisher(self.Twist, cmd_topic, 10)
         self.wheel_odom = []
         self.joint_states = []
         self.tf = []
@@ -56,7 +57,8 @@ class GzPeer(Peer):
         """Publish a Twist, then step until ``done(wheel odometry twist)`` (paused sim)."""
         assert self.spin_until(lambda: self.cmd.get_subscription_count() > 0, 30)
         msg = self.Twist()
-        msg.linear.x, msg.angular.z = float(linear), float(angular)
+        twist = msg.twist if hasattr(msg, 'twist') else msg
+        twist.linear.x, twist.angular.z = float(linear), float(angular)
         self.cmd.publish(msg)
         for _ in range(limit_steps // CHUNK):
             self.step(CHUNK)
@@ -83,11 +85,11 @@ def gz_peer(ros_env):
     p.close()
 
 
-def _spawn(procs, exe, ros_env, peer, *create_args):
-    sim = procs.start([exe('mujoco_sim'), '--ros-args', '-p', 'real_time_factor:=0.0'],
-                      ros_env)
+def _spawn(procs, exe, ros_env, peer, *parameters):
+    sim = procs.start([exe('mujoco_sim'), '--ros-args', '-p', 'real_time_factor:=0.0',
+                       *parameters], ros_env)
     assert peer.spin_until(lambda: peer.now is not None, 30), sim.output
-    create = procs.start([exe('create'), '-file', XACRO, *create_args], ros_env)
+    create = procs.start([exe('create'), '-file', XACRO], ros_env)
     assert create.wait(60) == 0, create.output + sim.output
     assert peer.set_state(peer.msg.SimulationState.STATE_PAUSED).result == \
         peer.msg.Result.RESULT_OK
@@ -132,3 +134,42 @@ def test_diff_drive_robot_with_casters_drives_on_cmd_vel(procs, exe, ros_env, gz
     assert turned > 1.0
     assert odometry_turn == pytest.approx(turned, rel=0.02)
     assert sim.popen.poll() is None
+
+
+BRIDGE = """
+- ros_topic_name: /robot/cmd_vel
+  gz_topic_name: /cmd_vel
+  ros_type_name: geometry_msgs/msg/TwistStamped
+  gz_type_name: gz.msgs.Twist
+  direction: ROS_TO_GZ
+- ros_topic_name: wheel_odom
+  gz_topic_name: odom
+  ros_type_name: nav_msgs/msg/Odometry
+  gz_type_name: gz.msgs.Odometry
+  direction: GZ_TO_ROS
+- topic_name: /tf
+  ros_type_name: tf2_msgs/msg/TFMessage
+  gz_type_name: gz.msgs.Pose_V
+  direction: GZ_TO_ROS
+"""
+
+
+def test_bridge_config_renames_the_topics_as_the_users_bridge(procs, exe, ros_env, tmp_path):
+    pytest.importorskip('simulation_interfaces.srv')
+    config = tmp_path / 'bridge.yaml'
+    config.write_text(BRIDGE)
+    peer = GzPeer(int(ros_env['ROS_DOMAIN_ID']), cmd_topic='/robot/cmd_vel',
+                  odom_topic='/wheel_odom', stamped=True)
+    try:
+        sim = _spawn(procs, exe, ros_env, peer, '-p', f'bridge_config:={config}')
+        peer.command_until(0.3, 0.0, lambda twist: twist.linear.x > 0.25)
+        assert peer.wheel_odom[-1].child_frame_id == 'base_footprint'
+        assert peer.tf, sim.output
+        node = peer.node
+        assert node.count_publishers('/wheel_odom') == 1
+        # not in the bridge configuration: they do not reach ROS, as with ros_gz_bridge
+        assert node.count_publishers('/odom') == 0
+        assert node.count_publishers('/joint_states') == 0  # the peer only subscribes it
+        assert node.count_subscribers('/cmd_vel') == 0
+    finally:
+        peer.close()

@@ -128,6 +128,12 @@ def test_stacks_take_a_xacro_description_its_arguments_and_the_controllers():
     assert on_create.on_exit[0].arguments == ['joint_state_broadcaster']
     display = stacks.display(stacks.resolve('display', [f'model:={DATA}/robot.urdf.xacro']))
     assert 'tutorial_bot' in display[0].parameters[0]['robot_description']
+    # a robot driven by gz-sim systems (no <ros2_control>) gets no spawner; bridge_config
+    caster = os.path.join(ROOT, 'test', 'data', 'gz_diff_drive', 'robot.urdf.xacro')
+    actions = stacks.sim(stacks.resolve('sim', [f'description:={caster}', 'viewer:=false',
+                                                'bridge_config:=/b.yaml']))
+    assert [a.executable for a in actions] == ['mujoco_sim', 'robot_state_publisher', 'create']
+    assert actions[0].parameters[0]['bridge_config'] == '/b.yaml'
     with pytest.raises(LaunchError, match="launch argument 'controllers'"):
         stacks.sim(stacks.resolve('sim', ['controllers:= , ']))
     with pytest.raises(LaunchError, match="cannot read URDF '/nothing.urdf.xacro'"):

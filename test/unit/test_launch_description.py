@@ -103,15 +103,15 @@ def test_stack_names():
 
 
 def test_sim_stack_layout(monkeypatch):
-    monkeypatch.setattr(stacks, 'read_urdf',
-                        lambda path=None, xacro_args='': '<robot name="amr"/>')
+    urdf = '<robot name="amr"><ros2_control name="s" type="system"/></robot>'
+    monkeypatch.setattr(stacks, 'read_urdf', lambda path=None, xacro_args='': urdf)
     args = stacks.resolve('sim', ['rtf:=0', 'robot:=r2', 'x:=1', 'yaw:=1.57', 'viewer:=false'])
     mujoco_sim, rsp, create, on_create = stacks.sim(args)
     assert mujoco_sim.executable == 'mujoco_sim'
-    assert mujoco_sim.parameters == [{'real_time_factor': 0.0, 'headless': True}]
+    assert mujoco_sim.parameters == [{'real_time_factor': 0.0, 'headless': True,
+                                      'bridge_config': ''}]
     assert mujoco_sim.remappings == [('/diff_drive_controller/odom', '/odom')]
-    assert rsp.parameters == [{'robot_description': '<robot name="amr"/>',
-                               'use_sim_time': True}]
+    assert rsp.parameters == [{'robot_description': urdf, 'use_sim_time': True}]
     assert create.arguments == ['-topic', 'robot_description', '-name', 'r2', '-x', '1.0',
                                 '-y', '0.0', '-z', '0.2', '-Y', '1.57']
     assert isinstance(on_create, OnProcessExit) and on_create.target_action is create

@@ -12,7 +12,8 @@ nothing else is woken per update) and the in-process sim time of the controller 
 
 Modules: :mod:`.node` (parameters, wiring, sensor publishers, ``main``), :mod:`.services`
 (the simulation_interfaces services), :mod:`.clock` (the one-clock guard and the external
-clock follower), :mod:`.passive_viewer` (MuJoCo's own window, ``headless:=false``).
+clock follower), :mod:`.bridge` (the ROS names of gz-sim systems' topics),
+:mod:`.passive_viewer` (MuJoCo's own window, ``headless:=false``).
 
 Parameters (read at start):
   ``physics_step`` (double, 0.001 s), ``real_time_factor`` (double, 1.0; 0 = as fast as
@@ -22,7 +23,9 @@ Parameters (read at start):
   (double, 50.0 Hz of sim time), ``clock_source`` (string, ``internal``: this node publishes
   /clock and refuses to start, exit code 1, when it finds another node publishing /clock
   in its first 10 s, publishing none of its own in the first 1.5 s; ``external``: follow the
-  /clock of another simulator, never running ahead of it, and publish none).
+  /clock of another simulator, never running ahead of it, and publish none),
+  ``bridge_config`` (string, '': a ros_gz_bridge YAML file; the topics of the robots' gz-sim
+  systems then reach ROS as that bridge would bridge them, docs/gazebo.md).
 
 Topics: ``/clock`` (rosgraph_msgs/Clock, reliable, depth 10) after every cycle, at least 100 Hz
 of sim time, and at 10 Hz (wall) with an unchanged time while paused (an empty world runs in
@@ -30,7 +33,10 @@ real time even with ``real_time_factor`` 0: fast-forward starts with the first s
 entity); one topic per sensor of every spawned robot (:mod:`amr_description.sim.sensors`), e.g.
 ``<namespace>/ground_truth/odom`` (nav_msgs/Odometry): pose of its root link in frame
 ``world``, twist in the root link frame (REP 105 / Odometry convention); child frame
-``base_footprint`` (``r1/base_footprint`` in namespace ``/r1``).
+``base_footprint`` (``r1/base_footprint`` in namespace ``/r1``); the topics of the gz-sim
+systems a robot's description names (:mod:`amr_description.sim.systems`: e.g. DiffDrive's
+Twist subscription and Odometry and TF publishers), reliable, volatile, depth 10 as
+ros_gz_bridge's.
 
 Services (simulation_interfaces): ``~/spawn_entity`` (SpawnEntity; ``entity_namespace``
 gives the robot's controller manager ``<namespace>/controller_manager``, its controllers

@@ -8,6 +8,9 @@ Parameters, topics, services and threads: see :mod:`amr_description.nodes.mujoco
 
 import threading
 
+from amr_description.core.bridge_config import read_bridge_config
+from amr_description.nodes.mujoco_sim.bridge import bridged_inputs
+from amr_description.nodes.mujoco_sim.bridge import bridged_outputs
 from amr_description.nodes.mujoco_sim.clock import ClockFollower
 from amr_description.nodes.mujoco_sim.clock import ClockGuard
 from amr_description.nodes.mujoco_sim.passive_viewer import PassiveViewer
@@ -91,6 +94,7 @@ class MujocoSim(Node):
         publish_ground_truth = self.declare_parameter('publish_ground_truth', True).value
         ground_truth_rate = self.declare_parameter('ground_truth_rate', 50.0).value
         self.clock_source = self.declare_parameter('clock_source', 'internal').value
+        self.bridge_config = self.declare_parameter('bridge_config', '').value
         self._check_parameters()
         self.external_clock = self.clock_source == 'external'
         self.refused = None  # one-line reason to exit 1
@@ -146,6 +150,12 @@ class MujocoSim(Node):
             log.error(f'parameter real_time_factor must be >= 0, found '
                       f'{self.real_time_factor}; using 1.0')
             self.real_time_factor = 1.0
+        self._bridge = None  # the ros_gz_bridge entries, None: every gz topic as it is
+        if self.bridge_config:
+            try:
+                self._bridge = read_bridge_config(self.bridge_config)
+            except ValueError as exc:
+                log.error(f'parameter bridge_config: {exc}; gz topics keep their names')
         if self.clock_source not in ('internal', 'external'):
             log.error(f"parameter clock_source must be 'internal' or 'external', found "
                       f"{self.clock_source!r}; using 'internal'")
@@ -181,13 +191,15 @@ class MujocoSim(Node):
         One publisher per sensor, one subscription per input of its gz-sim systems; both use
         ros_gz_bridge's ROS-side QoS: reliable, volatile, keep last 10.
         """
+        outputs = bridged_outputs(entity.sensors, self._bridge)
+        inputs = bridged_inputs(entity.inputs, self._bridge)
         self._pending[entity.name] = [
-            _Published(sensor, self.create_publisher(sensor.message_type, sensor.topic, 10),
+            _Published(sensor, self.create_publisher(sensor.message_type, topic, 10),
                        sensor.period_steps(self.physics_step))
-            for sensor in entity.sensors]
-        for item in entity.inputs:
-            self.create_subscription(item.message_type, item.topic,
-                                     _guarded(item.callback, item.topic, self.get_logger()), 10)
+            for sensor, topic in outputs]
+        for topic, message_type, callback in inputs:
+            self.create_subscription(message_type, topic,
+                                     _guarded(callback, topic, self.get_logger()), 10)
 
     def _on_spawned(self, entity):
         """Publish the new entity's sensors from the next cycle on (executor thread)."""
