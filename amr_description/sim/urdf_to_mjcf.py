@@ -13,7 +13,8 @@ Mapping (URDF -> MuJoCo, units SI, REP 103 axes):
   terms (rotated by the inertial ``rpy`` into the link frame and given to MuJoCo as
   ``fullinertia``) and the inertial origin (``ipos``). Links without ``<inertial>`` have zero
   mass; inertia is never derived from geoms.
-- ``<collision>`` boxes, cylinders, spheres (and STL/OBJ meshes whose file resolves) become
+- ``<collision>`` boxes, cylinders, spheres (and meshes whose file resolves: STL and OBJ read
+  by MuJoCo, COLLADA and the other formats of trimesh as triangles) become
   colliding geoms in group 3; ``<visual>`` ones become non-colliding geoms
   (``contype = conaffinity = 0``) in group 2 with the material colour.
 - ``continuous`` -> unlimited hinge, ``revolute`` -> limited hinge, ``prismatic`` -> slide,
@@ -107,6 +108,27 @@ def _set_frame(element, origin):
     element.quat = _mat_to_quat(origin[:3, :3])
 
 
+def mesh_triangles(path):
+    """
+    Return the triangles of a mesh file MuJoCo does not read itself (COLLADA ``.dae``, ...).
+
+    Read with trimesh (and pycollada for ``.dae``), the scene's parts joined in one mesh in
+    the file's frame.
+
+    :param path: mesh file path.
+    :returns: ``(vertices (N, 3) float, faces (M, 3) int)``.
+    :raises ValueError: one line when trimesh cannot read it or it holds no triangle.
+    """
+    import trimesh
+    try:
+        mesh = trimesh.load(path, force='mesh')
+    except Exception as exc:  # noqa: B902 - trimesh raises many types; one line for all
+        raise ValueError(f'cannot read {path!r}: {exc}'.splitlines()[0]) from None
+    if not len(getattr(mesh, 'faces', ())):
+        raise ValueError(f'{path!r} holds no triangle')
+    return np.asarray(mesh.vertices, dtype=float), np.asarray(mesh.faces, dtype=int)
+
+
 def _add_geometry(spec, body, geometry, origin, where):
     """Add one geom for a URDF ``<geometry>``; return it, or None when unsupported."""
     geom = None
@@ -126,10 +148,19 @@ def _add_geometry(spec, body, geometry, origin, where):
         except ValueError as exc:
             _LOG.warning('%s: mesh skipped: %s', where, exc)
             return None
-        if not path.lower().endswith(('.stl', '.obj')) or not os.path.isfile(path):
-            _LOG.warning('%s: mesh %r skipped (only existing STL/OBJ files)', where, filename)
+        if not os.path.isfile(path):
+            _LOG.warning('%s: mesh %r skipped: no file %r', where, filename, path)
             return None
-        mesh = spec.add_mesh(name=f'mesh_{len(spec.meshes)}', file=os.path.abspath(path))
+        if path.lower().endswith(('.stl', '.obj')):
+            mesh = spec.add_mesh(name=f'mesh_{len(spec.meshes)}', file=os.path.abspath(path))
+        else:
+            try:
+                vertices, faces = mesh_triangles(path)
+            except ValueError as exc:
+                _LOG.warning('%s: mesh %r skipped: %s', where, filename, exc)
+                return None
+            mesh = spec.add_mesh(name=f'mesh_{len(spec.meshes)}', uservert=vertices.ravel(),
+                                 userface=faces.ravel())
         if geometry.mesh.scale is not None:
             mesh.scale = np.broadcast_to(np.asarray(geometry.mesh.scale, dtype=float), (3,))
         geom = body.add_geom(type=mujoco.mjtGeom.mjGEOM_MESH, meshname=mesh.name)

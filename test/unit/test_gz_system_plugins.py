@@ -208,3 +208,25 @@ def test_a_sensor_is_measured_at_its_own_rate():
     # the 100 Hz cycle also stops every 25 ms (before: only where both met, every 50 ms)
     assert {25, 75, 125, 175} <= set(instants)
     assert sim._periods == (10, 25)
+
+
+def test_collada_meshes_are_read_and_a_missing_one_is_one_warning(tmp_path, caplog):
+    import mujoco
+    import trimesh
+    from amr_description.sim.urdf_to_mjcf import urdf_to_spec
+    dae = tmp_path / 'body.dae'
+    dae.write_bytes(trimesh.exchange.dae.export_collada(
+        trimesh.creation.box(extents=(0.4, 0.3, 0.1))))
+    urdf = (f'<robot name="m"><link name="a"><collision><geometry><mesh filename="{dae}"/>'
+            '</geometry></collision><visual><geometry><mesh filename="package://'
+            'amr_description/meshes/nope.dae"/></geometry></visual><inertial><mass value="1"/>'
+            '<inertia ixx="1" iyy="1" izz="1" ixy="0" ixz="0" iyz="0"/></inertial></link>'
+            '</robot>')
+    model = urdf_to_spec(urdf).compile()
+    assert model.nmesh == 1 and model.mesh_vertnum[0] == 8
+    box = model.geom_aabb[[i for i in range(model.ngeom)
+                           if model.geom_type[i] == mujoco.mjtGeom.mjGEOM_MESH][0]]
+    # half sizes (m), in MuJoCo's principal frame of the mesh (axes reordered)
+    assert sorted(box[3:]) == pytest.approx([0.05, 0.15, 0.2], abs=1e-6)
+    warnings = [r.getMessage() for r in caplog.records if 'nope.dae' in r.getMessage()]
+    assert len(warnings) == 1 and "link 'a' visual 0" in warnings[0], warnings
