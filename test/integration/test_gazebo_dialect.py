@@ -103,6 +103,17 @@ def test_bad_gazebo_descriptions_are_one_line_and_the_simulator_runs_on(procs, e
     errors = [line for line in refused.output.splitlines() if '[ERROR]' in line]
     assert len(errors) == 1 and 'nosuchpkg' in errors[0] and str(broken) in errors[0], \
         refused.output
+    # a gz-sim DiffDrive naming a joint the URDF does not have
+    caster = os.path.join(ROOT, 'test', 'data', 'gz_diff_drive', 'robot.urdf.xacro')
+    from amr_description.core.description_file import read_description
+    wrong = tmp_path / 'wrong_joint.urdf'
+    wrong.write_text(read_description(caster).replace(
+        '<left_joint>left_wheel_joint</left_joint>', '<left_joint>left_wheel</left_joint>'))
+    refused = procs.start([exe('create'), '-file', str(wrong)], ros_env)
+    assert refused.wait(60) == 1, refused.output
+    errors = [line for line in refused.output.splitlines() if '[ERROR]' in line]
+    assert len(errors) == 1 and '<left_joint>: joint \'left_wheel\' is not a moving joint' \
+        in errors[0], refused.output
     # the simulator is still there and spawns the next robot
     good = procs.start([exe('create'), '-file', os.path.join(ROOT, 'urdf', 'amr.urdf')],
                        ros_env)
