@@ -126,6 +126,15 @@ def _read_plugin(plugin):
     return result
 
 
+KEPT_JOINT_TAGS = ('preserveFixedJoint', 'disableFixedJointLumping')
+"""``<gazebo reference="joint">`` tags that are what the simulator does anyway: every link
+keeps its own body and frame (no fixed-joint lumping), so a sensor or a TF frame on a link
+merged away in Gazebo is still there."""
+
+VISUAL_TAGS = ('material', 'visual')
+"""``<gazebo reference>`` tags of Gazebo's renderer: the simulator's visual geoms and the
+viewer take the URDF ``<material>`` colour instead."""
+
 FRICTION_TAGS = ('mu1', 'mu2')
 """``<gazebo reference>`` tags the simulator maps to contact friction."""
 

@@ -73,6 +73,26 @@ class RobotDescription:
             return [self.mujoco.parameters]
         return list(self.control_plugin.parameters) if self.control_plugin else []
 
+    def self_collide_links(self):
+        """
+        Return the links that collide with the robot's other links (a set of names).
+
+        Gazebo's rule (SDF ``self_collide``, false by default): the links whose
+        ``<gazebo reference>`` sets ``<selfCollide>`` true.
+
+        :raises ValueError: one line when a ``selfCollide`` is not a boolean.
+        """
+        links = set()
+        for reference, tags in self.gazebo_tags.items():
+            if 'selfCollide' in tags:
+                text = tags['selfCollide'].strip().lower()
+                if text not in ('true', '1', 'yes', 'false', '0', 'no'):
+                    raise ValueError(f'<gazebo reference="{reference}"><selfCollide>: expected '
+                                     f'true or false, found {tags["selfCollide"]!r}')
+                if text in ('true', '1', 'yes'):
+                    links.add(reference)
+        return links
+
     def joint_names(self, moving_only=False):
         """
         Return the URDF joint names in document order.

@@ -266,9 +266,10 @@ class Simulation:
         try:
             spec = urdf_to_spec(description, name=name,
                                 pose=(0, 0, 0, 0, 0, 0) if pose is None else pose)
+            self_collide = description.self_collide_links()
         except ValueError as exc:
             raise SpawnError(str(exc).splitlines()[0], 'RESOURCE_PARSE_ERROR') from None
-        robot = self.world.spawn(spec, name, description.xml)
+        robot = self.world.spawn(spec, name, description.xml, self_collide=self_collide)
         entity = Entity(name, namespace, robot, description)
         self.entities[name] = entity
         self._rebind()

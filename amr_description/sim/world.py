@@ -110,7 +110,7 @@ class World:
         """Return the simulation time in seconds (float)."""
         return float(self.data.time)
 
-    def spawn(self, robot_spec, name, urdf_xml=''):
+    def spawn(self, robot_spec, name, urdf_xml='', self_collide=None):
         """
         Add a robot (from :func:`~amr_description.sim.urdf_to_mjcf.urdf_to_spec`).
 
@@ -120,6 +120,9 @@ class World:
         :param robot_spec: a ``mujoco.MjSpec`` whose worldbody has exactly one body.
         :param name: entity name, unique in this world (str, non-empty, no ``/``).
         :param urdf_xml: the URDF text, kept for reference.
+        :param self_collide: links (URDF names) that collide with the robot's other links;
+            None: every link does (MuJoCo's rule); a collection: SDF's rule, whose
+            ``self_collide`` is false by default (:meth:`_exclude_self_collisions`).
         :returns: the :class:`Robot`.
         :raises ValueError: when the name is taken or invalid, or MuJoCo cannot compile the
             result (the world is left unchanged).
@@ -137,6 +140,9 @@ class World:
         self.spec.attach(robot_spec, prefix=prefix, frame=frame)
         try:
             self._add_ground_pairs(prefix)
+            if self_collide is not None:
+                self._exclude_self_collisions(prefix, self.spec.body(prefix + root_name),
+                                              self_collide)
             self._recompile()
         except Exception as exc:
             body = self.spec.body(prefix + root_name)
@@ -186,6 +192,33 @@ class World:
                 excluded.add(body)
                 self.spec.add_exclude(name=f'{prefix}ground_exclude/{body[len(prefix):]}',
                                       bodyname1='world', bodyname2=body)
+
+    def _exclude_self_collisions(self, prefix, root, self_collide):
+        """
+        Keep the links of one robot from colliding with each other, as Gazebo does.
+
+        SDF's ``<link><self_collide>`` is false by default: two links of one model collide
+        only when one of them sets it (URDF ``<gazebo reference><selfCollide>``). MuJoCo
+        collides every pair of bodies but a parent and its child; each pair of the robot's
+        bodies with collision geoms, neither in ``self_collide``, gets an ``<exclude>``.
+
+        :param prefix: the robot's name prefix.
+        :param root: its root body in the spec.
+        :param self_collide: URDF link names that collide with the other links.
+        """
+        bodies = []
+
+        def walk(body):
+            if any(g.contype or g.conaffinity for g in body.geoms) and \
+                    body.name[len(prefix):] not in self_collide:
+                bodies.append(body.name)
+            for child in body.bodies:
+                walk(child)
+        walk(root)
+        for i, first in enumerate(bodies):
+            for second in bodies[i + 1:]:
+                self.spec.add_exclude(name=f'{prefix}self_exclude/{len(self.spec.excludes)}',
+                                      bodyname1=first, bodyname2=second)
 
     def _geom_body(self, geom_name):
         """Return the name of the body holding a geom of the spec."""

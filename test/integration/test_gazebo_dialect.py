@@ -112,7 +112,7 @@ def test_bad_gazebo_descriptions_are_one_line_and_the_simulator_runs_on(procs, e
     refused = procs.start([exe('create'), '-file', str(wrong)], ros_env)
     assert refused.wait(60) == 1, refused.output
     errors = [line for line in refused.output.splitlines() if '[ERROR]' in line]
-    assert len(errors) == 1 and '<left_joint>: joint \'left_wheel\' is not a moving joint' \
+    assert len(errors) == 1 and "<left_joint>: joint 'left_wheel' is not a moving joint" \
         in errors[0], refused.output
     # the simulator is still there and spawns the next robot
     good = procs.start([exe('create'), '-file', os.path.join(ROOT, 'urdf', 'amr.urdf')],

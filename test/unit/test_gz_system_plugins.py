@@ -230,3 +230,45 @@ def test_collada_meshes_are_read_and_a_missing_one_is_one_warning(tmp_path, capl
     assert sorted(box[3:]) == pytest.approx([0.05, 0.15, 0.2], abs=1e-6)
     warnings = [r.getMessage() for r in caplog.records if 'nope.dae' in r.getMessage()]
     assert len(warnings) == 1 and "link 'a' visual 0" in warnings[0], warnings
+
+
+@pytest.mark.parametrize('self_collide, touching',
+                         [('', False), ('false', False), ('true', True)])
+def test_links_of_one_robot_collide_only_with_self_collide(self_collide, touching):
+    import mujoco
+    from amr_description.sim.simulation import Simulation
+    inertial = ('<inertial><mass value="1"/><inertia ixx="0.01" iyy="0.01" izz="0.01" ixy="0" '
+                'ixz="0" iyz="0"/></inertial>')
+    box = '<collision><geometry><box size="0.2 0.2 0.2"/></geometry></collision>'
+    tag = f'<gazebo reference="tip"><selfCollide>{self_collide}</selfCollide></gazebo>' \
+        if self_collide else ''
+    # base and tip (a grandchild: not MuJoCo's parent filter) overlap: MuJoCo collides
+    # them, Gazebo does not unless one of them sets selfCollide
+    urdf = (f'<robot name="r"><link name="base">{box}{inertial}</link>'
+            f'<link name="mid">{inertial}</link><link name="tip">{box}{inertial}</link>'
+            '<joint name="j1" type="revolute"><parent link="base"/><child link="mid"/>'
+            '<limit lower="-1" upper="1" effort="1" velocity="1"/></joint>'
+            '<joint name="j2" type="revolute"><parent link="mid"/><child link="tip"/>'
+            '<limit lower="-1" upper="1" effort="1" velocity="1"/>'
+            f'<origin xyz="0.05 0 0"/></joint>{tag}</robot>')
+    sim = Simulation(0.001, 0.0)
+    sim.spawn(urdf, pose=[0, 0, 1.0, 0, 0, 0])
+    model, data = sim.world.model, sim.world.data
+    mujoco.mj_forward(model, data)
+    own = [c for c in data.contact[:data.ncon]
+           if model.geom(c.geom1).name.startswith('r/') and
+           model.geom(c.geom2).name.startswith('r/')]
+    assert bool(own) == touching
+
+
+def test_self_collide_that_is_not_a_boolean_refuses_the_spawn_in_one_line():
+    from amr_description.sim.simulation import Simulation, SpawnError
+    urdf = ('<robot name="r"><link name="base"><inertial><mass value="1"/><inertia ixx="0.01" '
+            'iyy="0.01" izz="0.01" ixy="0" ixz="0" iyz="0"/></inertial></link>'
+            '<gazebo reference="base"><selfCollide>often</selfCollide></gazebo></robot>')
+    sim = Simulation(0.001, 0.0)
+    with pytest.raises(SpawnError) as refused:
+        sim.spawn(urdf)
+    assert str(refused.value) == ('<gazebo reference="base"><selfCollide>: expected true or '
+                                  "false, found 'often'")
+    assert not sim.entities and not sim.world.robots

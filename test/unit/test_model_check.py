@@ -108,8 +108,18 @@ def test_missing_inertial(urdf_xml):
 
 
 def test_missing_collision(urdf_xml):
-    found = errors(run(remove_element(urdf_xml, 'base_link', 'collision')))
-    assert [(f.element, f.expected) for f in found] == [("link 'base_link'", '<collision>')]
+    findings = run(remove_element(urdf_xml, 'base_link', 'collision'))
+    assert errors(findings) == []
+    found = [f for f in findings if f.expected == '<collision>']
+    # the chassis (5 of 7 kg) cannot touch anything: a warning
+    assert [(f.severity, f.element) for f in found] == [(WARNING, "link 'base_link'")]
+    # a light link on a fixed joint (a sensor frame) needs none
+    light = urdf_xml.replace('</robot>', '<link name="imu_link"><inertial><mass value="0.01"/>'
+                             '<inertia ixx="1e-6" iyy="1e-6" izz="1e-6" ixy="0" ixz="0" '
+                             'iyz="0"/></inertial></link><joint name="imu_joint" type="fixed">'
+                             '<parent link="base_link"/><child link="imu_link"/></joint>'
+                             '</robot>')
+    assert [f for f in run(light) if 'imu_link' in f.element] == []
 
 
 @pytest.mark.parametrize('mass', ['-0.5', '0'])

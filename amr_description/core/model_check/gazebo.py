@@ -15,9 +15,11 @@ from amr_description.core.gazebo_systems import system_class
 from amr_description.core.gazebo_tags import FRICTION_TAGS
 from amr_description.core.gazebo_tags import IGNORED_AS_HARMONIC
 from amr_description.core.gazebo_tags import is_control_plugin
+from amr_description.core.gazebo_tags import KEPT_JOINT_TAGS
 from amr_description.core.gazebo_tags import parse_control_plugin
 from amr_description.core.gazebo_tags import surface_friction
 from amr_description.core.gazebo_tags import tag_text
+from amr_description.core.gazebo_tags import VISUAL_TAGS
 from amr_description.core.model_check.findings import ERROR
 from amr_description.core.model_check.findings import Finding
 from amr_description.core.model_check.findings import INFO
@@ -56,6 +58,12 @@ def check_gazebo(root):
                 findings.append(_system(child, where, reference, systems))
             elif reference in links and child.tag in FRICTION_TAGS:
                 findings.append(_friction(child, where))
+            elif child.tag in KEPT_JOINT_TAGS:
+                findings.append(Finding(INFO, f'{where}<{child.tag}>', 'every link keeps its '
+                                        'own body and frame here (no fixed-joint lumping)'))
+            elif child.tag in VISUAL_TAGS:
+                findings.append(Finding(INFO, f'{where}<{child.tag}>', 'not used: visuals take '
+                                        'the URDF <material> colour'))
             elif child.tag in IGNORED_AS_HARMONIC:
                 findings.append(Finding(INFO, f'{where}<{child.tag}>', 'ignored, as Gazebo '
                                         "Harmonic's default physics engine (DART) does"))

@@ -83,14 +83,26 @@ def inertia_problems(inertia):
     return problems
 
 
+HEAVY_SHARE = 0.1
+"""Share of the robot's mass from which a link without ``<collision>`` is reported."""
+
+
 def check_links(model):
     """
     Check collision, inertial, mass and inertia of every link.
+
+    A link on a fixed joint may have neither (a sensor frame, a weight: sdformat merges it
+    into its parent) unless it carries :data:`HEAVY_SHARE` of the robot's mass (a chassis
+    without ``<collision>`` falls through the floor: a warning); a link on a moving joint
+    without ``<collision>`` is a warning, without ``<inertial>`` an error (Gazebo drops it).
 
     :param model: :class:`~amr_description.core.urdf_model.RobotModel`.
     :returns: list of :class:`Finding`.
     """
     findings = []
+    parent_types = {joint.child: joint.type for joint in model.joints.values()}
+    total = sum(link.inertial.mass for link in model.links.values()
+                if link.inertial is not None and link.inertial.mass and link.inertial.mass > 0)
     for name, link in model.links.items():
         element = f'link {name!r}'
         inertial = link.inertial
@@ -102,12 +114,15 @@ def check_links(model):
                     'add a dummy root link such as base_footprint', 'no <inertial>',
                     f'mass {inertial.mass:g} kg'))
             continue
-        if not link.collisions:
-            findings.append(Finding(ERROR, element, 'no <collision>: it cannot touch anything',
+        fixed = parent_types.get(name) == 'fixed'
+        mass = inertial.mass if inertial is not None and inertial.mass else 0.0
+        if not link.collisions and (not fixed or mass >= HEAVY_SHARE * total):
+            findings.append(Finding(WARNING, element, 'no <collision>: it cannot touch anything',
                                     '<collision>', 'none'))
         if inertial is None:
-            findings.append(Finding(ERROR, element, 'no <inertial>: simulators drop the link',
-                                    '<inertial>', 'none'))
+            if not fixed:  # a fixed child is merged into its parent (sdformat's lumping)
+                findings.append(Finding(ERROR, element, 'no <inertial> on a moving joint: '
+                                        'simulators drop the link', '<inertial>', 'none'))
             continue
         mass = inertial.mass if inertial.mass is not None else 0.0
         if mass <= 0.0:
