@@ -26,6 +26,7 @@ setup(
         ('share/' + package_name, ['package.xml']),
         ('share/' + package_name + '/urdf', _data('urdf')),
         ('share/' + package_name + '/config', _data('config')),
+        ('share/' + package_name + '/worlds', _data('worlds')),
     ],
     install_requires=['setuptools'],
     zip_safe=True,

@@ -115,6 +115,9 @@ SIM_ARGUMENTS = [
     DeclareLaunchArgument('viewer_port', '8080', 'TCP port of the viewer page'),
     DeclareLaunchArgument('controllers', ','.join(CONTROLLERS),
                           'Controllers to spawn, in that order (comma-separated names)'),
+    DeclareLaunchArgument('world', 'empty',
+                          'SDF world: a shipped world (empty, arena, warehouse), a file or a '
+                          'package:// URI'),
     DeclareLaunchArgument('bridge_config', '',
                           'ros_gz_bridge YAML naming the ROS side of the gz-sim topics'),
 ] + DESCRIPTION_ARGUMENTS
@@ -127,6 +130,9 @@ FLEET_ARGUMENTS = [
     DeclareLaunchArgument('headless', 'true', 'Run the simulator without a viewer window'),
     DeclareLaunchArgument('robots', '2', 'Number of robots, namespaces r1 ... rN'),
     DeclareLaunchArgument('spacing', '2.0', 'Distance between neighbours on the grid (m)'),
+    DeclareLaunchArgument('world', 'empty',
+                          'SDF world: a shipped world (empty, arena, warehouse), a file or a '
+                          'package:// URI'),
     DeclareLaunchArgument('use_composition', 'true',
                           'Whether to run the robot_state_publishers and static transform '
                           'publishers as composed nodes in one container process (one process '
@@ -229,7 +235,7 @@ def sim(args):
     mujoco_sim = Node(
         PACKAGE, 'mujoco_sim', output='screen',
         parameters=[{'real_time_factor': rtf, 'headless': headless,
-                     'bridge_config': args['bridge_config']}],
+                     'bridge_config': args['bridge_config'], 'world': args['world']}],
         remappings=[('/diff_drive_controller/odom', '/odom')])
     robot_state_publisher = Node(
         PACKAGE, 'robot_state_publisher', output='screen',
@@ -252,7 +258,7 @@ def sim(args):
     if viewer:
         actions.append(Node(PACKAGE, 'viewer', output='screen',
                             parameters=[{'use_sim_time': use_sim_time, 'fixed_frame': 'odom',
-                                         'port': viewer_port}]))
+                                         'port': viewer_port, 'world': args['world']}]))
     return actions
 
 
@@ -327,7 +333,7 @@ def fleet(args):
     grid = fleet_grid(count, spacing)
     actions = [Node(
         PACKAGE, 'mujoco_sim', output='screen',
-        parameters=[{'real_time_factor': rtf, 'headless': headless}],
+        parameters=[{'real_time_factor': rtf, 'headless': headless, 'world': args['world']}],
         remappings=[(f'/{ns}/diff_drive_controller/odom', f'/{ns}/odom') for ns in names])]
 
     def rsp_parameters(ns):
@@ -372,6 +378,7 @@ def fleet(args):
     if viewer:
         actions.append(Node(PACKAGE, 'viewer', output='screen', parameters=[{
             'use_sim_time': use_sim_time, 'fixed_frame': 'world', 'port': viewer_port,
+            'world': args['world'],
             'robot_description_topics': [f'/{ns}/robot_description' for ns in names],
             'odometry_topics': [f'/{ns}/ground_truth/odom' for ns in names],
             'cmd_vel_topic': f'/{names[0]}/diff_drive_controller/cmd_vel',

@@ -15,6 +15,9 @@ What RViz's displays of the tutorial show, on a web page served by this node:
   published under a namespace (``/r1/robot_description``) uses frames ``r1/<link>``, as
   robot_state_publisher's ``frame_prefix``. When the fixed frame does not exist (yet), the
   view falls back to the first robot's root link and says so, as RViz's status does;
+- **World**: the SDF world named by ``world`` (the simulator's ``world`` parameter: a
+  shipped world, a file or a URI; '' draws none), its models' geometry and colours as one
+  mesh under the robots, in frame ``world`` (:mod:`amr_description.web.displays.world`);
 - **TF** axes of every frame (checkbox);
 - **Odometry** trails of ``odometry_topics`` (``/odom``, ``/ground_truth/odom``), one colour
   each with a legend and a Clear button. A trail whose ``header.frame_id`` is not in TF (the
@@ -53,6 +56,7 @@ from amr_description.web.displays.status import StatusDisplay
 from amr_description.web.displays.teleop_pad import TeleopPadDisplay
 from amr_description.web.displays.tf_axes import TfAxesDisplay
 from amr_description.web.displays.trails import TrailsDisplay
+from amr_description.web.displays.world import WorldDisplay
 from amr_description.web.server import page_url
 from amr_description.web.server import run_web_node
 from amr_description.web.server import start_server
@@ -89,6 +93,7 @@ class Viewer(Node):
         self.declare_parameter('host', '127.0.0.1')
         self.declare_parameter('port', 8080)
         self.declare_parameter('update_rate', 30.0)
+        self.declare_parameter('world', '')
         update_rate = float(self.get_parameter('update_rate').value)
         if not update_rate > 0.0:
             raise ValueError(f'update_rate must be > 0 Hz, found {update_rate}')
@@ -100,6 +105,7 @@ class Viewer(Node):
         value = self.get_parameter
         server = self._server
         self.frames = FrameManager(self)
+        self.world = WorldDisplay(self, server, self.frames, value('world').value)
         self.robot_model = RobotModelDisplay(self, server, self.frames,
                                              value('robot_description_topics').value)
         self.tf_axes = TfAxesDisplay(self, server, self.frames)
@@ -110,7 +116,7 @@ class Viewer(Node):
             str(value('frame_id').value), float(value('speed').value),
             float(value('turn').value))
         # drawn in this order in every update (the status last: it reports what others saw)
-        self.displays = [self.robot_model, self.tf_axes, self.trails, self.status]
+        self.displays = [self.world, self.robot_model, self.tf_axes, self.trails, self.status]
         self._build_page()
         self.create_timer(1.0 / update_rate, self._update_scene,
                           clock=Clock(clock_type=ClockType.STEADY_TIME))

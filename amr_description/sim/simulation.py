@@ -80,6 +80,9 @@ class Simulation:
     :param logger: a ``logging.Logger``-like object (``info``, ``warning``, ``error``).
     :param sensor_settings: dict of simulator-wide sensor settings handed to the sensor
         factories (:func:`~amr_description.sim.sensors.registry.make_sensors`).
+    :param world: an SDF world (:class:`~amr_description.core.sdf_world.World`) or None (the
+        empty world); its physics step is ``physics_step``, not its own (the caller chooses).
+    :raises ValueError: one line on a bad ``real_time_factor`` or a world MuJoCo cannot build.
 
     Hooks (lists of listeners, called in order on the simulation thread; append to them):
     ``before_update(t)`` before the controller managers' ``read`` at an instant where any is
@@ -89,11 +92,11 @@ class Simulation:
 
     def __init__(self, physics_step=0.001, real_time_factor=1.0, paused=False,
                  controller_manager_factory=None, controller_manager_release=None,
-                 parameters_file='', logger=None, sensor_settings=None):
-        """Build the empty world (see the class docstring)."""
+                 parameters_file='', logger=None, sensor_settings=None, world=None):
+        """Build the world (see the class docstring)."""
         if not real_time_factor >= 0:
             raise ValueError(f'real_time_factor must be >= 0, found {real_time_factor!r}')
-        self.world = World(physics_step)
+        self.world = World(physics_step, world)
         self.physics_step = self.world.physics_step
         self.real_time_factor = float(real_time_factor)
         self.paused = bool(paused)
@@ -270,6 +273,11 @@ class Simulation:
         except ValueError as exc:
             raise SpawnError(str(exc).splitlines()[0], 'RESOURCE_PARSE_ERROR') from None
         robot = self.world.spawn(spec, name, description.xml, self_collide=self_collide)
+        overlapping = self.world.overlapping_models(name)
+        if overlapping:  # spawned all the same, as gz-sim does
+            self.logger.warning(f'robot {name!r} is spawned overlapping world model'
+                                f'{"s" if len(overlapping) > 1 else ""} '
+                                f'{", ".join(repr(m) for m in overlapping)}')
         entity = Entity(name, namespace, robot, description)
         self.entities[name] = entity
         self._rebind()

@@ -129,6 +129,27 @@ def mesh_triangles(path):
     return np.asarray(mesh.vertices, dtype=float), np.asarray(mesh.faces, dtype=int)
 
 
+def add_mesh_asset(spec, path, scale=None):
+    """
+    Add a mesh file to a spec's assets: STL and OBJ read by MuJoCo, others by trimesh.
+
+    :param spec: the ``mujoco.MjSpec``.
+    :param path: an existing mesh file.
+    :param scale: None, a number or 3 numbers (the URDF/SDF mesh ``scale``).
+    :returns: the spec's mesh (named ``mesh_<N>``).
+    :raises ValueError: one line when trimesh cannot read the file (:func:`mesh_triangles`).
+    """
+    if path.lower().endswith(('.stl', '.obj')):
+        mesh = spec.add_mesh(name=f'mesh_{len(spec.meshes)}', file=os.path.abspath(path))
+    else:
+        vertices, faces = mesh_triangles(path)
+        mesh = spec.add_mesh(name=f'mesh_{len(spec.meshes)}', uservert=vertices.ravel(),
+                             userface=faces.ravel())
+    if scale is not None:
+        mesh.scale = np.broadcast_to(np.asarray(scale, dtype=float), (3,))
+    return mesh
+
+
 def _add_geometry(spec, body, geometry, origin, where):
     """Add one geom for a URDF ``<geometry>``; return it, or None when unsupported."""
     geom = None
@@ -151,18 +172,11 @@ def _add_geometry(spec, body, geometry, origin, where):
         if not os.path.isfile(path):
             _LOG.warning('%s: mesh %r skipped: no file %r', where, filename, path)
             return None
-        if path.lower().endswith(('.stl', '.obj')):
-            mesh = spec.add_mesh(name=f'mesh_{len(spec.meshes)}', file=os.path.abspath(path))
-        else:
-            try:
-                vertices, faces = mesh_triangles(path)
-            except ValueError as exc:
-                _LOG.warning('%s: mesh %r skipped: %s', where, filename, exc)
-                return None
-            mesh = spec.add_mesh(name=f'mesh_{len(spec.meshes)}', uservert=vertices.ravel(),
-                                 userface=faces.ravel())
-        if geometry.mesh.scale is not None:
-            mesh.scale = np.broadcast_to(np.asarray(geometry.mesh.scale, dtype=float), (3,))
+        try:
+            mesh = add_mesh_asset(spec, path, geometry.mesh.scale)
+        except ValueError as exc:
+            _LOG.warning('%s: mesh %r skipped: %s', where, filename, exc)
+            return None
         geom = body.add_geom(type=mujoco.mjtGeom.mjGEOM_MESH, meshname=mesh.name)
     else:
         _LOG.warning('%s: geometry without box/cylinder/sphere/mesh skipped', where)

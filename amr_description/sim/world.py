@@ -14,12 +14,14 @@ step (default 1 ms).
 from dataclasses import dataclass
 import math
 
+from amr_description.sim.sdf_to_mjcf import add_world
+from amr_description.sim.sdf_to_mjcf import GROUND_FRICTION
+from amr_description.sim.sdf_to_mjcf import SEPARATOR
 from amr_description.sim.urdf_to_mjcf import GROUND_CONTACT_PREFIX
 import mujoco
 import numpy as np
 
-#: friction of the ground plane: sliding, torsional, rolling (MuJoCo geom friction)
-GROUND_FRICTION = (1.0, 0.005, 0.0001)
+__all__ = ['GROUND_FRICTION', 'Robot', 'World', 'make_world_spec']
 
 
 @dataclass
@@ -40,13 +42,13 @@ class Robot:
     urdf_xml: str = ''
 
 
-def make_world_spec(physics_step=0.001):
+def make_world_spec(physics_step=0.001, gravity=(0.0, 0.0, -9.81)):
     """
     Return the spec of the empty world: ground plane, light, sky.
 
     :param physics_step: physics time step in seconds (> 0).
-    :returns: a ``mujoco.MjSpec`` (integrator ``implicitfast``, elliptic friction cones,
-        gravity -9.81 m/s^2 on z).
+    :param gravity: m/s^2 in the world frame (3 floats).
+    :returns: a ``mujoco.MjSpec`` (integrator ``implicitfast``, elliptic friction cones).
     :raises ValueError: when ``physics_step`` is not a positive number.
     """
     if not physics_step > 0:
@@ -55,7 +57,7 @@ def make_world_spec(physics_step=0.001):
     spec.modelname = 'empty_world'
     spec.option.timestep = float(physics_step)
     spec.option.integrator = mujoco.mjtIntegrator.mjINT_IMPLICITFAST
-    spec.option.gravity = [0.0, 0.0, -9.81]
+    spec.option.gravity = [float(g) for g in gravity]
     # elliptic friction cones: isotropic Coulomb friction at the wheel contacts. MuJoCo's
     # default pyramidal cones resist the sideways slip of a skid-steer turn far more than
     # Coulomb friction does (measured: 0.3x the rotation rate); see docs/simulation.md
@@ -86,16 +88,29 @@ class World:
     bodies already present is kept); holders of the old objects must re-read them.
 
     :param physics_step: physics time step in seconds (default 1 ms).
-    :ivar name: the world's name in gz topics (``/world/<name>/...``): ``'empty'``, the name of
-        the empty world of the Gazebo tutorials (gz-sim's ``empty.sdf``).
+    :param description: an SDF world (:class:`~amr_description.core.sdf_world.World`) whose
+        models and gravity are added (:func:`~amr_description.sim.sdf_to_mjcf.add_world`);
+        None: the empty world (gravity -9.81 m/s^2).
+    :ivar name: the world's name in gz topics (``/world/<name>/...``): the SDF ``<world
+        name>``, ``'empty'`` without one (the empty world of the Gazebo tutorials, gz-sim's
+        ``empty.sdf``).
+    :ivar messages: one-line messages about world shapes that could not be built.
+    :raises ValueError: one line when MuJoCo cannot compile the world.
     """
 
-    name = 'empty'
-
-    def __init__(self, physics_step=0.001):
-        """Build and compile the empty world (see the class docstring)."""
-        self.spec = make_world_spec(physics_step)
-        self.model = self.spec.compile()
+    def __init__(self, physics_step=0.001, description=None):
+        """Build and compile the world (see the class docstring)."""
+        self.description = description
+        self.name = 'empty' if description is None else description.name
+        self.spec = make_world_spec(
+            physics_step, (0.0, 0.0, -9.81) if description is None else description.gravity)
+        self.messages = [] if description is None else add_world(self.spec, description)
+        try:
+            self.model = self.spec.compile()
+        except ValueError as exc:
+            source = description.source if description is not None else 'the empty world'
+            raise ValueError(f'{source}: MuJoCo cannot build it: {exc}'.splitlines()[0]) \
+                from None
         self.data = mujoco.MjData(self.model)
         self.robots = {}
         mujoco.mj_forward(self.model, self.data)
@@ -171,6 +186,8 @@ class World:
         :param prefix: the robot's name prefix (``'<name>/'``).
         """
         ground = self.spec.geom('ground_plane')
+        if ground is None:
+            return  # a world without a ground: no wheel-ground pairs
         marker = prefix + GROUND_CONTACT_PREFIX
         excluded = set()
         for text in list(self.spec.texts):
@@ -238,6 +255,29 @@ class World:
                     self.spec.delete(element)
         if body is not None:
             self.spec.delete(body)
+
+    def overlapping_models(self, name):
+        """
+        Return the world models a robot's collision geoms touch now (sorted names).
+
+        From MuJoCo's contacts of the last ``mj_forward`` (a spawn runs one); the ground
+        plane does not count.
+
+        :param name: entity name.
+        :raises KeyError: when no such robot exists.
+        """
+        prefix = self.robots[name].prefix
+        model, data = self.model, self.data
+        found = set()
+        for contact in data.contact[:data.ncon]:
+            pair = (contact.geom1, contact.geom2)
+            bodies = [model.body(model.geom_bodyid[g]).name for g in pair]
+            ours = [b.startswith(prefix) for b in bodies]
+            if ours[0] != ours[1]:
+                other = bodies[1] if ours[0] else bodies[0]
+                if SEPARATOR in other:
+                    found.add(other.split(SEPARATOR)[0])
+        return sorted(found)
 
     def remove(self, name):
         """

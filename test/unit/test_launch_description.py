@@ -109,7 +109,7 @@ def test_sim_stack_layout(monkeypatch):
     mujoco_sim, rsp, create, on_create = stacks.sim(args)
     assert mujoco_sim.executable == 'mujoco_sim'
     assert mujoco_sim.parameters == [{'real_time_factor': 0.0, 'headless': True,
-                                      'bridge_config': ''}]
+                                      'bridge_config': '', 'world': 'empty'}]
     assert mujoco_sim.remappings == [('/diff_drive_controller/odom', '/odom')]
     assert rsp.parameters == [{'robot_description': urdf, 'use_sim_time': True}]
     assert create.arguments == ['-topic', 'robot_description', '-name', 'r2', '-x', '1.0',
@@ -125,7 +125,8 @@ def test_sim_stack_layout(monkeypatch):
         stacks.sim(stacks.resolve('sim', ['headless:=maybe']))
     *_, viewer = stacks.sim(stacks.resolve('sim', ['viewer_port:=18080']))
     assert viewer.executable == 'viewer'
-    assert viewer.parameters == [{'use_sim_time': True, 'fixed_frame': 'odom', 'port': 18080}]
+    assert viewer.parameters == [{'use_sim_time': True, 'fixed_frame': 'odom', 'port': 18080,
+                                  'world': 'empty'}]
     with pytest.raises(LaunchError, match="launch argument 'viewer_port': expected a TCP port"):
         stacks.sim(stacks.resolve('sim', ['viewer_port:=http']))
 

@@ -9,6 +9,7 @@ Parameters, topics, services and threads: see :mod:`amr_description.nodes.mujoco
 import threading
 
 from amr_description.core.bridge_config import read_bridge_config
+from amr_description.core.sdf_world import load_world
 from amr_description.nodes.mujoco_sim.bridge import bridged_inputs
 from amr_description.nodes.mujoco_sim.bridge import bridged_outputs
 from amr_description.nodes.mujoco_sim.clock import ClockFollower
@@ -86,8 +87,11 @@ class MujocoSim(Node):
         """
         super().__init__('mujoco_sim')
         self._executor = executor
-        self.physics_step = self.declare_parameter('physics_step', 0.001).value
-        self.real_time_factor = self.declare_parameter('real_time_factor', 1.0).value
+        world_value = self.declare_parameter('world', 'empty').value
+        world = load_world(world_value)  # WorldError (a ValueError): exit 1, one line
+        self.physics_step = self.declare_parameter('physics_step', world.physics_step).value
+        self.real_time_factor = self.declare_parameter(
+            'real_time_factor', world.real_time_factor).value
         self.headless = self.declare_parameter('headless', True).value
         self.parameters_file = self.declare_parameter('parameters_file', '').value
         paused = self.declare_parameter('paused', False).value
@@ -114,7 +118,9 @@ class MujocoSim(Node):
             controller_manager_release=lambda cm: cm.destroy(),
             parameters_file=self.parameters_file, logger=_Logger(self.get_logger()),
             sensor_settings={'publish_ground_truth': publish_ground_truth,
-                             'ground_truth_rate': ground_truth_rate})
+                             'ground_truth_rate': ground_truth_rate},
+            world=world)
+        self._report_world(world)
         self.sim.before_update.append(executor.sim_time.set_time)
         self.sim.after_cycle.append(self._after_cycle)
         self.sim.paused_tick.append(self._publish_clock)
@@ -138,6 +144,16 @@ class MujocoSim(Node):
             f'{self.real_time_factor:g}{" (paused)" if paused else ""}'
             f'{", following the external /clock" if self.external_clock else ""}; '
             f'spawn with {self.get_fully_qualified_name()}/spawn_entity')
+
+    def _report_world(self, world):
+        """Log what the world file gave (one line each) and what is not simulated."""
+        log = self.get_logger()
+        for message in world.messages + self.sim.world.messages:
+            log.warning(message)
+        if world.not_simulated:
+            log.info(f'world {world.name!r} ({world.source}): not simulated: '
+                     f'{", ".join(world.not_simulated)}')
+        log.info(f'world {world.name!r}: {len(world.models)} models from {world.source}')
 
     def _check_parameters(self):
         """Replace an invalid parameter by its default, with one error line each."""

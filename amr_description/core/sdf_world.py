@@ -1,0 +1,629 @@
+# Copyright 2026 The amr_description Authors
+# Licensed under the Apache License, Version 2.0
+"""
+SDF worlds: the subset of SDFormat 1.6-1.11 that Gazebo worlds use, read into plain data.
+
+No SDF library installs here (docs/worlds.md), so this module reads what worlds are made of:
+``<world>`` with its ``<physics>`` (``max_step_size``, ``real_time_factor``) and ``<gravity>``;
+``<model>`` (``<static>``, ``<pose>``, ``<link>``, ``<frame>``, nested ``<model>``);
+``<include>`` (``<uri>``, ``<name>``, ``<pose>``, ``<static>``); ``<link>`` with
+``<inertial>``, ``<collision>`` and ``<visual>``; the geometries ``box``, ``cylinder``,
+``sphere``, ``capsule``, ``ellipsoid``, ``plane`` and ``mesh``; ``<surface><friction><ode>``
+``<mu>``/``<mu2>``; ``<visual><material>`` ``<diffuse>``/``<ambient>``; and the ``<state>`` block
+of a world saved from the Gazebo GUI (the initial poses of the models it names).
+
+Poses follow SDFormat's frame semantics (sdformat.org, "Pose frame semantics", 1.7+): a
+``<pose>`` is ``x y z roll pitch yaw`` (m, rad; ``degrees="true"``; ``rotation_format=
+"quat_xyzw"`` gives 7 numbers) relative to ``relative_to`` when given, else to the parent
+element's frame (a model's to the world, a link's to its model, a collision's or a visual's
+to its link, a ``<frame>``'s to what it is ``attached_to``). Rotations are fixed-axis
+roll-pitch-yaw (the URDF convention, :func:`~amr_description.core.kinematics.rpy_to_matrix`).
+
+URIs: ``model://NAME/...`` resolves through ``GZ_SIM_RESOURCE_PATH`` (then the older
+``IGN_GAZEBO_RESOURCE_PATH`` and ``SDF_PATH``) and the extra folders given (the package's own
+``worlds/models``); a model folder's ``model.config`` names its SDF file (``model.sdf`` when it
+has none). ``package://`` resolves through the ament index; ``file://`` and relative paths
+against the file that names them. An ``http(s)`` (Fuel) URI, a ``model://`` that is not found,
+a bad included model, a model with joints (articulated models are not simulated yet): one line
+each in :attr:`World.messages` and the world loads without that model, as gz-sim carries on
+past a missing model. A world that cannot be read at all raises :class:`WorldError` (one line,
+naming the file).
+"""
+
+from dataclasses import dataclass
+from dataclasses import field
+import math
+import os
+import xml.etree.ElementTree as ET
+
+from amr_description.core.kinematics import quaternion_to_matrix
+from amr_description.core.kinematics import rpy_to_matrix
+import numpy as np
+
+NEWEST_VERSION = (1, 11)
+"""The newest SDFormat version read without a warning (sdformat 14, Gazebo Harmonic)."""
+
+SHAPES = ('box', 'cylinder', 'sphere', 'capsule', 'ellipsoid', 'plane', 'mesh')
+"""SDF geometries simulated; the others (cone, heightmap, polyline, image) are reported."""
+
+SIMULATED_WORLD_ELEMENTS = ('physics', 'gravity', 'model', 'include', 'state', 'frame')
+"""``<world>`` children read; every other one is listed once as not simulated."""
+
+SDF_GRAVITY = (0.0, 0.0, -9.8)
+"""SDF's default ``<world><gravity>`` (m/s^2)."""
+
+RESOURCE_PATH_VARIABLES = ('GZ_SIM_RESOURCE_PATH', 'IGN_GAZEBO_RESOURCE_PATH', 'SDF_PATH')
+"""Environment variables searched for ``model://`` URIs, in this order (gz-sim 8 reads all)."""
+
+
+class WorldError(ValueError):
+    """A world file that cannot be read: one line naming the file and the cause."""
+
+
+class _Skip(ValueError):
+    """One model (or one shape) that cannot be used: its one-line reason."""
+
+
+@dataclass
+class Shape:
+    """
+    One ``<collision>`` or ``<visual>`` of a link.
+
+    :param name: its SDF name.
+    :param kind: one of :data:`SHAPES`.
+    :param size: box ``(x, y, z)`` full lengths; cylinder and capsule ``(radius, length)``;
+        sphere ``(radius,)``; ellipsoid ``(a, b, c)`` radii; plane ``(nx, ny, nz, sx, sy)``
+        normal and size; mesh ``(sx, sy, sz)`` scale. Metres.
+    :param pose: pose in the link frame, shape (4, 4).
+    :param path: the mesh file (resolved path), '' for primitives.
+    :param rgba: visual colour (4 floats in 0..1) or None (unset).
+    :param friction: ``min(mu, mu2)`` of ``<surface><friction><ode>``, or None (unset).
+    """
+
+    name: str
+    kind: str
+    size: tuple
+    pose: np.ndarray
+    path: str = ''
+    rgba: tuple = None
+    friction: float = None
+
+
+@dataclass
+class Link:
+    """
+    One ``<link>``: pose in its model's frame (4, 4), inertial, shapes.
+
+    :param mass: kg (SDF default 1).
+    :param inertia: (ixx, iyy, izz, ixy, ixz, iyz) kg m^2 (SDF default 1, 1, 1, 0, 0, 0).
+    :param inertial_pose: centre of mass frame in the link frame, shape (4, 4).
+    """
+
+    name: str
+    pose: np.ndarray
+    mass: float = 1.0
+    inertia: tuple = (1.0, 1.0, 1.0, 0.0, 0.0, 0.0)
+    inertial_pose: np.ndarray = field(default_factory=lambda: np.eye(4))
+    collisions: list = field(default_factory=list)
+    visuals: list = field(default_factory=list)
+
+
+@dataclass
+class Model:
+    """
+    One model of the world: its name, world pose (4, 4), ``static`` and links.
+
+    Nested models are flattened: their links join the outer model, named ``inner::link``.
+    """
+
+    name: str
+    pose: np.ndarray
+    static: bool = False
+    links: list = field(default_factory=list)
+    relative_to: str = ''
+
+
+@dataclass
+class World:
+    """
+    A world read from SDF.
+
+    :param name: ``<world name>`` (gz topics: ``/world/<name>/...``).
+    :param physics_step: ``<physics><max_step_size>`` (s, SDF default 0.001).
+    :param real_time_factor: ``<physics><real_time_factor>`` (SDF default 1).
+    :param gravity: ``<gravity>`` (m/s^2, 3 floats; SDF default 0 0 -9.8).
+    :param models: :class:`Model` list, in document order.
+    :param source: the world file.
+    :param messages: one-line warnings (models left out, shapes skipped, ...).
+    :param not_simulated: names of ``<world>`` children not simulated (lights, gui, ...).
+    """
+
+    name: str = 'default'
+    physics_step: float = 0.001
+    real_time_factor: float = 1.0
+    gravity: tuple = SDF_GRAVITY
+    models: list = field(default_factory=list)
+    source: str = ''
+    messages: list = field(default_factory=list)
+    not_simulated: list = field(default_factory=list)
+
+    def model(self, name):
+        """Return the model named ``name`` or None."""
+        return next((m for m in self.models if m.name == name), None)
+
+
+def _floats(text, count, where):
+    """Return ``count`` floats of a whitespace-separated text; raise _Skip naming ``where``."""
+    try:
+        values = tuple(float(v) for v in (text or '').split())
+    except ValueError:
+        raise _Skip(f'{where}: expected {count} numbers, found {text!r}') from None
+    if len(values) != count or not all(math.isfinite(v) for v in values):
+        raise _Skip(f'{where}: expected {count} finite numbers, found {text!r}')
+    return values
+
+
+def _child_text(element, tag, default=None):
+    child = element.find(tag)
+    return default if child is None or child.text is None else child.text.strip()
+
+
+def _number(element, tag, default, where):
+    text = _child_text(element, tag)
+    return default if text is None else _floats(text, 1, f'{where} <{tag}>')[0]
+
+
+def _bool(text):
+    return (text or '').strip().lower() in ('true', '1')
+
+
+def pose_matrix(element, where):
+    """
+    Return the 4x4 matrix of an SDF ``<pose>`` element (identity for None or empty text).
+
+    :param element: the ``<pose>`` element or None.
+    :param where: the element's place, for the error line.
+    :raises ValueError: one line when the text is not 6 (or 7 with ``quat_xyzw``) numbers.
+    """
+    T = np.eye(4)
+    if element is None or not (element.text or '').strip():
+        return T
+    if element.get('rotation_format', 'euler_rpy') == 'quat_xyzw':
+        x, y, z, qx, qy, qz, qw = _floats(element.text, 7, f'{where} <pose>')
+        T[:3, :3] = quaternion_to_matrix((qx, qy, qz, qw))
+    else:
+        x, y, z, roll, pitch, yaw = _floats(element.text, 6, f'{where} <pose>')
+        if _bool(element.get('degrees')):
+            roll, pitch, yaw = (math.radians(v) for v in (roll, pitch, yaw))
+        T[:3, :3] = rpy_to_matrix((roll, pitch, yaw))
+    T[:3, 3] = (x, y, z)
+    return T
+
+
+def _version(root, source, messages):
+    text = root.get('version', '')
+    try:
+        version = tuple(int(v) for v in text.split('.')[:2])
+    except ValueError:
+        version = ()
+    if len(version) == 2 and version > NEWEST_VERSION:
+        messages.append(f'{source}: <sdf version="{text}"> is newer than '
+                        f'{NEWEST_VERSION[0]}.{NEWEST_VERSION[1]}; read as '
+                        f'{NEWEST_VERSION[0]}.{NEWEST_VERSION[1]}')
+
+
+def _parse_file(path, what):
+    """Return the root element of an XML file; raise _Skip with file and line."""
+    try:
+        return ET.parse(path).getroot()
+    except OSError as exc:
+        raise _Skip(f'{path}: cannot read {what}: {exc.strerror or exc}') from None
+    except ET.ParseError as exc:
+        line, column = exc.position
+        raise _Skip(f'{path}:{line}: malformed XML ({str(exc).split(":")[0]}, '
+                    f'column {column + 1})') from None
+
+
+class _Reader:
+    """The state of one world read: resource folders, include stack, messages."""
+
+    def __init__(self, source, model_paths):
+        self.source = source
+        self.model_paths = list(model_paths)
+        self.messages = []
+        self.stack = [os.path.abspath(source)]
+
+    # ------------------------------------------------------------------ URIs
+    def search_path(self):
+        folders = []
+        for variable in RESOURCE_PATH_VARIABLES:
+            folders += [p for p in os.environ.get(variable, '').split(os.pathsep) if p]
+        return folders + self.model_paths
+
+    def resolve(self, uri, base):
+        """Return the file or folder of ``uri`` named in file ``base``; raise _Skip."""
+        uri = uri.strip()
+        if uri.startswith(('http://', 'https://')):
+            raise _Skip(f'{uri}: Fuel models are not downloaded here (put the model in a '
+                        'folder of GZ_SIM_RESOURCE_PATH)')
+        if uri.startswith('model://'):
+            name, _, rest = uri[len('model://'):].partition('/')
+            for folder in self.search_path():
+                candidate = os.path.join(folder, name)
+                if os.path.isdir(candidate):
+                    return os.path.join(candidate, rest) if rest else candidate
+            searched = ':'.join(self.search_path()) or 'empty'
+            raise _Skip(f'{uri} not found in GZ_SIM_RESOURCE_PATH ({searched})')
+        if uri.startswith('package://'):
+            from amr_description.core.description_file import resolve_uri
+            return resolve_uri(uri)
+        if uri.startswith('file://'):
+            uri = uri[len('file://'):]
+        return os.path.normpath(os.path.join(os.path.dirname(base), uri))
+
+    @staticmethod
+    def model_file(folder):
+        """Return the SDF file of a model folder (``model.config``, else ``model.sdf``)."""
+        if os.path.isfile(folder):
+            return folder
+        config = os.path.join(folder, 'model.config')
+        if os.path.isfile(config):
+            root = _parse_file(config, 'the model.config')
+            files = [e for e in root.iter('sdf') if (e.text or '').strip()]
+            if files:
+                best = max(files, key=lambda e: tuple(
+                    int(v) if v.isdigit() else 0 for v in e.get('version', '0').split('.')))
+                return os.path.join(folder, best.text.strip())
+        return os.path.join(folder, 'model.sdf')
+
+    # ------------------------------------------------------------------ world
+    def world(self, root):
+        if root.tag == 'robot':
+            raise WorldError(f'{self.source}: this is a URDF (<robot>), not an SDF world; '
+                             'spawn it with create -file')
+        if root.tag != 'sdf':
+            raise WorldError(f'{self.source}: expected an <sdf> document, found <{root.tag}>')
+        _version(root, self.source, self.messages)
+        element = root.find('world')
+        if element is None:
+            raise WorldError(f'{self.source}: no <world> in this SDF file')
+        world = World(name=element.get('name', 'default'), source=self.source)
+        try:
+            self._physics(element, world)
+        except _Skip as exc:
+            raise WorldError(f'{self.source}: {exc}') from None
+        models = []
+        for child in element:
+            try:
+                if child.tag == 'model':
+                    models.append((child, self.model(child, self.source, None)))
+                elif child.tag == 'include':
+                    model = self.include(child, self.source)
+                    if model is not None:
+                        models.append((child, model))
+            except _Skip as exc:
+                self.messages.append(str(exc) + ': the world loads without it')
+        self._place_models(element, models)
+        world.models = [m for _, m in models]
+        self._state(element, world)
+        world.not_simulated = sorted({c.tag for c in element
+                                      if c.tag not in SIMULATED_WORLD_ELEMENTS})
+        world.messages = self.messages
+        return world
+
+    def _physics(self, element, world):
+        physics = element.findall('physics')
+        chosen = next((p for p in physics if _bool(p.get('default'))),
+                      physics[0] if physics else None)
+        if chosen is not None:
+            world.physics_step = _number(chosen, 'max_step_size', 0.001, '<physics>')
+            world.real_time_factor = _number(chosen, 'real_time_factor', 1.0, '<physics>')
+            if not world.physics_step > 0:
+                raise _Skip(f'<physics><max_step_size> must be > 0 s, found '
+                            f'{world.physics_step:g}')
+            if not world.real_time_factor >= 0:
+                raise _Skip(f'<physics><real_time_factor> must be >= 0, found '
+                            f'{world.real_time_factor:g}')
+        gravity = _child_text(element, 'gravity')
+        if gravity is not None:
+            world.gravity = _floats(gravity, 3, '<world><gravity>')
+
+    def _place_models(self, element, models):
+        """Resolve each model's ``<pose relative_to>`` against world frames and models."""
+        world_frames = {f.get('name'): f for f in element.findall('frame')}
+
+        def frame_pose(name, seen):
+            if name in ('', 'world'):
+                return np.eye(4)
+            if name in seen:
+                raise _Skip(f'<frame> {name!r}: a cycle of relative_to')
+            seen = seen | {name}
+            for _, model in models:
+                if model.name == name:
+                    return frame_pose(model.relative_to, seen) @ model.pose
+            frame = world_frames.get(name)
+            if frame is None:
+                raise _Skip(f'relative_to {name!r}: no such frame or model in the world')
+            pose = frame.find('pose')
+            base = (pose.get('relative_to') if pose is not None else None) or \
+                frame.get('attached_to', '')
+            return frame_pose(base, seen) @ pose_matrix(pose, f'<frame name="{name}">')
+
+        placed = {}
+        for entry in list(models):
+            model = entry[1]
+            if model.relative_to:
+                try:
+                    placed[model.name] = frame_pose(model.relative_to, {model.name}) @ \
+                        model.pose
+                except _Skip as exc:
+                    self.messages.append(f'model {model.name!r}: {exc}: the world loads '
+                                         'without it')
+                    models.remove(entry)
+        for _, model in models:
+            if model.name in placed:
+                model.pose, model.relative_to = placed[model.name], ''
+
+    def _state(self, element, world):
+        """Apply a saved ``<state>``'s model poses (the first ``<state>`` block)."""
+        state = element.find('state')
+        if state is None:
+            return
+        for entry in state.findall('model'):
+            model = world.model(entry.get('name', ''))
+            if model is None or entry.find('pose') is None:
+                continue
+            try:
+                model.pose = pose_matrix(entry.find('pose'), f'<state> model {model.name!r}')
+            except _Skip as exc:
+                self.messages.append(str(exc))
+
+    # ------------------------------------------------------------------ models
+    def include(self, element, base):
+        uri = _child_text(element, 'uri')
+        if not uri:
+            raise _Skip(f'{base}: <include> without <uri>')
+        target = self.model_file(self.resolve(uri, base))
+        if os.path.abspath(target) in self.stack:
+            raise _Skip(f'{uri}: an include cycle ({" -> ".join(self.stack + [target])})')
+        root = _parse_file(target, 'the model')
+        inner = root.find('model')
+        if inner is None:
+            raise _Skip(f'{uri} ({target}): no <model> in it')
+        self.stack.append(os.path.abspath(target))
+        try:
+            model = self.model(inner, target, element.get('name') or
+                               _child_text(element, 'name'))
+        finally:
+            self.stack.pop()
+        if element.find('pose') is not None:
+            model.pose = pose_matrix(element.find('pose'), f'<include> {uri}')
+            model.relative_to = element.find('pose').get('relative_to', '')
+        static = _child_text(element, 'static')
+        if static is not None:
+            model.static = _bool(static)
+        return model
+
+    def model(self, element, source, name=None):
+        name = name or element.get('name', '')
+        if not name:
+            raise _Skip(f'{source}: a <model> without a name')
+        where = f'model {name!r}'
+        if element.find('joint') is not None:
+            raise _Skip(f'{where} has joints: articulated SDF models are not simulated yet')
+        pose_element = element.find('pose')
+        model = Model(name=name, pose=pose_matrix(pose_element, where),
+                      static=_bool(_child_text(element, 'static', 'false')))
+        model.relative_to = pose_element.get('relative_to', '') \
+            if pose_element is not None else ''
+        model.links = self._links(element, source, where)
+        return model
+
+    def _links(self, element, source, where, prefix=''):
+        """Return the links of a model (nested models flattened) posed in its frame."""
+        frames = {'__model__': np.eye(4), '': np.eye(4)}
+        pending = [(e, 'link') for e in element.findall('link')] + \
+            [(e, 'frame') for e in element.findall('frame')]
+        declared = {e.get('name'): (e, kind) for e, kind in pending}
+
+        def resolve(name, seen):
+            if name in frames:
+                return frames[name]
+            if name in seen or name not in declared:
+                raise _Skip(f'{where}: relative_to {name!r} names no link or frame of it')
+            found, kind = declared[name]
+            pose = found.find('pose')
+            base = pose.get('relative_to', '') if pose is not None else ''
+            if kind == 'frame' and not base:
+                base = found.get('attached_to', '')
+            frames[name] = resolve(base, seen | {name}) @ pose_matrix(
+                pose, f'{where} <{kind} name="{name}">')
+            return frames[name]
+
+        links = []
+        for link_element, kind in pending:
+            if kind != 'link':
+                continue
+            link_name = link_element.get('name', '')
+            link = Link(name=prefix + link_name, pose=resolve(link_name, set()))
+            self._inertial(link_element, link, f'{where} link {link_name!r}')
+            for tag, shapes in (('collision', link.collisions), ('visual', link.visuals)):
+                for index, shape_element in enumerate(link_element.findall(tag)):
+                    shape_name = shape_element.get('name', f'{tag}_{index}')
+                    try:
+                        shape = self._shape(shape_element, source,
+                                            f'{where} link {link_name!r} {tag} '
+                                            f'{shape_name!r}', tag)
+                    except _Skip as exc:
+                        self.messages.append(f'{exc}: skipped')
+                        continue
+                    if shape is not None:
+                        shape.name = shape_name
+                        shapes.append(shape)
+            links.append(link)
+        for nested in element.findall('model'):
+            nested_name = nested.get('name', '')
+            T = pose_matrix(nested.find('pose'), f'{where} model {nested_name!r}')
+            for link in self._links(nested, source, f'{where}::{nested_name}',
+                                    f'{prefix}{nested_name}::'):
+                link.pose = T @ link.pose
+                links.append(link)
+        for nested in element.findall('include'):  # a nested model from a file
+            model = self.include(nested, source)
+            for link in model.links:
+                link.name = f'{prefix}{model.name}::{link.name}'
+                link.pose = model.pose @ link.pose
+                links.append(link)
+        return links
+
+    @staticmethod
+    def _inertial(element, link, where):
+        inertial = element.find('inertial')
+        if inertial is None:
+            return
+        link.mass = _number(inertial, 'mass', 1.0, f'{where} <inertial>')
+        if not link.mass > 0:
+            raise _Skip(f'{where} <inertial><mass> must be > 0 kg, found {link.mass:g}')
+        link.inertial_pose = pose_matrix(inertial.find('pose'), f'{where} <inertial>')
+        matrix = inertial.find('inertia')
+        if matrix is not None:
+            defaults = (1.0, 1.0, 1.0, 0.0, 0.0, 0.0)
+            link.inertia = tuple(
+                _number(matrix, tag, default, f'{where} <inertia>')
+                for tag, default in zip(('ixx', 'iyy', 'izz', 'ixy', 'ixz', 'iyz'), defaults))
+
+    def _shape(self, element, source, where, tag):
+        geometry = element.find('geometry')
+        if geometry is None or not len(geometry):
+            raise _Skip(f'{where}: no <geometry>')
+        kind_element = geometry[0]
+        kind = kind_element.tag
+        if kind not in SHAPES:
+            raise _Skip(f'{where}: <{kind}> geometry is not simulated')
+        pose = pose_matrix(element.find('pose'), where)
+        path = ''
+        if kind == 'box':
+            size = _floats(_child_text(kind_element, 'size', '1 1 1'), 3, f'{where} <box><size>')
+        elif kind in ('cylinder', 'capsule'):
+            size = (_number(kind_element, 'radius', 0.5, f'{where} <{kind}>'),
+                    _number(kind_element, 'length', 1.0, f'{where} <{kind}>'))
+        elif kind == 'sphere':
+            size = (_number(kind_element, 'radius', 1.0, f'{where} <sphere>'),)
+        elif kind == 'ellipsoid':
+            size = _floats(_child_text(kind_element, 'radii', '1 1 1'), 3,
+                           f'{where} <ellipsoid><radii>')
+        elif kind == 'plane':
+            normal = _floats(_child_text(kind_element, 'normal', '0 0 1'), 3,
+                             f'{where} <plane><normal>')
+            extent = _floats(_child_text(kind_element, 'size', '1 1'), 2,
+                             f'{where} <plane><size>')
+            if not np.linalg.norm(normal) > 0:
+                raise _Skip(f'{where} <plane><normal> must not be zero')
+            size = tuple(normal) + tuple(extent)
+        else:
+            uri = _child_text(kind_element, 'uri')
+            if not uri:
+                raise _Skip(f'{where}: <mesh> without <uri>')
+            path = self.resolve(uri, source)
+            if not os.path.isfile(path):
+                raise _Skip(f'{where}: mesh {uri!r} not found ({path})')
+            size = _floats(_child_text(kind_element, 'scale', '1 1 1'), 3,
+                           f'{where} <mesh><scale>')
+        checked = size[3:] if kind == 'plane' else size
+        if not all(v > 0 for v in checked):
+            raise _Skip(f'{where}: <{kind}> sizes must be > 0, found '
+                        f'{" ".join(f"{v:g}" for v in checked)}')
+        shape = Shape(name='', kind=kind, size=tuple(size), pose=pose, path=path)
+        if tag == 'visual':
+            material = element.find('material')
+            if material is not None:
+                colour = _child_text(material, 'diffuse') or _child_text(material, 'ambient')
+                if colour:
+                    values = _floats(colour, len(colour.split()) if len(colour.split()) in (3, 4)
+                                     else 4, f'{where} <material>')
+                    shape.rgba = tuple(values) + ((1.0,) if len(values) == 3 else ())
+        else:
+            ode = element.find('surface/friction/ode')
+            if ode is not None:
+                values = [_number(ode, t, None, f'{where} <ode>') for t in ('mu', 'mu2')]
+                values = [v for v in values if v is not None]
+                if values:
+                    shape.friction = max(0.0, min(values))
+        return shape
+
+
+def read_world(path, model_paths=()):
+    """
+    Read an SDF world file.
+
+    :param path: the ``.sdf``/``.world`` file.
+    :param model_paths: folders searched for ``model://`` after the environment's
+        (:data:`RESOURCE_PATH_VARIABLES`).
+    :returns: a :class:`World`; problems with parts of it are lines in ``messages``.
+    :raises WorldError: one line naming the file when it cannot be read at all (missing,
+        malformed XML with its line, not an SDF world, a URDF, bad ``<physics>``).
+    """
+    reader = _Reader(str(path), model_paths)
+    try:
+        root = _parse_file(str(path), 'the world')
+    except _Skip as exc:
+        raise WorldError(str(exc)) from None
+    return reader.world(root)
+
+
+def shipped_worlds_folder():
+    """
+    Return the folder of the package's worlds (``share/amr_description/worlds``).
+
+    The source tree's ``worlds/`` when the package is not installed (tests from a checkout).
+    """
+    try:
+        from ament_index_python.packages import get_package_share_directory
+        folder = os.path.join(get_package_share_directory('amr_description'), 'worlds')
+        if os.path.isdir(folder):
+            return folder
+    except Exception:  # noqa: B902 - not installed: the checkout's folder
+        pass
+    return os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(
+        os.path.abspath(__file__)))), 'worlds')
+
+
+def find_world(value):
+    """
+    Return the file of a ``world`` parameter: a path, ``package://``, or a shipped world's name.
+
+    :param value: ``warehouse`` (a file ``<name>.sdf`` of :func:`shipped_worlds_folder`),
+        ``package://pkg/worlds/x.sdf``, ``file://...`` or a path.
+    :returns: the file path (str).
+    :raises WorldError: one line when nothing is found (naming the shipped worlds).
+    """
+    value = str(value).strip() or 'empty'
+    folder = shipped_worlds_folder()
+    if os.sep not in value and '://' not in value and not value.endswith(('.sdf', '.world')):
+        path = os.path.join(folder, value + '.sdf')
+        if os.path.isfile(path):
+            return path
+        names = sorted(f[:-4] for f in os.listdir(folder) if f.endswith('.sdf')) \
+            if os.path.isdir(folder) else []
+        raise WorldError(f'world {value!r}: no such file and not a shipped world '
+                         f'({", ".join(names)})')
+    if value.startswith('package://'):
+        from amr_description.core.description_file import resolve_uri
+        try:
+            value = resolve_uri(value)
+        except ValueError as exc:
+            raise WorldError(f'world: {exc}') from None
+    elif value.startswith('file://'):
+        value = value[len('file://'):]
+    if not os.path.isfile(value):
+        raise WorldError(f'world {value!r}: no such file')
+    return value
+
+
+def load_world(value):
+    """
+    Find (:func:`find_world`) and read (:func:`read_world`) a world, with the shipped models.
+
+    :raises WorldError: one line (see both).
+    """
+    return read_world(find_world(value), [os.path.join(shipped_worlds_folder(), 'models')])

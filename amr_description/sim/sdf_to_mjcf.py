@@ -1,0 +1,221 @@
+# Copyright 2026 The amr_description Authors
+# Licensed under the Apache License, Version 2.0
+"""
+An SDF world (:class:`~amr_description.core.sdf_world.World`) into a MuJoCo spec (no rclpy).
+
+Each link of a model becomes a body named ``<model>::<link>`` (gz-sim's scoped names), its
+collisions geoms ``<model>::<link>::<collision>`` in :data:`COLLISION_GROUP` and its visuals
+geoms in :data:`VISUAL_GROUP` that take part in no contact (MuJoCo's renderer shows both groups
+as the robots'). A link of a static model is fixed to the world; a link of a non-static
+model gets a free joint (SDF: a link without a joint moves on its own), its ``<inertial>``
+(SDF's defaults where absent: 1 kg, 1 kg m^2).
+
+The ground: the first plane of a static model facing up (+z) becomes the world's
+``ground_plane`` geom, as the empty world's (friction :data:`GROUND_FRICTION` unless the SDF
+gives ``<mu>``); it is infinite for contacts, as Gazebo's plane.
+
+Friction: Gazebo combines two surfaces by the smaller ``mu``, MuJoCo by the larger (of two
+geoms of equal ``priority``). A world surface with ``mu`` >= 1 keeps MuJoCo's default 1 (so a
+robot link's own value, 1 by default in Gazebo too, decides, as the minimum would); one with
+``mu`` < 1 (ice) gets priority 1, so its value decides against an untagged robot link, as the
+minimum would. A robot link with ``<mu1>``/``<mu2>`` tags has priority 1 too (the larger then
+decides). docs/worlds.md.
+
+Collision meshes are convex hulls in MuJoCo: a mesh is split into its connected parts, each
+its own hull of at most :data:`MAX_HULL_VERTICES` vertices (docs/worlds.md).
+"""
+
+import logging
+
+from amr_description.sim.urdf_to_mjcf import add_mesh_asset
+from amr_description.sim.urdf_to_mjcf import mesh_triangles
+import mujoco
+import numpy as np
+
+_LOG = logging.getLogger(__name__)
+
+#: friction of the ground plane: sliding, torsional, rolling (MuJoCo geom friction)
+GROUND_FRICTION = (1.0, 0.005, 0.0001)
+
+COLLISION_GROUP = 3
+"""MuJoCo geom group of world collision geoms (hidden by default, as the robots')."""
+
+VISUAL_GROUP = 2
+"""MuJoCo geom group of world visual geoms (shown, no contacts)."""
+
+MAX_HULL_VERTICES = 256
+"""Vertex limit of one convex hull of a collision mesh (MuJoCo ``maxhullvert``)."""
+
+MAX_MESH_PARTS = 64
+"""At most this many connected parts of one collision mesh get their own hull."""
+
+SEPARATOR = '::'
+"""Scope separator of world body and geom names (``model::link::collision``)."""
+
+DEFAULT_RGBA = (0.7, 0.7, 0.7, 1.0)
+
+
+def _quat(rotation):
+    quat = np.zeros(4)
+    mujoco.mju_mat2Quat(quat, np.ascontiguousarray(rotation, dtype=float).ravel())
+    return quat
+
+
+def _place(element, T):
+    element.pos = np.asarray(T[:3, 3], dtype=float)
+    element.quat = _quat(T[:3, :3])
+
+
+def _z_to(normal):
+    """Return a 3x3 rotation taking +z to ``normal``."""
+    n = np.asarray(normal, dtype=float) / np.linalg.norm(normal)
+    quat = np.zeros(4)
+    mujoco.mju_quatZ2Vec(quat, n)
+    matrix = np.zeros(9)
+    mujoco.mju_quat2Mat(matrix, quat)
+    return matrix.reshape(3, 3)
+
+
+def _mesh_parts(spec, shape):
+    """Return the meshes of one collision mesh: one per connected part (at most 64)."""
+    import trimesh
+    vertices, faces = mesh_triangles(shape.path)
+    parts = trimesh.Trimesh(vertices, faces, process=False).split(only_watertight=False)
+    if not 1 < len(parts) <= MAX_MESH_PARTS:
+        mesh = add_mesh_asset(spec, shape.path, shape.size)
+        mesh.maxhullvert = MAX_HULL_VERTICES
+        return [mesh]
+    meshes = []
+    for part in parts:
+        mesh = spec.add_mesh(name=f'mesh_{len(spec.meshes)}',
+                             uservert=np.asarray(part.vertices, dtype=float).ravel(),
+                             userface=np.asarray(part.faces, dtype=int).ravel())
+        mesh.scale = np.asarray(shape.size, dtype=float)
+        mesh.maxhullvert = MAX_HULL_VERTICES
+        meshes.append(mesh)
+    return meshes
+
+
+def _add_shape(spec, body, shape, name, collision):
+    """Add the geoms of one shape to ``body``; return them."""
+    kinds = {'box': mujoco.mjtGeom.mjGEOM_BOX, 'cylinder': mujoco.mjtGeom.mjGEOM_CYLINDER,
+             'capsule': mujoco.mjtGeom.mjGEOM_CAPSULE, 'sphere': mujoco.mjtGeom.mjGEOM_SPHERE,
+             'ellipsoid': mujoco.mjtGeom.mjGEOM_ELLIPSOID, 'plane': mujoco.mjtGeom.mjGEOM_PLANE,
+             'mesh': mujoco.mjtGeom.mjGEOM_MESH}
+    size = np.asarray(shape.size, dtype=float)
+    T = np.array(shape.pose, dtype=float)
+    if shape.kind == 'box':
+        sizes = [size / 2.0]
+    elif shape.kind in ('cylinder', 'capsule'):
+        sizes = [[size[0], size[1] / 2.0, 0.0]]
+    elif shape.kind == 'sphere':
+        sizes = [[size[0], 0.0, 0.0]]
+    elif shape.kind == 'ellipsoid':
+        sizes = [size]
+    elif shape.kind == 'plane':
+        T[:3, :3] = T[:3, :3] @ _z_to(size[:3])
+        sizes = [[size[3] / 2.0, size[4] / 2.0, 0.5]]
+    else:
+        meshes = _mesh_parts(spec, shape) if collision else \
+            [add_mesh_asset(spec, shape.path, shape.size)]
+        sizes = [None] * len(meshes)
+    geoms = []
+    for index, geom_size in enumerate(sizes):
+        suffix = f'#{index}' if len(sizes) > 1 else ''
+        geom = body.add_geom(name=f'{name}{suffix}', type=kinds[shape.kind])
+        if geom_size is not None:
+            geom.size = geom_size
+        else:
+            geom.meshname = meshes[index].name
+        _place(geom, T)
+        geoms.append(geom)
+    return geoms
+
+
+def add_world(spec, world):
+    """
+    Add the models of an SDF world to a world spec.
+
+    :param spec: the ``mujoco.MjSpec`` of :func:`~amr_description.sim.world.make_world_spec`;
+        its ``ground_plane`` becomes the SDF world's ground, or is deleted when the SDF
+        world has none (see the module docstring).
+    :param world: a :class:`~amr_description.core.sdf_world.World`.
+    :returns: one-line messages about shapes that could not be built (a mesh trimesh cannot
+        read); those shapes are left out.
+    """
+    messages = []
+    ground_done = False
+    ground = spec.geom('ground_plane')
+    for model in world.models:
+        for link in model.links:
+            name = f'{model.name}{SEPARATOR}{link.name}'
+            T = np.asarray(model.pose, dtype=float) @ np.asarray(link.pose, dtype=float)
+            body = spec.worldbody.add_body(name=name)
+            _place(body, T)
+            if not model.static:
+                body.add_freejoint(name=name)
+                body.explicitinertial = True
+                body.mass = float(link.mass)
+                ixx, iyy, izz, ixy, ixz, iyz = link.inertia
+                rotation = np.asarray(link.inertial_pose, dtype=float)[:3, :3]
+                tensor = rotation @ np.array([[ixx, ixy, ixz], [ixy, iyy, iyz],
+                                              [ixz, iyz, izz]]) @ rotation.T
+                body.ipos = np.asarray(link.inertial_pose, dtype=float)[:3, 3]
+                body.fullinertia = [tensor[0, 0], tensor[1, 1], tensor[2, 2],
+                                    tensor[0, 1], tensor[0, 2], tensor[1, 2]]
+            for shape in link.collisions:
+                where = f'{name}{SEPARATOR}{shape.name}'
+                if shape.kind == 'plane' and model.static and not ground_done and \
+                        _faces_up(T @ shape.pose, shape.size):
+                    ground_done = True
+                    _ground(spec, body, shape)
+                    continue
+                try:
+                    geoms = _add_shape(spec, body, shape, where, collision=True)
+                except ValueError as exc:
+                    messages.append(f'{where}: {exc}: skipped')
+                    continue
+                for geom in geoms:
+                    geom.group = COLLISION_GROUP
+                    geom.rgba = DEFAULT_RGBA
+                    _friction(geom, shape.friction)
+            for shape in link.visuals:
+                if shape.kind == 'plane' and model.static and ground_done:
+                    continue  # the ground is drawn with the empty world's grid
+
+                where = f'{name}{SEPARATOR}visual{SEPARATOR}{shape.name}'
+                try:
+                    geoms = _add_shape(spec, body, shape, where, collision=False)
+                except ValueError as exc:
+                    messages.append(f'{where}: {exc}: skipped')
+                    continue
+                for geom in geoms:
+                    geom.group = VISUAL_GROUP
+                    geom.contype = geom.conaffinity = 0
+                    geom.mass = 0.0
+                    geom.rgba = shape.rgba or DEFAULT_RGBA
+            if model.static and not len(body.geoms):
+                spec.delete(body)  # only the ground: it is the world's own plane
+    if not ground_done and ground is not None:
+        spec.delete(ground)  # a world without a ground: robots fall, as in Gazebo
+    return messages
+
+
+def _faces_up(T, size):
+    normal = np.asarray(T[:3, :3], dtype=float) @ (np.asarray(size[:3]) / np.linalg.norm(
+        size[:3]))
+    return normal[2] > 0.999 and abs(T[2, 3]) < 1e-9
+
+
+def _ground(spec, body, shape):
+    """Make ``shape`` the world's ``ground_plane`` (infinite, the empty world's look)."""
+    _friction(spec.geom('ground_plane'), shape.friction)
+
+
+def _friction(geom, mu):
+    """Set a world collision geom's friction from SDF's ``min(mu, mu2)`` (module docstring)."""
+    friction = list(GROUND_FRICTION)
+    if mu is not None and mu < 1.0:
+        friction[0] = mu
+        geom.priority = 1
+    geom.friction = friction

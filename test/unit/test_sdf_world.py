@@ -1,0 +1,235 @@
+# Copyright 2026 The amr_description Authors
+# Licensed under the Apache License, Version 2.0
+"""SDF worlds: the reader (core/sdf_world.py) and the MuJoCo world built from it."""
+
+import math
+import os
+
+from amr_description.core.sdf_world import load_world
+from amr_description.core.sdf_world import read_world
+from amr_description.core.sdf_world import WorldError
+import mujoco
+import numpy as np
+import pytest
+
+ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', '..')
+DATA = os.path.join(ROOT, 'test', 'data', 'worlds')
+COURSE = os.path.join(DATA, 'course_world.sdf')
+CASTER_BOT = os.path.join(ROOT, 'test', 'data', 'gz_diff_drive', 'robot.urdf.xacro')
+COLLISIONS = np.array([1, 0, 0, 1, 0, 0], dtype=np.uint8)  # ground (0) and world collisions (3)
+
+
+@pytest.fixture
+def models_path(monkeypatch):
+    monkeypatch.setenv('GZ_SIM_RESOURCE_PATH', os.path.join(DATA, 'models'))
+
+
+def _ray(world, start, direction):
+    """Return the distance (m) from ``start`` along ``direction`` to the first collision geom."""
+    geom = np.array([-1], dtype=np.int32)
+    distance = mujoco.mj_ray(world.model, world.data, np.asarray(start, dtype=float),
+                             np.asarray(direction, dtype=float), COLLISIONS, 1, -1, geom)
+    return distance, world.model.geom(geom[0]).name
+
+
+def test_a_course_world_loads_its_primitives_and_one_line_per_missing_model(models_path):
+    world = read_world(COURSE)
+    assert (world.name, world.physics_step, world.real_time_factor) == ('course', 0.002, 1.0)
+    assert [m.name for m in world.models] == ['ground_plane', 'box', 'cylinder', 'sphere',
+                                              'capsule', 'ellipsoid', 'crate_a']
+    assert world.messages == [
+        'model://cardboard_box not found in GZ_SIM_RESOURCE_PATH ('
+        f'{os.path.join(DATA, "models")}): the world loads without it',
+        'https://fuel.gazebosim.org/1.0/OpenRobotics/models/Warehouse: Fuel models are not '
+        'downloaded here (put the model in a folder of GZ_SIM_RESOURCE_PATH): the world '
+        'loads without it']
+    assert world.not_simulated == ['gui', 'light', 'plugin', 'scene']
+    assert world.gravity == (0.0, 0.0, -9.8)  # SDF's default
+    crate = world.model('crate_a')  # <include><name>, model.config's newest <sdf>
+    assert crate.static and crate.links[0].visuals[0].kind == 'mesh'
+    assert crate.links[0].visuals[0].path.endswith(os.path.join('crate', 'meshes', 'cube.stl'))
+
+
+def test_every_geometry_is_where_the_closed_form_puts_it(models_path):
+    from amr_description.sim.world import World
+    description = read_world(COURSE)
+    world = World(description.physics_step, description)
+    assert world.name == 'course' and world.physics_step == 0.002
+    assert list(world.model.opt.gravity) == [0.0, 0.0, -9.8]
+    cases = [
+        ((0, 0, 0.5), (1, 0, 0), 2.5, 'box::box_link::box_collision'),   # face at x = 3 - 0.5
+        # the cylinder's pose comes from the saved <state>: y -4, not -3
+        ((0, 0, 0.5), (0, -1, 0), 3.5, 'cylinder::cylinder_link::c'),
+        ((0, 0, 0.5), (0, 1, 0), 2.5, 'sphere::l::c'),
+        # capsule: relative_to the sphere (0, 3, 0.5) + (0, 2, 0); radius 0.2, half 0.3
+        ((1, 5, 0.5), (-1, 0, 0), 0.8, 'capsule::l::c'),
+        ((0, 5, 2.0), (0, 0, -1), 2.0 - (0.5 + 0.3 + 0.2), 'capsule::l::c'),
+        # ellipsoid radii (0.2, 0.4, 0.6) turned 90 deg about z by its <frame>
+        ((0, 0, 1), (-1, 0, 0), 3.0 - 0.4, 'ellipsoid::l::c'),
+        ((-3, -2, 1), (0, 1, 0), 2.0 - 0.2, 'ellipsoid::l::c'),
+        ((-3, 0, 3), (0, 0, -1), 2.0 - 0.6, 'ellipsoid::l::c'),
+        ((6, 6, 2), (0, 0, -1), 1.5, 'crate_a::body::collision'),      # include pose + link
+        ((10, 10, 1), (0, 0, -1), 1.0, 'ground_plane'),
+    ]
+    for start, direction, expected, name in cases:
+        distance, hit = _ray(world, start, direction)
+        assert (hit, distance) == (name, pytest.approx(expected, abs=1e-9)), (start, direction)
+    # the ground of gz-sim's empty.sdf: mu 100/50 is rougher than MuJoCo's default 1
+    ground = world.model.geom('ground_plane')
+    assert list(ground.friction) == [1.0, 0.005, 0.0001] and ground.priority == 0
+    # the box is free (it has an inertial): 1 kg, and it falls onto the ground
+    body = world.model.body('box::box_link')
+    assert body.mass[0] == pytest.approx(1.0) and world.model.body_jntnum[body.id] == 1
+
+
+def test_the_shipped_empty_world_is_the_empty_world():
+    from amr_description.core.description_file import read_description
+    from amr_description.sim.urdf_to_mjcf import urdf_to_spec
+    from amr_description.sim.world import World
+    urdf = read_description(os.path.join(ROOT, 'urdf', 'amr.urdf'))
+    description = load_world('empty')
+    assert (description.name, description.physics_step, description.gravity) == \
+        ('empty', 0.001, (0.0, 0.0, -9.81))
+    qpos = []
+    for world in (World(0.001), World(0.001, description)):
+        assert world.name == 'empty'
+        world.spawn(urdf_to_spec(urdf, name='amr', pose=(0, 0, 0.2, 0, 0, 0)), 'amr')
+        world.data.ctrl[:] = 3.0
+        world.step(1000)
+        qpos.append(world.data.qpos.copy())
+    assert np.array_equal(qpos[0], qpos[1])
+
+
+def _write(tmp_path, name, text):
+    path = tmp_path / name
+    path.write_text(text)
+    return str(path)
+
+
+def _world(body, version='1.9'):
+    return (f'<?xml version="1.0"?>\n<sdf version="{version}"><world name="w">{body}'
+            '</world></sdf>')
+
+
+def _box_model(name, size='1 1 1', extra=''):
+    return (f'<model name="{name}"><static>true</static><link name="l"><collision name="c">'
+            f'<geometry><box><size>{size}</size></box></geometry></collision></link>{extra}'
+            '</model>')
+
+
+def test_bad_parts_are_one_line_each_and_the_rest_loads(tmp_path, models_path):
+    body = (_box_model('flat', '1 0 1') + _box_model('good') +
+            '<model name="arm"><link name="a"/><link name="b"/><joint name="j" type="revolute">'
+            '<parent>a</parent><child>b</child></joint></model>'
+            '<model name="m"><static>true</static><link name="l"><visual name="v"><geometry>'
+            '<mesh><uri>meshes/none.stl</uri></mesh></geometry></visual></link></model>'
+            '<include><uri>model://loop</uri></include>'
+            '<model name="cone"><static>true</static><link name="l"><collision name="c">'
+            '<geometry><cone><radius>1</radius><length>1</length></cone></geometry>'
+            '</collision></link></model>')
+    path = _write(tmp_path, 'w.sdf', _world(body, version='1.12'))
+    world = read_world(path)
+    assert [m.name for m in world.models] == ['flat', 'good', 'm', 'cone']
+    messages = world.messages
+    assert messages[0] == f'{path}: <sdf version="1.12"> is newer than 1.11; read as 1.11'
+    assert messages[1] == ("model 'flat' link 'l' collision 'c': <box> sizes must be > 0, "
+                           'found 1 0 1: skipped')
+    assert messages[2] == ("model 'arm' has joints: articulated SDF models are not simulated "
+                           'yet: the world loads without it')
+    assert messages[3].startswith("model 'm' link 'l' visual 'v': mesh 'meshes/none.stl' not "
+                                  'found (') and messages[3].endswith('none.stl): skipped')
+    assert messages[4].startswith('model://loop: an include cycle (') and \
+        messages[4].endswith(': the world loads without it')
+    assert messages[5] == ("model 'cone' link 'l' collision 'c': <cone> geometry is not "
+                           'simulated: skipped')
+    assert len(messages) == 6 and all('\n' not in m for m in messages)
+
+
+@pytest.mark.parametrize('text, message', [
+    ('<sdf version="1.9"><world name="w"><model name="x"></world></sdf>',
+     ':1: malformed XML (mismatched tag, column 54)'),
+    ('<robot name="r"><link name="base"/></robot>',
+     ': this is a URDF (<robot>), not an SDF world; spawn it with create -file'),
+    ('<sdf version="1.9"><model name="m"/></sdf>', ': no <world> in this SDF file'),
+    (_world('<physics name="p"><max_step_size>0</max_step_size></physics>'),
+     ': <physics><max_step_size> must be > 0 s, found 0'),
+    (_world('<gravity>0 0</gravity>'),
+     ": <world><gravity>: expected 3 finite numbers, found '0 0'"),
+])
+def test_a_world_that_cannot_be_read_is_one_line_naming_the_file(tmp_path, text, message):
+    path = _write(tmp_path, 'bad.sdf', text)
+    with pytest.raises(WorldError) as refused:
+        read_world(path)
+    assert str(refused.value) == path + message
+
+
+def test_a_world_name_or_file_that_does_not_exist():
+    with pytest.raises(WorldError, match=r"^world 'nowhere': no such file and not a shipped "
+                       r'world \(arena, empty, warehouse\)$'):
+        load_world('nowhere')
+    with pytest.raises(WorldError, match=r"^world '/no/such.sdf': no such file$"):
+        load_world('/no/such.sdf')
+
+
+def test_poses_in_degrees_and_quaternions(tmp_path):
+    body = ('<model name="a"><static>true</static><pose degrees="true">1 0 0 0 0 90</pose>'
+            '<link name="l"/></model>'
+            '<model name="b"><static>true</static>'
+            '<pose rotation_format="quat_xyzw">0 1 0 0 0 0.7071067811865476 '
+            '0.7071067811865476</pose><link name="l"/></model>')
+    world = read_world(_write(tmp_path, 'w.sdf', _world(body)))
+    yaw = [math.atan2(m.pose[1, 0], m.pose[0, 0]) for m in world.models]
+    assert yaw == [pytest.approx(math.pi / 2), pytest.approx(math.pi / 2)]
+
+
+def _quat_yaw(yaw):
+    return [0.0, 0.0, math.sin(yaw / 2), math.cos(yaw / 2)]
+
+
+def _drive(sim, entity, linear, seconds):
+    from geometry_msgs.msg import Twist
+    diff_drive = entity.gz_systems.systems[0]
+    twist = Twist()
+    twist.linear.x = float(linear)
+    diff_drive.on_command(twist)
+    start = sim.step_count
+    while sim.step_count - start < int(round(seconds / sim.physics_step)):
+        sim.run_cycle()
+
+
+def test_a_robot_driven_into_a_shelf_stops_and_a_pushed_box_moves():
+    from amr_description.core.description_file import read_description
+    from amr_description.sim.simulation import Simulation
+    sim = Simulation(0.001, 0.0, world=load_world('warehouse'))
+    urdf = read_description(CASTER_BOT)
+    # facing +y at the origin: shelf_0_0 (x -2.5 .. 0.5) starts at y = 1 - 0.25 = 0.75
+    wall = sim.spawn(urdf, name='wall', pose=[0, 0, 0.02] + _quat_yaw(math.pi / 2))
+    _drive(sim, wall, 1.0, 4.0)  # 1 m/s (the robot's DiffDrive limits it to 1 m/s^2)
+    y = sim.world.ground_truth('wall')[0][1]
+    _drive(sim, wall, 1.0, 1.0)
+    later = sim.world.ground_truth('wall')[0][1]
+    # the front of the base (0.2 m ahead of its centre) rests against the shelf's face
+    print(f'robot against the shelf: front at y = {y + 0.2:.4f} m (face at 0.75 m), '
+          f'moved {later - y:.4f} m in the last second at 1 m/s')
+    assert 0.5 < y + 0.2 < 0.78 and abs(later - y) < 0.01
+    # box_0 (2 kg, 0.4 m) at (1, -1.2): a robot at (1, -0.4) facing -y pushes it
+    pusher = sim.spawn(urdf, name='pusher', namespace='pusher',
+                       pose=[1.0, -0.4, 0.02] + _quat_yaw(-math.pi / 2))
+    box = sim.world.model.joint('box_0::link')
+    start = sim.world.data.qpos[box.qposadr[0]:box.qposadr[0] + 3].copy()
+    assert start == pytest.approx([1.0, -1.2, 0.2], abs=1e-3)
+    _drive(sim, pusher, 0.3, 4.0)
+    end = sim.world.data.qpos[box.qposadr[0]:box.qposadr[0] + 3].copy()
+    print(f'box pushed from y {start[1]:.3f} to {end[1]:.3f} m')
+    assert end[1] < start[1] - 0.3 and abs(end[0] - 1.0) < 0.2
+
+
+def test_a_robot_spawned_into_a_pillar_is_one_warning_naming_it(caplog):
+    from amr_description.core.description_file import read_description
+    from amr_description.sim.simulation import Simulation
+    sim = Simulation(0.001, 0.0, world=load_world('arena'))
+    caplog.set_level('WARNING')
+    sim.spawn(read_description(CASTER_BOT), pose=[1.0, 0.0, 0.05, 0, 0, 0, 1])
+    lines = [r.getMessage() for r in caplog.records if 'overlapping' in r.getMessage()]
+    assert lines == ["robot 'caster_bot' is spawned overlapping world model 'pillar_6'"]
+    assert 'caster_bot' in sim.entities
