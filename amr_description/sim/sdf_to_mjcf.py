@@ -3,16 +3,19 @@
 """
 An SDF world (:class:`~amr_description.core.sdf_world.World`) into a MuJoCo spec (no rclpy).
 
-Each link of a model becomes a body named ``<model>::<link>`` (gz-sim's scoped names), its
-collisions geoms ``<model>::<link>::<collision>`` in :data:`COLLISION_GROUP` and its visuals
-geoms in :data:`VISUAL_GROUP` that take part in no contact (MuJoCo's renderer shows both groups
-as the robots'). A link of a static model is fixed to the world; a link of a non-static
-model gets a free joint (SDF: a link without a joint moves on its own), its ``<inertial>``
-(SDF's defaults where absent: 1 kg, 1 kg m^2).
+Names are gz-sim's scoped names: collision geoms ``<model>::<link>::<collision>`` in
+:data:`COLLISION_GROUP`, visual geoms ``<model>::<link>::visual::<visual>`` in
+:data:`VISUAL_GROUP` that take part in no contact (MuJoCo's renderer shows the visual group
+as the robots'). A visual of the same geometry at the same place as a collision of its link
+(the usual case) is that collision geom moved to the visual group with the visual's colour:
+each geom costs every physics step. The geoms of a static model's links are the world
+body's (posed in the world frame); a link of a non-static model is a body
+``<model>::<link>`` with a free joint (SDF: a link without a joint moves on its own) and its
+``<inertial>`` (SDF's defaults where absent: 1 kg, 1 kg m^2).
 
 The ground: the first plane of a static model facing up (+z) becomes the world's
-``ground_plane`` geom, as the empty world's (friction :data:`GROUND_FRICTION` unless the SDF
-gives ``<mu>``); it is infinite for contacts, as Gazebo's plane.
+``ground_plane`` geom, as the empty world's (friction as below); it is infinite for contacts,
+as Gazebo's plane.
 
 Friction: Gazebo combines two surfaces by the smaller ``mu``, MuJoCo by the larger (of two
 geoms of equal ``priority``). A world surface with ``mu`` >= 1 keeps MuJoCo's default 1 (so a
@@ -96,14 +99,14 @@ def _mesh_parts(spec, shape):
     return meshes
 
 
-def _add_shape(spec, body, shape, name, collision):
-    """Add the geoms of one shape to ``body``; return them."""
+def _add_shape(spec, body, shape, name, collision, frame):
+    """Add the geoms of one shape to ``body``, posed ``frame @ shape.pose``; return them."""
     kinds = {'box': mujoco.mjtGeom.mjGEOM_BOX, 'cylinder': mujoco.mjtGeom.mjGEOM_CYLINDER,
              'capsule': mujoco.mjtGeom.mjGEOM_CAPSULE, 'sphere': mujoco.mjtGeom.mjGEOM_SPHERE,
              'ellipsoid': mujoco.mjtGeom.mjGEOM_ELLIPSOID, 'plane': mujoco.mjtGeom.mjGEOM_PLANE,
              'mesh': mujoco.mjtGeom.mjGEOM_MESH}
     size = np.asarray(shape.size, dtype=float)
-    T = np.array(shape.pose, dtype=float)
+    T = np.asarray(frame, dtype=float) @ np.asarray(shape.pose, dtype=float)
     if shape.kind == 'box':
         sizes = [size / 2.0]
     elif shape.kind in ('cylinder', 'capsule'):
@@ -150,9 +153,12 @@ def add_world(spec, world):
         for link in model.links:
             name = f'{model.name}{SEPARATOR}{link.name}'
             T = np.asarray(model.pose, dtype=float) @ np.asarray(link.pose, dtype=float)
-            body = spec.worldbody.add_body(name=name)
-            _place(body, T)
+            # a static link's geoms go to the world body: MuJoCo then never tests them
+            # against each other nor keeps a body per link (measured: docs/worlds.md)
+            body, frame = spec.worldbody, T
             if not model.static:
+                body, frame = spec.worldbody.add_body(name=name), np.eye(4)
+                _place(body, T)
                 body.add_freejoint(name=name)
                 body.explicitinertial = True
                 body.mass = float(link.mass)
@@ -163,15 +169,16 @@ def add_world(spec, world):
                 body.ipos = np.asarray(link.inertial_pose, dtype=float)[:3, 3]
                 body.fullinertia = [tensor[0, 0], tensor[1, 1], tensor[2, 2],
                                     tensor[0, 1], tensor[0, 2], tensor[1, 2]]
+            drawn = {}  # collision shape key -> its geoms, for visuals of the same shape
             for shape in link.collisions:
                 where = f'{name}{SEPARATOR}{shape.name}'
                 if shape.kind == 'plane' and model.static and not ground_done and \
                         _faces_up(T @ shape.pose, shape.size):
                     ground_done = True
-                    _ground(spec, body, shape)
+                    _ground(spec, shape)
                     continue
                 try:
-                    geoms = _add_shape(spec, body, shape, where, collision=True)
+                    geoms = _add_shape(spec, body, shape, where, True, frame)
                 except ValueError as exc:
                     messages.append(f'{where}: {exc}: skipped')
                     continue
@@ -179,13 +186,19 @@ def add_world(spec, world):
                     geom.group = COLLISION_GROUP
                     geom.rgba = DEFAULT_RGBA
                     _friction(geom, shape.friction)
+                drawn.setdefault(_key(shape), geoms)
             for shape in link.visuals:
                 if shape.kind == 'plane' and model.static and ground_done:
                     continue  # the ground is drawn with the empty world's grid
-
+                same = drawn.pop(_key(shape), None)
+                if same is not None:  # the collision geom shows it: one geom less per step
+                    for geom in same:
+                        geom.group = VISUAL_GROUP
+                        geom.rgba = shape.rgba or DEFAULT_RGBA
+                    continue
                 where = f'{name}{SEPARATOR}visual{SEPARATOR}{shape.name}'
                 try:
-                    geoms = _add_shape(spec, body, shape, where, collision=False)
+                    geoms = _add_shape(spec, body, shape, where, False, frame)
                 except ValueError as exc:
                     messages.append(f'{where}: {exc}: skipped')
                     continue
@@ -194,11 +207,15 @@ def add_world(spec, world):
                     geom.contype = geom.conaffinity = 0
                     geom.mass = 0.0
                     geom.rgba = shape.rgba or DEFAULT_RGBA
-            if model.static and not len(body.geoms):
-                spec.delete(body)  # only the ground: it is the world's own plane
     if not ground_done and ground is not None:
         spec.delete(ground)  # a world without a ground: robots fall, as in Gazebo
     return messages
+
+
+def _key(shape):
+    """Return what makes two shapes the same geometry at the same place (a dict key)."""
+    return (shape.kind, tuple(np.round(shape.size, 9)), shape.path,
+            tuple(np.round(np.asarray(shape.pose, dtype=float).ravel(), 9)))
 
 
 def _faces_up(T, size):
@@ -207,7 +224,7 @@ def _faces_up(T, size):
     return normal[2] > 0.999 and abs(T[2, 3]) < 1e-9
 
 
-def _ground(spec, body, shape):
+def _ground(spec, shape):
     """Make ``shape`` the world's ``ground_plane`` (infinite, the empty world's look)."""
     _friction(spec.geom('ground_plane'), shape.friction)
 

@@ -271,10 +271,9 @@ class World:
         found = set()
         for contact in data.contact[:data.ncon]:
             pair = (contact.geom1, contact.geom2)
-            bodies = [model.body(model.geom_bodyid[g]).name for g in pair]
-            ours = [b.startswith(prefix) for b in bodies]
+            ours = [model.body(model.geom_bodyid[g]).name.startswith(prefix) for g in pair]
             if ours[0] != ours[1]:
-                other = bodies[1] if ours[0] else bodies[0]
+                other = model.geom(pair[1] if ours[0] else pair[0]).name
                 if SEPARATOR in other:
                     found.add(other.split(SEPARATOR)[0])
         return sorted(found)

@@ -16,7 +16,9 @@ ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', '..')
 DATA = os.path.join(ROOT, 'test', 'data', 'worlds')
 COURSE = os.path.join(DATA, 'course_world.sdf')
 CASTER_BOT = os.path.join(ROOT, 'test', 'data', 'gz_diff_drive', 'robot.urdf.xacro')
-COLLISIONS = np.array([1, 0, 0, 1, 0, 0], dtype=np.uint8)  # ground (0) and world collisions (3)
+# ground (0), world visuals (2: a collision with the same visual is drawn as one) and
+# collisions (3)
+GEOMS = np.array([1, 0, 1, 1, 0, 0], dtype=np.uint8)
 
 
 @pytest.fixture
@@ -28,7 +30,7 @@ def _ray(world, start, direction):
     """Return the distance (m) from ``start`` along ``direction`` to the first collision geom."""
     geom = np.array([-1], dtype=np.int32)
     distance = mujoco.mj_ray(world.model, world.data, np.asarray(start, dtype=float),
-                             np.asarray(direction, dtype=float), COLLISIONS, 1, -1, geom)
+                             np.asarray(direction, dtype=float), GEOMS, 1, -1, geom)
     return distance, world.model.geom(geom[0]).name
 
 
@@ -68,18 +70,24 @@ def test_every_geometry_is_where_the_closed_form_puts_it(models_path):
         ((0, 0, 1), (-1, 0, 0), 3.0 - 0.4, 'ellipsoid::l::c'),
         ((-3, -2, 1), (0, 1, 0), 2.0 - 0.2, 'ellipsoid::l::c'),
         ((-3, 0, 3), (0, 0, -1), 2.0 - 0.6, 'ellipsoid::l::c'),
-        ((6, 6, 2), (0, 0, -1), 1.5, 'crate_a::body::collision'),      # include pose + link
+        ((6, 6, 2), (0, 0, -1), 1.5, 'crate_a::body::'),      # include pose + link
         ((10, 10, 1), (0, 0, -1), 1.0, 'ground_plane'),
     ]
     for start, direction, expected, name in cases:
         distance, hit = _ray(world, start, direction)
-        assert (hit, distance) == (name, pytest.approx(expected, abs=1e-9)), (start, direction)
+        assert hit.startswith(name) and distance == pytest.approx(expected, abs=1e-9), \
+            (start, direction, hit, distance)
     # the ground of gz-sim's empty.sdf: mu 100/50 is rougher than MuJoCo's default 1
     ground = world.model.geom('ground_plane')
     assert list(ground.friction) == [1.0, 0.005, 0.0001] and ground.priority == 0
     # the box is free (it has an inertial): 1 kg, and it falls onto the ground
     body = world.model.body('box::box_link')
     assert body.mass[0] == pytest.approx(1.0) and world.model.body_jntnum[body.id] == 1
+    # its visual is its collision box: one geom, drawn in the visual's red
+    box = world.model.geom('box::box_link::box_collision')
+    assert box.group[0] == 2 and list(box.rgba) == [1, 0, 0, 1] and box.contype[0] == 1
+    assert [world.model.geom(i).name for i in range(world.model.ngeom)].count(
+        'box::box_link::visual::box_visual') == 0
 
 
 def test_the_shipped_empty_world_is_the_empty_world():
