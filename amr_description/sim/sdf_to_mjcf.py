@@ -99,8 +99,12 @@ def _mesh_parts(spec, shape):
     return meshes
 
 
-def _add_shape(spec, body, shape, name, collision, frame):
-    """Add the geoms of one shape to ``body``, posed ``frame @ shape.pose``; return them."""
+def _add_shape(spec, body, shape, name, collision, frame, messages):
+    """
+    Add the geoms of one shape to ``body``, posed ``frame @ shape.pose``; return them.
+
+    A mesh trimesh cannot read adds no geom and one line to ``messages``.
+    """
     kinds = {'box': mujoco.mjtGeom.mjGEOM_BOX, 'cylinder': mujoco.mjtGeom.mjGEOM_CYLINDER,
              'capsule': mujoco.mjtGeom.mjGEOM_CAPSULE, 'sphere': mujoco.mjtGeom.mjGEOM_SPHERE,
              'ellipsoid': mujoco.mjtGeom.mjGEOM_ELLIPSOID, 'plane': mujoco.mjtGeom.mjGEOM_PLANE,
@@ -119,8 +123,12 @@ def _add_shape(spec, body, shape, name, collision, frame):
         T[:3, :3] = T[:3, :3] @ _z_to(size[:3])
         sizes = [[size[3] / 2.0, size[4] / 2.0, 0.5]]
     else:
-        meshes = _mesh_parts(spec, shape) if collision else \
-            [add_mesh_asset(spec, shape.path, shape.size)]
+        try:
+            meshes = _mesh_parts(spec, shape) if collision else \
+                [add_mesh_asset(spec, shape.path, shape.size)]
+        except ValueError as exc:
+            messages.append(f'{name}: {exc}: skipped')
+            return []
         sizes = [None] * len(meshes)
     geoms = []
     for index, geom_size in enumerate(sizes):
@@ -177,11 +185,7 @@ def add_world(spec, world):
                     ground_done = True
                     _ground(spec, shape)
                     continue
-                try:
-                    geoms = _add_shape(spec, body, shape, where, True, frame)
-                except ValueError as exc:
-                    messages.append(f'{where}: {exc}: skipped')
-                    continue
+                geoms = _add_shape(spec, body, shape, where, True, frame, messages)
                 for geom in geoms:
                     geom.group = COLLISION_GROUP
                     geom.rgba = DEFAULT_RGBA
@@ -197,11 +201,7 @@ def add_world(spec, world):
                         geom.rgba = shape.rgba or DEFAULT_RGBA
                     continue
                 where = f'{name}{SEPARATOR}visual{SEPARATOR}{shape.name}'
-                try:
-                    geoms = _add_shape(spec, body, shape, where, False, frame)
-                except ValueError as exc:
-                    messages.append(f'{where}: {exc}: skipped')
-                    continue
+                geoms = _add_shape(spec, body, shape, where, False, frame, messages)
                 for geom in geoms:
                     geom.group = VISUAL_GROUP
                     geom.contype = geom.conaffinity = 0

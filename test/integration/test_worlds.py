@@ -12,8 +12,7 @@ simulator at start with exit code 1 and one line.
 import math
 import os
 
-import pytest
-from test_gz_systems import GzPeer  # noqa: I100 - the gz-sim systems' DDS peer
+from test_gz_systems import gz_peer  # noqa: F401 - the gz-sim systems' DDS peer fixture
 from test_gz_systems import XACRO
 
 ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', '..')
@@ -30,15 +29,8 @@ def _ground_truth_y(peer):
     return peer.odom[-1].pose.pose.position.y
 
 
-@pytest.fixture
-def gz_peer(ros_env):
-    pytest.importorskip('simulation_interfaces.srv')
-    p = GzPeer(int(ros_env['ROS_DOMAIN_ID']))
-    yield p
-    p.close()
-
-
-def test_a_robot_driven_into_a_shelf_of_the_warehouse_stops_at_it(procs, exe, ros_env, gz_peer):
+def test_a_robot_driven_into_a_shelf_of_the_warehouse_stops_at_it(
+        procs, exe, ros_env, gz_peer):  # noqa: F811 - the imported fixture
     peer = gz_peer
     sim = procs.start([exe('mujoco_sim'), '--ros-args', '-p', 'world:=warehouse',
                        '-p', 'real_time_factor:=0.0'], ros_env)

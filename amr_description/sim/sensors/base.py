@@ -2,6 +2,8 @@
 # Licensed under the Apache License, Version 2.0
 """The sensor protocol of the simulator (no rclpy)."""
 
+from amr_description.ros.stamps import set_stamp
+
 
 class Sensor:
     """
@@ -50,3 +52,22 @@ class Sensor:
         :param t: sim time in s; the message's stamp.
         """
         raise NotImplementedError
+
+
+def fill_odometry(msg, t, position, quaternion, linear, angular):
+    """
+    Write a pose and twist stamped at sim time ``t`` into a ``nav_msgs/Odometry``.
+
+    :param msg: the message (its frame ids are left as they are); returned.
+    :param t: sim time (s).
+    :param position: (3,) m; ``quaternion``: (x, y, z, w); ``linear`` (3,) m/s and
+        ``angular`` (3,) rad/s, in the frames the caller's Odometry convention names.
+    """
+    set_stamp(msg.header.stamp, t)
+    p, q = msg.pose.pose.position, msg.pose.pose.orientation
+    p.x, p.y, p.z = (float(v) for v in position)
+    q.x, q.y, q.z, q.w = (float(v) for v in quaternion)
+    lin, ang = msg.twist.twist.linear, msg.twist.twist.angular
+    lin.x, lin.y, lin.z = (float(v) for v in linear)
+    ang.x, ang.y, ang.z = (float(v) for v in angular)
+    return msg

@@ -10,7 +10,7 @@ prefix (``base_footprint``, ``r1/base_footprint``). The values are MuJoCo's stat
 robot's free joint (:meth:`~amr_description.sim.world.World.ground_truth`).
 """
 
-from amr_description.ros.stamps import set_stamp
+from amr_description.sim.sensors.base import fill_odometry
 from amr_description.sim.sensors.base import Sensor
 from nav_msgs.msg import Odometry
 
@@ -44,15 +44,7 @@ class GroundTruth(Sensor):
     def measure(self, world, t):
         """Return the Odometry of the root link at sim time ``t`` (s) (module docstring)."""
         position, quat, linear, angular = world.ground_truth(self._entity_name)
-        msg = self._msg
-        set_stamp(msg.header.stamp, t)
-        p, q = msg.pose.pose.position, msg.pose.pose.orientation
-        p.x, p.y, p.z = (float(v) for v in position)
-        q.x, q.y, q.z, q.w = (float(v) for v in quat)
-        lin, ang = msg.twist.twist.linear, msg.twist.twist.angular
-        lin.x, lin.y, lin.z = (float(v) for v in linear)
-        ang.x, ang.y, ang.z = (float(v) for v in angular)
-        return msg
+        return fill_odometry(self._msg, t, position, quat, linear, angular)
 
 
 def create(entity, settings):

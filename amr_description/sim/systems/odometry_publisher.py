@@ -20,6 +20,7 @@ import math
 
 from amr_description.core.gazebo_systems import frame_id_gz_to_ros
 from amr_description.ros.stamps import set_stamp
+from amr_description.sim.sensors.base import fill_odometry
 from amr_description.sim.systems.base import ModelSystem
 from amr_description.sim.systems.base import Output
 from geometry_msgs.msg import TransformStamped
@@ -135,14 +136,7 @@ class OdometryPublisher(ModelSystem):
 
     def _fill(self, msg, world, t):
         position, quaternion, linear, angular = self.state(world)
-        set_stamp(msg.header.stamp, t)
-        p, q = msg.pose.pose.position, msg.pose.pose.orientation
-        p.x, p.y, p.z = (float(v) for v in position)
-        q.x, q.y, q.z, q.w = (float(v) for v in quaternion)
-        lin, ang = msg.twist.twist.linear, msg.twist.twist.angular
-        lin.x, lin.y, lin.z = (float(v) for v in linear)
-        ang.x, ang.y, ang.z = (float(v) for v in angular)
-        return msg
+        return fill_odometry(msg, t, position, quaternion, linear, angular)
 
     def tf_message(self, world, t):
         """Return one transform ``odom_frame`` -> ``robot_base_frame`` at sim time ``t``."""
