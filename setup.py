@@ -72,6 +72,8 @@ setup(
         ],
         'amr_description.sensors': [
             'ground_truth = amr_description.sim.sensors.ground_truth:create',
+            'imu = amr_description.sim.sensors.imu:create',
+            'lidar = amr_description.sim.sensors.lidar:create',
         ],
         'amr_description.hardware': [
             'amr_description/MujocoSystem = amr_description.sim.mujoco_system:MujocoSystem',

@@ -8,6 +8,7 @@ hands it to the URDF -> MJCF converter, the resource manager and joint_state_bro
 one spawn is one XML parse (test/unit/test_robot_description.py counts them).
 """
 
+from amr_description.core.gazebo_sensors import parse_sensors
 from amr_description.core.gazebo_systems import parse_gazebo_systems
 from amr_description.core.gazebo_tags import apply_surface_tags
 from amr_description.core.gazebo_tags import parse_control_plugin
@@ -39,6 +40,9 @@ class RobotDescription:
     :ivar gz_systems: the gz-sim system plugins, a
         :class:`~amr_description.core.gazebo_systems.GazeboSystems`.
     :ivar gazebo_tags: the ``<gazebo reference>`` tags, dict reference -> dict tag -> value.
+    :ivar sensors: the ``<gazebo reference><sensor>`` blocks, a
+        :class:`~amr_description.core.gazebo_sensors.SensorBlocks` (its ``messages`` name the
+        sensors left out).
     :ivar system_hardware: the joints those systems command, as ``HardwareInfo`` blocks of
         the simulator's system (their actuators are made as for ``<ros2_control>``).
     :raises ValueError: one line naming ``source`` (URDF), ``ros2_control`` or ``<mujoco>``
@@ -61,6 +65,7 @@ class RobotDescription:
                            SIMULATOR_SYSTEMS)
         self.gazebo_tags = parse_reference_tags(self.root)
         apply_surface_tags(self.mujoco, self.gazebo_tags, self.model)
+        self.sensors = parse_sensors(self.root, self.model.links)
 
     def parameters_files(self):
         """

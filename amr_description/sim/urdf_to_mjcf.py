@@ -56,6 +56,7 @@ import os
 from amr_description.core.description_file import resolve_uri
 from amr_description.core.mujoco_block import DEFAULT_CONTACT
 from amr_description.core.robot_description import RobotDescription
+from amr_description.sim.sensors.mount import add_mounts
 import mujoco
 import numpy as np
 
@@ -425,5 +426,6 @@ def urdf_to_spec(urdf_xml, name='amr', pose=(0.0, 0.0, 0.0, 0.0, 0.0, 0.0), free
             add_link(body, child_joint.child, child_joint)
 
     add_link(spec.worldbody, root_name, None)
+    add_mounts(spec, description.sensors.sensors)
     _add_actuators(spec, {j.name: j.type for j in robot.joints}, hardware, config)
     return spec

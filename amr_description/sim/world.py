@@ -114,6 +114,7 @@ class World:
         self.data = mujoco.MjData(self.model)
         self.robots = {}
         mujoco.mj_forward(self.model, self.data)
+        self._poses_current = True  # poses match the state until the next step
 
     @property
     def physics_step(self):
@@ -293,11 +294,13 @@ class World:
         """Recompile the spec keeping the state; refresh ``model`` and ``data``."""
         self.model, self.data = self.spec.recompile(self.model, self.data)
         mujoco.mj_forward(self.model, self.data)
+        self._poses_current = True
 
     def reset(self):
         """Reset every robot to its spawn pose at rest, controls to zero, time to 0 s."""
         mujoco.mj_resetData(self.model, self.data)
         mujoco.mj_forward(self.model, self.data)
+        self._poses_current = True
 
     def step(self, nstep=1):
         """
@@ -306,6 +309,20 @@ class World:
         :param nstep: number of physics steps (int >= 1).
         """
         mujoco.mj_step(self.model, self.data, nstep=int(nstep))
+        self._poses_current = False
+
+    def update_kinematics(self):
+        """
+        Bring body, geom and site poses up to the current state (once per state).
+
+        ``mj_step`` integrates after computing the poses, so after it ``xpos``/``xmat`` are
+        those of the previous step; a sensor that reads poses (a lidar's ray origin, the
+        geoms it hits) calls this first. ``mj_kinematics`` only writes derived poses, so the
+        trajectory is the same with or without the call.
+        """
+        if not self._poses_current:
+            mujoco.mj_kinematics(self.model, self.data)
+            self._poses_current = True
 
     def free_joint_address(self, name):
         """

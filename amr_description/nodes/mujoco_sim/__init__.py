@@ -25,7 +25,9 @@ Parameters (read at start):
   in its first 10 s, publishing none of its own in the first 1.5 s; ``external``: follow the
   /clock of another simulator, never running ahead of it, and publish none),
   ``bridge_config`` (string, '': a ros_gz_bridge YAML file; the topics of the robots' gz-sim
-  systems then reach ROS as that bridge would bridge them, docs/gazebo.md).
+  systems and sensor blocks then reach ROS as that bridge would bridge them, docs/gazebo.md),
+  ``seed`` (integer, 0: seeds the sensors' noise; one seed gives the same messages in
+  lock-step runs, docs/sensors.md).
 
 Topics: ``/clock`` (rosgraph_msgs/Clock, reliable, depth 10) after every cycle, at least 100 Hz
 of sim time, and at 10 Hz (wall) with an unchanged time while paused (an empty world runs in
@@ -35,8 +37,9 @@ entity); one topic per sensor of every spawned robot (:mod:`amr_description.sim.
 ``world``, twist in the root link frame (REP 105 / Odometry convention); child frame
 ``base_footprint`` (``r1/base_footprint`` in namespace ``/r1``); the topics of the gz-sim
 systems a robot's description names (:mod:`amr_description.sim.systems`: e.g. DiffDrive's
-Twist subscription and Odometry and TF publishers), reliable, volatile, depth 10 as
-ros_gz_bridge's.
+Twist subscription and Odometry and TF publishers) and of its ``<gazebo><sensor>`` blocks
+(lidar: LaserScan on ``<topic>``, PointCloud2 on ``<topic>/points``; IMU: Imu,
+docs/sensors.md), reliable, volatile, depth 10 as ros_gz_bridge's.
 
 Services (simulation_interfaces): ``~/spawn_entity`` (SpawnEntity; ``entity_namespace``
 gives the robot's controller manager ``<namespace>/controller_manager``, its controllers

@@ -12,7 +12,6 @@ ros_gz_bridge's TwistStamped <-> gz.msgs.Twist conversion does).
 """
 
 from amr_description.core.bridge_config import ros_side
-from amr_description.sim.systems.base import Output
 from geometry_msgs.msg import Twist
 from geometry_msgs.msg import TwistStamped
 
@@ -30,21 +29,22 @@ def bridged_outputs(sensors, entries):
     """
     Return ``(sensor, ROS topic)`` for every sensor published under a ROS name.
 
-    :param sensors: the entity's sensors (gz-sim system outputs among them).
+    :param sensors: the entity's sensors; those with a ``gz_name`` (gz-sim system outputs,
+        ``<gazebo><sensor>`` blocks) are looked up in the bridge entries.
     :param entries: the bridge entries, or None without a bridge configuration.
     :raises ValueError: one line naming the topic when the entry's ROS type is not the
         sensor's.
     """
     result = []
     for sensor in sensors:
-        if entries is None or not isinstance(sensor, Output):
+        if entries is None or not sensor.gz_name:
             result.append((sensor, sensor.topic))
             continue
-        entry = ros_side(entries, sensor.topic, to_ros=True)
+        entry = ros_side(entries, sensor.gz_name, to_ros=True)
         if entry is None:
             continue  # not bridged: it does not reach ROS
         if entry.ros_type != type_name(sensor.message_type):
-            raise ValueError(f'bridge_config: gz topic {sensor.topic!r} carries '
+            raise ValueError(f'bridge_config: gz topic {sensor.gz_name!r} carries '
                              f'{type_name(sensor.message_type)}, not {entry.ros_type}')
         result.append((sensor, entry.ros_topic))
     return result

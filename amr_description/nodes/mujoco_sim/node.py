@@ -99,6 +99,7 @@ class MujocoSim(Node):
         ground_truth_rate = self.declare_parameter('ground_truth_rate', 50.0).value
         self.clock_source = self.declare_parameter('clock_source', 'internal').value
         self.bridge_config = self.declare_parameter('bridge_config', '').value
+        self.seed = self.declare_parameter('seed', 0).value
         self._check_parameters()
         self.external_clock = self.clock_source == 'external'
         self.refused = None  # one-line reason to exit 1
@@ -118,7 +119,7 @@ class MujocoSim(Node):
             controller_manager_release=lambda cm: cm.destroy(),
             parameters_file=self.parameters_file, logger=_Logger(self.get_logger()),
             sensor_settings={'publish_ground_truth': publish_ground_truth,
-                             'ground_truth_rate': ground_truth_rate},
+                             'ground_truth_rate': ground_truth_rate, 'seed': self.seed},
             world=world)
         self._report_world(world)
         self.sim.before_update.append(executor.sim_time.set_time)
@@ -172,6 +173,9 @@ class MujocoSim(Node):
                 self._bridge = read_bridge_config(self.bridge_config)
             except ValueError as exc:
                 log.error(f'parameter bridge_config: {exc}; gz topics keep their names')
+        if not isinstance(self.seed, int) or self.seed < 0:
+            log.error(f'parameter seed must be an integer >= 0, found {self.seed!r}; using 0')
+            self.seed = 0
         if self.clock_source not in ('internal', 'external'):
             log.error(f"parameter clock_source must be 'internal' or 'external', found "
                       f"{self.clock_source!r}; using 'internal'")

@@ -2,6 +2,8 @@
 # Licensed under the Apache License, Version 2.0
 """The sensor protocol of the simulator (no rclpy)."""
 
+from amr_description.core.gazebo_sensors import default_topic
+from amr_description.core.gazebo_sensors import lumped_link
 from amr_description.ros.stamps import set_stamp
 
 
@@ -21,6 +23,8 @@ class Sensor:
     :ivar costly: True when measuring costs enough to be skipped while nobody subscribes
         (the node then does not call :meth:`measure`); False when every due measurement is
         taken (e.g. to keep a noise generator's sequence independent of subscribers).
+    :ivar gz_name: the gz topic a Gazebo user's ros_gz_bridge configuration
+        (``bridge_config``) maps to ROS, absolute; '' for a sensor that is only a ROS topic.
     """
 
     name = ''
@@ -29,6 +33,7 @@ class Sensor:
     rate = 0.0
     message_type = None
     costly = False
+    gz_name = ''
 
     def period_steps(self, physics_step):
         """
@@ -71,3 +76,32 @@ def fill_odometry(msg, t, position, quaternion, linear, angular):
     lin.x, lin.y, lin.z = (float(v) for v in linear)
     ang.x, ang.y, ang.z = (float(v) for v in angular)
     return msg
+
+
+def sensor_rate(block, physics_step):
+    """Return a block's rate in Hz of sim time: ``update_rate``, or every step for 0."""
+    return block.update_rate if block.update_rate > 0 else 1.0 / physics_step
+
+
+def sensor_topic(entity, block, world_name):
+    """
+    Return ``(ROS topic, gz topic)`` of a sensor block: ``<topic>`` or gz-sim's default name.
+
+    The gz topic is absolute (gz-transport has no namespaces); the ROS topic, used without a
+    bridge configuration, resolves a relative ``<topic>`` in the entity's namespace
+    (``scan`` -> ``/r1/scan``).
+    """
+    topic = block.topic
+    if not topic:
+        description = entity.description
+        link = lumped_link(description.model, block.link, description.gazebo_tags)
+        topic = default_topic(world_name, entity.name, link, block)
+        return topic, topic
+    if topic.startswith('/'):
+        return topic, topic
+    return f'{entity.namespace}/{topic}', '/' + topic
+
+
+def sensor_frame(entity, block):
+    """Return a sensor's frame id: ``<gz_frame_id>`` else its link, with the frame prefix."""
+    return entity.frame_prefix + (block.frame_id or block.link)

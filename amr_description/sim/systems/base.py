@@ -48,6 +48,7 @@ class Output(Sensor):
         """Keep the fields (see the class docstring)."""
         self.name = name
         self.topic = topic
+        self.gz_name = topic
         self.frame_id = ''
         self.message_type = message_type
         self.rate = float(rate)
