@@ -101,7 +101,7 @@ class ScanAxis:
         return max(1, int(self.samples * self.resolution))
 
     def angles(self):
-        """Return the ``count`` ray angles (list, rad) from min to max, both included."""
+        """Return the directions of the ``count`` rays in rad, min to max, both included (list)."""
         n = self.count
         if n == 1:
             return [self.min_angle]
