@@ -1,0 +1,107 @@
+# Copyright 2026 The amr_description Authors
+# Licensed under the Apache License, Version 2.0
+"""
+Lidar and IMU topics through DDS, as a Gazebo user's nodes receive them from ros_gz_bridge.
+
+Our robot with its sensor mount (urdf/amr.urdf.xacro: 2-D lidar 10 Hz, IMU 100 Hz) is spawned
+with ``create -file`` into the closed room of test/data/worlds/box_room.sdf; the simulator is
+paused and stepped. The scans equal the distances to the room's walls within 3 stddev, stamps
+are exactly one period apart in sim time, the IMU reads gravity on z, and the point cloud has
+gz-sensors' fields.
+"""
+
+import math
+import os
+
+import pytest
+from test_gz_systems import GzPeer  # noqa: I100 - the gz-sim systems' DDS peer
+
+ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', '..')
+XACRO = os.path.join(ROOT, 'urdf', 'amr.urdf.xacro')
+ROOM = os.path.join(ROOT, 'test', 'data', 'worlds', 'box_room.sdf')
+EAST, WEST, NORTH, SOUTH = 3.0, -2.0, 2.5, -1.5  # inner wall faces (m)
+STDDEV = 0.01  # the lidar's declared noise (m)
+
+
+def _stamp(msg):
+    return msg.header.stamp.sec + msg.header.stamp.nanosec * 1e-9
+
+
+def _room_distance(angle):
+    c, s = math.cos(angle), math.sin(angle)
+    candidates = [(EAST if c > 0 else WEST) / c] if abs(c) > 1e-12 else []
+    if abs(s) > 1e-12:
+        candidates.append((NORTH if s > 0 else SOUTH) / s)
+    return min(candidates)
+
+
+class SensorPeer(GzPeer):
+    """GzPeer plus /scan, /scan/points and /imu (reliable, volatile, as the bridge)."""
+
+    def __init__(self, domain_id):
+        from sensor_msgs.msg import Imu
+        from sensor_msgs.msg import LaserScan
+        from sensor_msgs.msg import PointCloud2
+        super().__init__(domain_id)
+        self.scans, self.clouds, self.imus = [], [], []
+        self.node.create_subscription(LaserScan, '/scan', self.scans.append, 100)
+        self.node.create_subscription(PointCloud2, '/scan/points', self.clouds.append, 100)
+        self.node.create_subscription(Imu, '/imu', self.imus.append, 1000)
+
+
+@pytest.fixture
+def sensor_peer(ros_env):
+    pytest.importorskip('simulation_interfaces.srv')
+    p = SensorPeer(int(ros_env['ROS_DOMAIN_ID']))
+    yield p
+    p.close()
+
+
+def test_our_robot_in_a_room_publishes_scan_points_and_imu_at_their_rates(
+        procs, exe, ros_env, sensor_peer):
+    peer = sensor_peer
+    sim = procs.start([exe('mujoco_sim'), '--ros-args', '-p', f'world:={ROOM}',
+                       '-p', 'real_time_factor:=0.0'], ros_env)
+    assert peer.spin_until(lambda: peer.now is not None, 60), sim.output
+    create = procs.start([exe('create'), '-file', XACRO, '-z', '0.01'], ros_env)
+    assert create.wait(60) == 0, create.output + sim.output
+    assert peer.set_state(peer.msg.SimulationState.STATE_PAUSED).result == \
+        peer.msg.Result.RESULT_OK
+    assert peer.spin_until(lambda: peer.node.count_publishers('/scan') > 0, 30)
+    peer.step(500)  # settle on the wheels
+    start = peer.now
+    peer.step(2000)
+    assert peer.spin_until(lambda: peer.scans and _stamp(peer.scans[-1]) >= start + 2.0 - 1e-6
+                           and peer.imus and _stamp(peer.imus[-1]) >= start + 2.0 - 1e-6, 30), \
+        sim.output[-2000:]
+    window = (start + 1e-6, start + 2.0 + 1e-6)  # 2 s of sim time at 10 Hz and 100 Hz
+    scans = [m for m in peer.scans if window[0] < _stamp(m) < window[1]]
+    imus = [m for m in peer.imus if window[0] < _stamp(m) < window[1]]
+    assert len(scans) == 20 and len(imus) == 200
+    for messages, period in ((scans, 0.1), (imus, 0.01)):
+        gaps = [_stamp(b) - _stamp(a) for a, b in zip(messages, messages[1:])]
+        assert max(abs(g - period) for g in gaps) < 1e-6, gaps
+
+    scan = scans[-1]
+    assert (scan.header.frame_id, len(scan.ranges), scan.range_min, scan.range_max) == \
+        ('lidar_link', 360, pytest.approx(0.12), pytest.approx(12.0))
+    within = total = 0
+    for message in scans:
+        for i, value in enumerate(message.ranges):
+            expected = _room_distance(message.angle_min + i * message.angle_increment)
+            within += abs(value - expected) <= 3 * STDDEV + 0.002  # + settling on the wheels
+            total += 1
+    print(f'scan: {within} of {total} ranges within 3 stddev of the walls')
+    assert within / total > 0.99
+
+    g = sum(m.linear_acceleration.z for m in imus) / len(imus)
+    wz = sum(m.angular_velocity.z for m in imus) / len(imus)
+    imu = imus[-1]
+    assert imu.header.frame_id == 'imu_link'
+    assert g == pytest.approx(9.8, abs=0.01) and abs(wz) < 1e-3  # SDF's default gravity
+    assert imu.linear_acceleration_covariance[0] == pytest.approx(1.7e-2 ** 2)
+    assert peer.spin_until(lambda: peer.clouds, 10)
+    cloud = peer.clouds[-1]
+    assert (cloud.width, cloud.height, cloud.point_step) == (360, 1, 32)
+    assert [f.name for f in cloud.fields] == ['x', 'y', 'z', 'intensity', 'ring']
+    assert sim.popen.poll() is None
