@@ -39,7 +39,10 @@ CONTROLLERS = ('joint_state_broadcaster', 'diff_drive_controller')
 
 def urdf_path():
     """
-    Return the installed URDF, ``<share>/amr_description/urdf/amr.urdf``.
+    Return the stacks' default description, ``<share>/amr_description/urdf/amr.urdf.xacro``.
+
+    The tutorial robot (``urdf/amr.urdf``) with its sensor mount: a 2-D lidar and an IMU
+    (xacro arguments ``lidar`` and ``imu``, both true by default).
 
     :returns: the path (str).
     :raises LaunchError: when the package is not installed.
@@ -50,7 +53,7 @@ def urdf_path():
         share = get_package_share_directory(PACKAGE)
     except (PackageNotFoundError, ValueError, LookupError):
         raise LaunchError(f"package '{PACKAGE}' not found") from None
-    return os.path.join(share, 'urdf', 'amr.urdf')
+    return os.path.join(share, 'urdf', 'amr.urdf.xacro')
 
 
 def read_urdf(path=None, xacro_args=''):
@@ -77,7 +80,8 @@ def read_urdf(path=None, xacro_args=''):
 
 DESCRIPTION_ARGUMENTS = [
     DeclareLaunchArgument('description', '', 'Robot description file, URDF or xacro (path or '
-                          'package:// URI); empty: urdf/amr.urdf of this package'),
+                          'package:// URI); empty: urdf/amr.urdf.xacro of this package (the '
+                          'tutorial robot with a lidar and an IMU)'),
     DeclareLaunchArgument('model', '', 'The same as description (the name used by '
                           'urdf_tutorial display.launch.py)'),
     DeclareLaunchArgument('xacro_args', '', 'Arguments of a xacro description, '

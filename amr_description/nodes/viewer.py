@@ -19,12 +19,15 @@ What RViz's displays of the tutorial show, on a web page served by this node:
   shipped world, a file or a URI; '' draws none), its models' geometry and colours as one
   mesh under the robots, in frame ``world`` (:mod:`amr_description.web.displays.world`);
 - **TF** axes of every frame (checkbox);
+- **LaserScan**: the newest scan of every ``scan_topics`` entry (``['/scan']``) as points in
+  the fixed frame, coloured by range (:mod:`amr_description.web.displays.laser_scan`);
 - **Odometry** trails of ``odometry_topics`` (``/odom``, ``/ground_truth/odom``), one colour
   each with a legend and a Clear button. A trail whose ``header.frame_id`` is not in TF (the
   simulator's ``world``) is drawn as if that frame were the fixed frame, and the legend says
   so;
 - a **status** panel: sim time and real-time factor (from ``/clock``), rates of ``/clock``,
-  ``/joint_states`` (as remapped), the first of ``odometry_topics`` and ``/tf``;
+  ``/joint_states`` (as remapped), the first of ``odometry_topics``, every scan topic and
+  ``/tf``;
 - a **teleop pad** (no RViz peer): hold a button, or a key while the page has focus (arrows or
   ``I J L`` and ``K`` to stop; ``,`` is not available to page hotkeys), to publish
   ``geometry_msgs/TwistStamped`` on ``cmd_vel_topic`` (``/diff_drive_controller/cmd_vel``)
@@ -51,6 +54,7 @@ import sys
 from amr_description.ros.node import Node
 from amr_description.web.displays.base import DrawContext
 from amr_description.web.displays.base import FrameManager
+from amr_description.web.displays.laser_scan import LaserScanDisplay
 from amr_description.web.displays.robot_model import RobotModelDisplay
 from amr_description.web.displays.status import StatusDisplay
 from amr_description.web.displays.teleop_pad import TeleopPadDisplay
@@ -94,6 +98,7 @@ class Viewer(Node):
         self.declare_parameter('port', 8080)
         self.declare_parameter('update_rate', 30.0)
         self.declare_parameter('world', '')
+        self.declare_parameter('scan_topics', ['/scan'], string_array)
         update_rate = float(self.get_parameter('update_rate').value)
         if not update_rate > 0.0:
             raise ValueError(f'update_rate must be > 0 Hz, found {update_rate}')
@@ -110,13 +115,17 @@ class Viewer(Node):
                                              value('robot_description_topics').value)
         self.tf_axes = TfAxesDisplay(self, server, self.frames)
         self.trails = TrailsDisplay(self, server, self.frames, value('odometry_topics').value)
-        self.status = StatusDisplay(self, server, self.frames, self.robot_model, self.trails)
+        self.laser_scan = LaserScanDisplay(self, server, self.frames,
+                                           value('scan_topics').value)
+        self.status = StatusDisplay(self, server, self.frames, self.robot_model, self.trails,
+                                    self.laser_scan)
         self.teleop_pad = TeleopPadDisplay(
             self, server, self.frames, str(value('cmd_vel_topic').value),
             str(value('frame_id').value), float(value('speed').value),
             float(value('turn').value))
         # drawn in this order in every update (the status last: it reports what others saw)
-        self.displays = [self.world, self.robot_model, self.tf_axes, self.trails, self.status]
+        self.displays = [self.world, self.robot_model, self.tf_axes, self.trails,
+                         self.laser_scan, self.status]
         self._build_page()
         self.create_timer(1.0 / update_rate, self._update_scene,
                           clock=Clock(clock_type=ClockType.STEADY_TIME))
@@ -137,6 +146,7 @@ class Viewer(Node):
                                              str(self.get_parameter('fixed_frame').value))
             self.tf_axes.build(gui)
             self.trails.build(gui)
+            self.laser_scan.build(gui)
         self.teleop_pad.build(gui)
 
     def _choose_fixed_frame(self):

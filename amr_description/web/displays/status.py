@@ -4,8 +4,8 @@
 Status: what RViz's status panel and time panel say, as one text on the page.
 
 Description errors, the fixed frame (and why another is shown), frames without a transform,
-sim time and real-time factor from ``/clock``, and the rates of ``/clock``, ``/joint_states``
-(as remapped), the first odometry topic and ``/tf``. Refreshed every :data:`PERIOD` s, and at
+sim time and real-time factor from ``/clock``, and the rates of ``/clock``,
+``/joint_states`` (as remapped), the first odometry topic, the sensor topics and ``/tf``. Refreshed every :data:`PERIOD` s, and at
 once when a robot description arrives.
 """
 
@@ -29,13 +29,15 @@ class StatusDisplay(Display):
         RobotModelDisplay` (its robots, errors and topics).
     :param trails: the :class:`~amr_description.web.displays.trails.TrailsDisplay` (the rate
         of its first topic).
+    :param sensors: displays with ``rates()`` -> ``[(topic, Rate)]`` of their sensor topics.
     """
 
-    def __init__(self, node, server, frames, robot_model, trails):
+    def __init__(self, node, server, frames, robot_model, trails, *sensors):
         """Count ``/joint_states`` (taken raw, never converted to a Python message)."""
         super().__init__(node, server, frames)
         self._robot_model = robot_model
         self._trails = trails
+        self._sensors = sensors
         self._joint_states_rate = Rate()
         subscription = node.create_subscription(
             JointState, '/joint_states',
@@ -54,6 +56,8 @@ class StatusDisplay(Display):
                  (self.joint_states, self._joint_states_rate)]
         if self._trails.rated_topic is not None:
             rates.append((self._trails.rated_topic, self._trails.rate))
+        for display in self._sensors:
+            rates += display.rates()
         return rates + [('/tf', self.frames.rates['/tf'])]
 
     def draw(self, context):
