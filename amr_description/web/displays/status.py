@@ -5,8 +5,8 @@ Status: what RViz's status panel and time panel say, as one text on the page.
 
 Description errors, the fixed frame (and why another is shown), frames without a transform,
 sim time and real-time factor from ``/clock``, and the rates of ``/clock``,
-``/joint_states`` (as remapped), the first odometry topic, the sensor topics and ``/tf``. Refreshed every :data:`PERIOD` s, and at
-once when a robot description arrives.
+``/joint_states`` (as remapped), the first odometry topic, the sensor topics and ``/tf``.
+Refreshed every :data:`PERIOD` s, and at once when a robot description arrives.
 """
 
 import time
