@@ -16,26 +16,34 @@ from amr_description.nodes.drive_square.driver import SquareDriver
 from amr_description.nodes.drive_square.driver import wait_connected
 from amr_description.nodes.drive_square.report import fail
 from amr_description.nodes.drive_square.report import report
+from amr_description.nodes.drive_square.scans import ScanRecorder
 from amr_description.ros import shutdown
 from rclpy.executors import ExternalShutdownException
 
 
-def _bringup(rtf, robots, log_path, viewer_port=8080):
+START_POSES = {'arena': (1.55, -0.55, 0.0)}
+"""Spawn pose ``(x, y, yaw)`` of the one robot per world: a 1 m square clear of obstacles
+(worlds/arena.sdf has a pillar at (1, 0)); (0, 0, 0) in any other world."""
+
+
+def _bringup(rtf, robots, log_path, viewer_port=8080, world='empty'):
     """
     Start the ``sim`` or ``fleet`` stack, output in ``log_path``; return (orch, log, url).
 
     The viewer runs on ``viewer_port`` when the stack has one (``url`` is then its page,
-    otherwise None); ``viewer_port`` 0 leaves it out.
+    otherwise None); ``viewer_port`` 0 leaves it out. ``world`` is the stack's ``world``.
     """
     from amr_description.launch import stacks
     from amr_description.launch.orchestrator import Orchestrator
 
-    argv = [f'rtf:={rtf}', 'headless:=true']
+    argv = [f'rtf:={rtf}', 'headless:=true', f'world:={world}']
     if robots > 1:
         name = 'fleet'
         argv.append(f'robots:={robots}')
     else:
         name = 'sim'
+        x, y, yaw = START_POSES.get(world, (0.0, 0.0, 0.0))
+        argv += [f'x:={x!r}', f'y:={y!r}', f'yaw:={yaw!r}']
     declared = {d.name for d in stacks.STACKS[name][1]}
     url = None
     if 'viewer' in declared:
@@ -82,7 +90,13 @@ def _parse(argv):
     parser.add_argument('--viewer-port', type=int, default=8080,
                         help='port of the viewer page that shows the robot live (8080; 0 = '
                         'no viewer)')
+    parser.add_argument('--world', default=None,
+                        help='SDF world of the stack (arena for one robot: the lidar map is '
+                        'drawn in out/scans.png; empty for a fleet; empty gives the run '
+                        'without obstacles)')
     opts = parser.parse_args(argv)
+    if opts.world is None:
+        opts.world = 'arena' if opts.robots == 1 else 'empty'
     if opts.robots < 1:
         parser.error(f'argument --robots: must be >= 1, got {opts.robots}')
     if not opts.lockstep_period > 0:
@@ -119,11 +133,12 @@ def main(args=None):
             print(f'[drive_square] starting {what} (rtf {opts.rtf:g}); its output goes '
                   f'to {log_path}', flush=True)
             orchestrator, log, url = _bringup(opts.rtf, opts.robots, log_path,
-                                              opts.viewer_port)
+                                              opts.viewer_port, opts.world)
             if url:
                 print(f'[drive_square] watch it drive: open {url} in a browser', flush=True)
         legs = square_course(opts.side, opts.speed, opts.turn_rate)
         node = shutdown.create(SquareDriver, legs, robot_namespaces(opts.robots))
+        scans = ScanRecorder(node) if opts.robots == 1 else None
         print('[drive_square] waiting for joint_state_broadcaster and diff_drive_controller '
               'to be active ...', flush=True)
         started = time.monotonic()
@@ -154,7 +169,7 @@ def main(args=None):
                                  for r in node.robots)
             return fail(f'the course did not finish within {opts.timeout:g} s (legs of '
                         f'{len(legs)} finished: {finished})')
-        return report(opts, node, legs, log_path)
+        return report(opts, node, legs, log_path, scans)
     except RuntimeError as exc:
         return fail(str(exc))
     except (KeyboardInterrupt, ExternalShutdownException):

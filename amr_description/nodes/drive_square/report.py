@@ -133,7 +133,48 @@ def fail(message):
     return 1
 
 
-def report(opts, node, legs, log_path):
+def scan_report(opts, robot, scans):
+    """
+    Write ``out/scans.png`` and return ``(line, ground-truth share)``, or None without scans.
+
+    :param opts: the options (``world``, ``output_dir``).
+    :param robot: the :class:`~amr_description.nodes.drive_square.driver.RobotDriver`.
+    :param scans: the :class:`~amr_description.nodes.drive_square.scans.ScanRecorder`.
+    """
+    from amr_description.core.scan_map import compose
+    from amr_description.core.scan_map import inverse
+    from amr_description.core.scan_map import world_sections
+    from amr_description.core.sdf_world import load_world
+    from amr_description.launch.stacks import read_urdf
+    from amr_description.nodes.drive_square.scans import lidar_mount
+    from amr_description.nodes.drive_square.scans import MARGIN
+    from amr_description.nodes.drive_square.scans import on_surface_share
+    from amr_description.nodes.drive_square.scans import write_scan_map
+
+    mount = lidar_mount(read_urdf())
+    if mount is None or not scans.scans:
+        return None
+    block, offset, height = mount
+    sections = world_sections(load_world(opts.world), height)
+    if not sections:
+        return None
+    stddev = block.lidar.noise.stddev
+    to_world = compose(robot.truth_marks[0], inverse(robot.odom_marks[0]))
+    truth = scans.placed(scans.truth, offset)
+    odom = scans.placed(scans.odom, offset, to_world)
+    shares = on_surface_share(truth, sections, stddev), on_surface_share(odom, sections, stddev)
+    path = os.path.join(opts.output_dir, 'scans.png')
+    write_scan_map(path, sections, [('ground truth', truth, shares[0], 'tab:blue'),
+                                    ('/odom', odom, shares[1], 'tab:red')],
+                   f'{opts.world}: {len(scans.scans)} scans of the drive, lidar '
+                   f'{height:.2f} m above the ground')
+    line = (f'scan points within 3 stddev + {100 * MARGIN:g} cm of a true surface: ground '
+            f'truth {100 * shares[0]:.1f} % ({len(truth)} points), /odom '
+            f'{100 * shares[1]:.1f} % ({len(odom)} points); wrote {path}')
+    return line, shares[0]
+
+
+def report(opts, node, legs, log_path, scans=None):
     """Print the tables, check drops and closures, write the PNGs; return the exit code."""
     robots = node.robots
     print()
@@ -164,6 +205,12 @@ def report(opts, node, legs, log_path):
                  scene)
         written.append(scene)
     print(f'wrote {" and ".join(written)}')
+    mapped = scan_report(opts, robots[0], scans) if scans is not None else None
+    if mapped is not None:
+        print(mapped[0])
+        if mapped[1] < 0.95:
+            return fail(f'only {100 * mapped[1]:.1f} % of the scan points placed with ground '
+                        'truth lie on a true surface (95 % expected)')
     dropped = sum(r.stale for r in robots)
     logged = count_stale_lines(log_path) if log_path else 0
     if dropped or logged:
