@@ -29,11 +29,14 @@ The job fails (exit 1, one line on stderr) when a command was dropped as stale (
 published when the sim time it observes on ``/clock`` is already ``cmd_vel_timeout`` past its
 stamp, or an "Ignoring the received message" line of diff_drive_controller in the stack's own
 log), when a course does not finish within ``--timeout``, or when a robot's ground-truth
-closure misses ``--tolerance`` (m) or ``--tolerance-deg``. Otherwise it prints a table per
-leg (one robot) or one row per robot and a per-leg summary (several robots), writes
+closure misses ``--tolerance`` (m) or ``--tolerance-deg``, or when fewer than 95 % of the
+lidar's scan points placed with ground truth lie on a true surface. Otherwise it prints a
+table per leg (one robot) or one row per robot and a per-leg summary (several robots), writes
 ``path.png`` (odometry vs ground truth of every robot) and, for one robot, ``scene.png`` (a
-render of the final scene), stops the stack and exits 0.
+render of the final scene) and, in a world with obstacles (``--world``: ``arena`` for one
+robot, ``empty`` for a fleet), ``scans.png`` (:mod:`.scans`), stops the stack and exits 0.
 
 Modules: :mod:`.driver` (the node, one driver per robot, lock-step), :mod:`.report`
-(tables, plots, closure checks), :mod:`.main` (command line, bring-up, ``main``).
+(tables, plots, closure checks), :mod:`.scans` (the lidar map), :mod:`.main` (command line,
+bring-up, ``main``).
 """

@@ -20,7 +20,8 @@ from amr_description.sim.sensors.base import sensor_rate
 from amr_description.sim.sensors.base import sensor_topic
 from amr_description.sim.sensors.mount import imu_sensor_names
 from amr_description.sim.sensors.noise import generator
-from amr_description.sim.sensors.noise import NoiseModel
+from amr_description.sim.sensors.noise import AxesNoise
+import numpy as np
 from sensor_msgs.msg import Imu as ImuMessage
 
 
@@ -46,14 +47,16 @@ class Imu(Sensor):
         self.rate = float(rate)
         self._names = tuple(prefix + n for n in imu_sensor_names(block))
         self._orientation = block.imu.enable_orientation
-        self._gyro_noise = [NoiseModel(n, rng) for n in block.imu.angular_velocity]
-        self._accel_noise = [NoiseModel(n, rng) for n in block.imu.linear_acceleration]
+        # one draw per measurement for the six axes: linear acceleration x y z, then angular
+        # velocity x y z
+        self._noise = AxesNoise(list(block.imu.linear_acceleration)
+                                + list(block.imu.angular_velocity), rng)
         msg = ImuMessage()
         msg.header.frame_id = frame_id
-        for i, model in enumerate(self._gyro_noise):
-            msg.angular_velocity_covariance[4 * i] = model.noise.stddev ** 2
-        for i, model in enumerate(self._accel_noise):
-            msg.linear_acceleration_covariance[4 * i] = model.noise.stddev ** 2
+        for i, noise in enumerate(block.imu.angular_velocity):
+            msg.angular_velocity_covariance[4 * i] = noise.stddev ** 2
+        for i, noise in enumerate(block.imu.linear_acceleration):
+            msg.linear_acceleration_covariance[4 * i] = noise.stddev ** 2
         self._msg = msg
         self._model = None
 
@@ -61,20 +64,20 @@ class Imu(Sensor):
         """Return the Imu message of sim time ``t`` (s) (module docstring)."""
         model, data = world.model, world.data
         if self._model is not model:
-            self._addresses = [int(model.sensor(n).adr[0]) for n in self._names]
+            accel, gyro, quat = (int(model.sensor(n).adr[0]) for n in self._names)
+            self._axes = np.r_[accel:accel + 3, gyro:gyro + 3]
+            self._quat = quat
             self._model = model
-        accel, gyro, quat = self._addresses
         values = data.sensordata
+        ax, ay, az, wx, wy, wz = self._noise.apply(values[self._axes]).tolist()
         msg = self._msg
         set_stamp(msg.header.stamp, t)
         a, w = msg.linear_acceleration, msg.angular_velocity
-        a.x, a.y, a.z = (float(n.apply(values[accel + i]))
-                         for i, n in enumerate(self._accel_noise))
-        w.x, w.y, w.z = (float(n.apply(values[gyro + i]))
-                         for i, n in enumerate(self._gyro_noise))
+        a.x, a.y, a.z = ax, ay, az
+        w.x, w.y, w.z = wx, wy, wz
         if self._orientation:
             q = msg.orientation
-            q.w, q.x, q.y, q.z = (float(v) for v in values[quat:quat + 4])
+            q.w, q.x, q.y, q.z = values[self._quat:self._quat + 4].tolist()
         return msg
 
 

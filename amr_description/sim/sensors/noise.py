@@ -60,3 +60,41 @@ class NoiseModel:
         if noise.type == 'gaussian_quantized' and noise.precision > 0:
             noisy = np.round(noisy / noise.precision) * noise.precision
         return np.where(np.isfinite(values), noisy, values)
+
+
+class AxesNoise:
+    """
+    Several SDF ``<noise>`` elements, one per axis, applied to a vector in one draw.
+
+    Each axis behaves as a :class:`NoiseModel` of its ``<noise>`` (its own bias drawn once);
+    the gaussian draws of all axes come from one call of the generator, so that an IMU's six
+    axes cost one draw per measurement.
+
+    :param noises: list of :class:`~amr_description.core.gazebo_sensors.Noise`, one per axis.
+    :param rng: numpy ``Generator``.
+    """
+
+    def __init__(self, noises, rng):
+        """Draw each axis's bias once and stack the parameters."""
+        models = [NoiseModel(noise, rng) for noise in noises]
+        self.rng = rng
+        self.active = any(m.active for m in models)
+        self.offset = np.array([m.bias + (m.noise.mean if m.active else 0.0) for m in models])
+        self.stddev = np.array([m.noise.stddev if m.active else 0.0 for m in models])
+        self.precision = np.array([m.noise.precision if m.active and
+                                   m.noise.type == 'gaussian_quantized' else 0.0
+                                   for m in models])
+        self._quantized = bool(np.any(self.precision > 0))
+        self._draw = bool(np.any(self.stddev > 0))
+
+    def apply(self, values):
+        """Return ``values`` ((n,) array, one per axis) with each axis's noise."""
+        if not self.active:
+            return values
+        noisy = values + self.offset
+        if self._draw:
+            noisy = noisy + self.stddev * self.rng.standard_normal(len(self.stddev))
+        if self._quantized:
+            step = np.where(self.precision > 0, self.precision, 1.0)
+            noisy = np.where(self.precision > 0, np.round(noisy / step) * step, noisy)
+        return noisy
