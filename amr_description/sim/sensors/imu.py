@@ -19,8 +19,8 @@ from amr_description.sim.sensors.base import sensor_frame
 from amr_description.sim.sensors.base import sensor_rate
 from amr_description.sim.sensors.base import sensor_topic
 from amr_description.sim.sensors.mount import imu_sensor_names
-from amr_description.sim.sensors.noise import generator
 from amr_description.sim.sensors.noise import AxesNoise
+from amr_description.sim.sensors.noise import generator
 import numpy as np
 from sensor_msgs.msg import Imu as ImuMessage
 
