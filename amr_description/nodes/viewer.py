@@ -21,6 +21,8 @@ What RViz's displays of the tutorial show, on a web page served by this node:
 - **TF** axes of every frame (checkbox);
 - **LaserScan**: the newest scan of every ``scan_topics`` entry (``['/scan']``) as points in
   the fixed frame, coloured by range (:mod:`amr_description.web.displays.laser_scan`);
+  **PointCloud2** of ``point_cloud_topics`` (``['/scan/points']``), coloured by height;
+  **Imu** arrows (acceleration, angular velocity) of ``imu_topics`` (``['/imu']``);
 - **Odometry** trails of ``odometry_topics`` (``/odom``, ``/ground_truth/odom``), one colour
   each with a legend and a Clear button. A trail whose ``header.frame_id`` is not in TF (the
   simulator's ``world``) is drawn as if that frame were the fixed frame, and the legend says
@@ -54,7 +56,9 @@ import sys
 from amr_description.ros.node import Node
 from amr_description.web.displays.base import DrawContext
 from amr_description.web.displays.base import FrameManager
+from amr_description.web.displays.imu import ImuDisplay
 from amr_description.web.displays.laser_scan import LaserScanDisplay
+from amr_description.web.displays.point_cloud import PointCloudDisplay
 from amr_description.web.displays.robot_model import RobotModelDisplay
 from amr_description.web.displays.status import StatusDisplay
 from amr_description.web.displays.teleop_pad import TeleopPadDisplay
@@ -99,6 +103,8 @@ class Viewer(Node):
         self.declare_parameter('update_rate', 30.0)
         self.declare_parameter('world', '')
         self.declare_parameter('scan_topics', ['/scan'], string_array)
+        self.declare_parameter('point_cloud_topics', ['/scan/points'], string_array)
+        self.declare_parameter('imu_topics', ['/imu'], string_array)
         update_rate = float(self.get_parameter('update_rate').value)
         if not update_rate > 0.0:
             raise ValueError(f'update_rate must be > 0 Hz, found {update_rate}')
@@ -117,15 +123,19 @@ class Viewer(Node):
         self.trails = TrailsDisplay(self, server, self.frames, value('odometry_topics').value)
         self.laser_scan = LaserScanDisplay(self, server, self.frames,
                                            value('scan_topics').value)
+        self.point_cloud = PointCloudDisplay(self, server, self.frames,
+                                             value('point_cloud_topics').value)
+        self.imu = ImuDisplay(self, server, self.frames, value('imu_topics').value)
+        sensors = (self.laser_scan, self.point_cloud, self.imu)
         self.status = StatusDisplay(self, server, self.frames, self.robot_model, self.trails,
-                                    self.laser_scan)
+                                    *sensors)
         self.teleop_pad = TeleopPadDisplay(
             self, server, self.frames, str(value('cmd_vel_topic').value),
             str(value('frame_id').value), float(value('speed').value),
             float(value('turn').value))
         # drawn in this order in every update (the status last: it reports what others saw)
-        self.displays = [self.world, self.robot_model, self.tf_axes, self.trails,
-                         self.laser_scan, self.status]
+        self.displays = [self.world, self.robot_model, self.tf_axes, self.trails, *sensors,
+                         self.status]
         self._build_page()
         self.create_timer(1.0 / update_rate, self._update_scene,
                           clock=Clock(clock_type=ClockType.STEADY_TIME))
@@ -147,6 +157,8 @@ class Viewer(Node):
             self.tf_axes.build(gui)
             self.trails.build(gui)
             self.laser_scan.build(gui)
+            self.point_cloud.build(gui)
+            self.imu.build(gui)
         self.teleop_pad.build(gui)
 
     def _choose_fixed_frame(self):

@@ -19,15 +19,17 @@ from amr_description.tools.benchmark.observer import Observer
 from amr_description.tools.benchmark.stack import Stack
 
 
-def measure(count, rtf, duration, domain_id, log, startup_timeout=120.0):
+def measure(count, rtf, duration, domain_id, log, startup_timeout=120.0, extra=()):
     """
     Bring a stack up, drive every robot, measure, stop it.
+
+    ``extra``: more launch arguments of the stack (``name:=value``).
 
     :returns: dict ``startup`` (s), ``speed`` (sim s per wall s), ``cpu_sim`` and
         ``cpu_stack`` (cores, over the window).
     :raises BenchmarkError: on a failed stage (see the module docstring).
     """
-    stack = Stack(count, rtf, domain_id)
+    stack = Stack(count, rtf, domain_id, extra)
     observer = None
     try:
         startup = stack.wait_active(timeout=startup_timeout + 3.0 * count)

@@ -23,8 +23,16 @@ fast mode
 fleet
     16 such robots (2-D lidar, IMU) in ``warehouse.sdf``: sim seconds per wall second
     (>= 1 keeps real time).
+sim stack (``--stack``)
+    the ``sim`` stack in fast mode (``rtf:=0``: mujoco_sim with its controller manager,
+    robot_state_publisher, the robot driven in a circle, every topic on DDS; the main
+    benchmark's measurement, :func:`~amr_description.tools.benchmark.measure.measure`) with
+    the default robot against ``xacro_args:="lidar:=false imu:=false"``: x real time and their
+    ratio (target >= 0.9). A scan, its points and the IMU are measured only when due and
+    published only when heard, as in any user's run.
 
-Usage: ``python -m amr_description.tools.benchmark.sensor_cost [--seconds 3] [--repeats 3]``.
+Usage: ``python -m amr_description.tools.benchmark.sensor_cost [--seconds 3] [--repeats 3]
+[--stack] [--duration 10]``.
 """
 
 import argparse
@@ -117,12 +125,25 @@ def sim_rate(urdfs, world_name, seconds):
     return rate
 
 
+def stack_rate(extra, opts):
+    """Return the sim stack's x real time in fast mode with launch arguments ``extra``."""
+    from amr_description.tools.benchmark.measure import measure
+    os.environ['ROS_DOMAIN_ID'] = str(opts.domain_id)
+    result = measure(1, 0.0, opts.duration, opts.domain_id, lambda line: None, extra=extra)
+    return result['speed']
+
+
 def main(argv=None):
     """Print the figures and their ratios; return 0 (the targets are reported, not fatal)."""
     parser = argparse.ArgumentParser(prog='sensor_cost', description=__doc__.splitlines()[1])
     parser.add_argument('--seconds', type=float, default=3.0, help='sim s per case (3)')
     parser.add_argument('--repeats', type=int, default=3, help='interleaved repeats (3)')
     parser.add_argument('--fleet', type=int, default=16, help='robots of the fleet case (16)')
+    parser.add_argument('--stack', action='store_true',
+                        help='also measure the sim stack in fast mode with and without sensors')
+    parser.add_argument('--duration', type=float, default=10.0,
+                        help='wall s of each sim stack measurement (10)')
+    parser.add_argument('--domain-id', type=int, default=97, help='ROS domain of --stack (97)')
     opts = parser.parse_args(argv)
     os.environ.setdefault('MUJOCO_GL', 'egl')
     with_sensors = _xacro()
@@ -137,6 +158,10 @@ def main(argv=None):
             'fleet': lambda: sim_rate([with_sensors] * opts.fleet, 'warehouse',
                                       opts.seconds / 3),
         }
+        if opts.stack:
+            cases['stack with'] = lambda: stack_rate((), opts)
+            cases['stack without'] = lambda: stack_rate(
+                ('xacro_args:=lidar:=false imu:=false',), opts)
         for name, case in cases.items():
             value = case()
             if name == 'rays':
@@ -155,6 +180,10 @@ def main(argv=None):
           '(target >= 1)')
     print(f'{opts.fleet} robots with 2-D lidar and IMU in warehouse.sdf: {best["fleet"]:.2f} x '
           'real time (target >= 1)')
+    if opts.stack:
+        print(f'sim stack, fast mode: with lidar + IMU {best["stack with"]:.2f} x real time, '
+              f'without {best["stack without"]:.2f} x, ratio '
+              f'{best["stack with"] / best["stack without"]:.2f} (target >= {FAST_TARGET})')
     print(f'load: {os.getloadavg()[0]:.2f} (1-minute average), {os.cpu_count()} CPUs')
     return 0
 

@@ -14,13 +14,14 @@ from amr_description.tools.benchmark.common import SPACING
 class Stack:
     """The ``sim`` (one robot) or ``fleet`` stack under the orchestrator, output captured."""
 
-    def __init__(self, count, rtf, domain_id):
+    def __init__(self, count, rtf, domain_id, extra=()):
         """
         Start the stack.
 
         :param count: number of robots.
         :param rtf: real-time factor (0 = as fast as possible).
         :param domain_id: ROS domain.
+        :param extra: more launch arguments (``name:=value``).
         """
         from amr_description.launch import stacks
         from amr_description.launch.orchestrator import Orchestrator
@@ -33,6 +34,7 @@ class Stack:
             argv += [f'robots:={count}', f'spacing:={SPACING:g}']
         if 'viewer' in {d.name for d in stacks.STACKS[name][1]}:
             argv.append('viewer:=false')
+        argv += list(extra)
         self.lines = {}
         env = dict(os.environ, ROS_DOMAIN_ID=str(domain_id),
                    ROS_AUTOMATIC_DISCOVERY_RANGE='LOCALHOST')

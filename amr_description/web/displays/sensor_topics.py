@@ -1,0 +1,133 @@
+# Copyright 2026 The amr_description Authors
+# Licensed under the Apache License, Version 2.0
+"""
+What the sensor displays share: the newest message of each topic, drawn in the fixed frame.
+
+A :class:`SensorTopicsDisplay` subscribes its topics with the sensor-data QoS (best effort,
+which also hears reliable publishers), counts each topic's rate for the status, and at most
+:data:`RATE` times a second draws the newest message of each topic placed with the newest
+transform of its ``header.frame_id`` into the fixed frame. A message whose frame is not in TF
+is left out and named in the status (``missing``). A subclass sets ``message_type`` and
+``label`` and implements :meth:`~SensorTopicsDisplay.render`.
+"""
+
+import threading
+import time
+
+from amr_description.web.displays.base import Display
+from amr_description.web.displays.base import Rate
+import numpy as np
+from rclpy.qos import qos_profile_sensor_data
+
+RATE = 10.0
+"""Redraws per second at most."""
+
+
+class _Topic:
+
+    def __init__(self):
+        self.msg = None
+        self.drawn = None
+        self.node = None
+        self.rate = Rate()
+
+
+class SensorTopicsDisplay(Display):
+    """
+    The newest message of each of ``topics`` ('' entries are ignored), drawn in the fixed frame.
+
+    :cvar message_type: the ROS message class.
+    :cvar label: the checkbox label (RViz's display name).
+    """
+
+    message_type = None
+    label = ''
+
+    def __init__(self, node, server, frames, topics):
+        """Subscribe every topic."""
+        super().__init__(node, server, frames)
+        self._lock = threading.Lock()
+        self._topics = {}
+        self._next = 0.0
+        for topic in (t for t in topics if t):
+            self._topics[topic] = _Topic()
+            node.create_subscription(self.message_type, topic,
+                                     lambda msg, topic=topic: self._on_message(topic, msg),
+                                     qos_profile_sensor_data)
+
+    def build(self, gui):
+        """Add the display's checkbox."""
+        self._show = gui.add_checkbox(self.label, True)
+
+    def rates(self):
+        """Return ``[(topic, Rate)]`` of the topics (for the status)."""
+        return [(topic, item.rate) for topic, item in self._topics.items()]
+
+    def _on_message(self, topic, msg):
+        item = self._topics[topic]
+        item.rate.tick(time.monotonic())
+        with self._lock:
+            item.msg = msg
+
+    def draw(self, context):
+        """Draw the newest message of each topic, at most :data:`RATE` times a second."""
+        now = time.monotonic()
+        if now < self._next:
+            return
+        self._next = now + 1.0 / RATE
+        show = self._show.value
+        for topic, item in self._topics.items():
+            with self._lock:
+                msg = item.msg
+            if item.node is not None and item.node.visible != show:
+                item.node.visible = show
+            if msg is None or not show or item.drawn is msg:
+                continue
+            frame = msg.header.frame_id.lstrip('/')
+            T = context.pose(frame) if frame != context.fixed else np.eye(4)
+            if T is None:
+                context.missing.append(frame)
+                continue
+            name = f'/{self.label.lower()}/' + topic.strip('/').replace('/', '_')
+            item.node = self.render(name, msg, T, item.node)
+            item.drawn = msg
+
+    def render(self, name, msg, T, node):
+        """
+        Draw ``msg`` placed with ``T`` (4x4, its frame in the fixed frame); return the node.
+
+        :param name: scene node name of this topic.
+        :param node: the node drawn last time for this topic, or None.
+        """
+        raise NotImplementedError
+
+
+def rainbow(values, low, high):
+    """
+    Return (N, 3) uint8 colours of ``values`` from red at ``low`` to blue at ``high``.
+
+    The hue runs over 240 degrees (red, yellow, green, cyan, blue), as RViz's Rainbow.
+    """
+    span = high - low if high > low else 1.0
+    x = np.clip((np.asarray(values, dtype=float) - low) / span, 0.0, 1.0) * 4.0
+    r = np.clip(2.0 - x, 0.0, 1.0)
+    g = np.clip(np.minimum(x, 4.0 - x), 0.0, 1.0)
+    b = np.clip(x - 2.0, 0.0, 1.0)
+    return (np.stack([r, g, b], axis=1) * 255).astype(np.uint8)
+
+
+def draw_points(server, name, points, colours, node, size):
+    """
+    Create or update a point cloud node of (N, 3) float32 points and (N, 3) uint8 colours.
+
+    Viser needs at least one point: an empty cloud is one black point at the origin.
+    """
+    if len(points) == 0:
+        points = np.zeros((1, 3), np.float32)
+        colours = np.zeros((1, 3), np.uint8)
+    if node is None:
+        return server.scene.add_point_cloud(name, points, colours, point_size=size,
+                                            point_shape='square', precision='float32')
+    node.points = points
+    node.colors = colours
+    return node
