@@ -105,3 +105,43 @@ def test_our_robot_in_a_room_publishes_scan_points_and_imu_at_their_rates(
     assert (cloud.width, cloud.height, cloud.point_step) == (360, 1, 32)
     assert [f.name for f in cloud.fields] == ['x', 'y', 'z', 'intensity', 'ring']
     assert sim.popen.poll() is None
+
+
+SCAN_RGB = (255, 190, 0)  # the Rainbow colours of ranges 1.5 - 3 m of a 12 m lidar
+
+
+def test_the_sim_stack_viewer_draws_the_scan_and_its_rate(procs, exe, ros_env, tmp_path):
+    import re
+    import shutil
+    import time
+    from browser import colour_mask
+    from browser import ensure_chromium
+    from browser import free_port
+    from browser import open_page
+    assert ensure_chromium(), 'Debian chromium is missing: run scripts/setup'
+    port = free_port()
+    stack = procs.start([exe('bringup'), 'sim', f'world:={ROOM}', f'viewer_port:={port}'],
+                        ros_env)
+    assert stack.wait_for_output(f'viewer: open http://127.0.0.1:{port}/ in a browser', 90.0), \
+        stack.output[-3000:]
+    with open_page(f'http://127.0.0.1:{port}/') as page:
+        assert page.wait_for_text('Fixed Frame', 120.0), page.page.inner_text('body')
+        page.close_notifications()
+        scan = 0
+        rate = 0.0
+        deadline = time.monotonic() + 120.0
+        while time.monotonic() < deadline and (scan < 300 or rate < 5.0):
+            image = page.pixels(str(tmp_path / 'scan.png'))
+            mask = colour_mask(image, SCAN_RGB, 70)
+            mask[:, int(mask.shape[1] * 0.6):] = False  # the panel
+            scan = int(mask.sum())
+            found = re.search(r'/scan\s+([0-9.]+) Hz', page.page.inner_text('body'))
+            rate = float(found.group(1)) if found else 0.0
+            if scan < 300 or rate < 5.0:
+                page.page.wait_for_timeout(500)
+        assert scan >= 300, f'{scan} scan-coloured pixels' + stack.output[-3000:]
+        assert rate >= 5.0, page.page.inner_text('body')  # 10 Hz of sim time, rtf 1
+        if os.environ.get('AMR_UPDATE_SCREENSHOTS'):
+            shutil.copy(tmp_path / 'scan.png', os.path.join(ROOT, 'docs', 'img', 'scan.png'))
+    assert stack.interrupt(timeout=30.0) == 0, stack.output[-3000:]
+    assert 'Traceback' not in stack.output, stack.output[-3000:]

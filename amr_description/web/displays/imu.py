@@ -19,7 +19,8 @@ ACCEL_SCALE = 0.05
 """m of arrow per m/s^2."""
 GYRO_SCALE = 0.5
 """m of arrow per rad/s."""
-COLOURS = np.array([[220, 30, 30], [30, 180, 30]], dtype=np.uint8)
+COLOURS = np.array([[[220, 30, 30]] * 2, [[30, 180, 30]] * 2], dtype=np.uint8)
+"""(2, 2, 3): the acceleration red, the angular velocity green (both ends)."""
 
 
 def imu_segments(msg, T):

@@ -7,7 +7,8 @@ A :class:`SensorTopicsDisplay` subscribes its topics with the sensor-data QoS (b
 which also hears reliable publishers), counts each topic's rate for the status, and at most
 :data:`RATE` times a second draws the newest message of each topic placed with the newest
 transform of its ``header.frame_id`` into the fixed frame. A message whose frame is not in TF
-is left out and named in the status (``missing``). A subclass sets ``message_type`` and
+is left out and named in the status (``missing``); one that cannot be drawn is one throttled
+warning, and the viewer keeps running. A subclass sets ``message_type`` and
 ``label`` and implements :meth:`~SensorTopicsDisplay.render`.
 """
 
@@ -89,8 +90,12 @@ class SensorTopicsDisplay(Display):
                 context.missing.append(frame)
                 continue
             name = f'/{self.label.lower()}/' + topic.strip('/').replace('/', '_')
-            item.node = self.render(name, msg, T, item.node)
             item.drawn = msg
+            try:
+                item.node = self.render(name, msg, T, item.node)
+            except (ValueError, TypeError, AssertionError) as exc:  # a message we cannot draw
+                self.node.get_logger().warning(f'{self.label} {topic}: cannot draw: {exc}',
+                                               throttle_duration_sec=5.0)
 
     def render(self, name, msg, T, node):
         """
