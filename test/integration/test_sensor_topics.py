@@ -145,3 +145,45 @@ def test_the_sim_stack_viewer_draws_the_scan_and_its_rate(procs, exe, ros_env, t
             shutil.copy(tmp_path / 'scan.png', os.path.join(ROOT, 'docs', 'img', 'scan.png'))
     assert stack.interrupt(timeout=30.0) == 0, stack.output[-3000:]
     assert 'Traceback' not in stack.output, stack.output[-3000:]
+
+
+SENSOR_TOPICS = ['/scan', '/scan/points', '/imu']
+
+
+def test_a_bag_of_the_sensors_round_trips_byte_identical(procs, exe, ros_env, tmp_path):
+    import subprocess
+    from conftest import next_domain_id
+    from conftest import release_domain_id
+    from test_cli_bag import _by_topic
+    from test_cli_bag import _mcap_messages
+    from test_cli_bag import _rosbags_messages
+    sim = procs.start([exe('mujoco_sim'), '--ros-args', '-p', f'world:={ROOM}'], ros_env)
+    create = procs.start([exe('create'), '-file', XACRO, '-z', '0.01'], ros_env)
+    assert create.wait(120) == 0, create.output + sim.output
+    first = tmp_path / 'first'
+    rec = procs.start([exe('ros2'), 'bag', 'record', '-o', str(first), '--use-sim-time',
+                       '--max-duration', '3', *SENSOR_TOPICS], ros_env)
+    assert rec.wait(240.0) == 0, rec.output + sim.output
+    recorded = _rosbags_messages(first)
+    counts = {topic: len(items) for topic, items in _by_topic(recorded).items()}
+    assert counts.get('/scan', 0) >= 15 and counts.get('/scan/points', 0) >= 15 and \
+        counts.get('/imu', 0) >= 150, counts
+    scan = next(d for t, _, _, name, d in _mcap_messages(first) if t == '/scan')
+    assert len(scan.ranges) == 360 and scan.header.frame_id == 'lidar_link'
+    sim.interrupt(timeout=30.0)
+
+    other = dict(ros_env, ROS_DOMAIN_ID=str(next_domain_id()))
+    try:
+        second = tmp_path / 'second'
+        rec2 = procs.start([exe('ros2'), 'bag', 'record', '-o', str(second), *SENSOR_TOPICS],
+                           other)
+        assert rec2.wait_for_output('Listening for topics', timeout=30.0), rec2.output
+        play = subprocess.run([exe('ros2'), 'bag', 'play', str(first), '-d', '5'], env=other,
+                              capture_output=True, text=True, timeout=120)
+        assert play.returncode == 0, play.stderr
+        assert rec2.interrupt(timeout=30.0) == 0, rec2.output
+    finally:
+        release_domain_id(int(other['ROS_DOMAIN_ID']))
+    replayed = _by_topic(_rosbags_messages(second))
+    for topic, items in _by_topic(recorded).items():
+        assert replayed.get(topic) == items, (topic, len(items), len(replayed.get(topic, [])))
