@@ -124,7 +124,27 @@ class LidarCast:
         return ranges
 
 
-class LidarScan(Sensor):
+class _LidarOutput(Sensor):
+    """
+    One message of a lidar, made from its shared :class:`LidarCast`.
+
+    :param cast: the :class:`LidarCast`.
+    :param name: sensor name (unique within the entity).
+    :param topics: ``(ROS topic, gz topic)``.
+    :param frame_id: ``header.frame_id``.
+    :param rate: Hz of sim time.
+    """
+
+    def __init__(self, cast, name, topics, frame_id, rate):
+        """Keep the fields (see the class docstring)."""
+        self.cast = cast
+        self.name = name
+        self.topic, self.gz_name = topics
+        self.frame_id = frame_id
+        self.rate = float(rate)
+
+
+class LidarScan(_LidarOutput):
     """
     The LaserScan of one lidar (module docstring); measured at every due instant.
 
@@ -135,11 +155,7 @@ class LidarScan(Sensor):
 
     def __init__(self, cast, name, topics, frame_id, rate):
         """Prepare the reused message (see the module docstring)."""
-        self.cast = cast
-        self.name = name
-        self.topic, self.gz_name = topics
-        self.frame_id = frame_id
-        self.rate = float(rate)
+        super().__init__(cast, name, topics, frame_id, rate)
         lidar = cast.spec
         msg = LaserScan()
         msg.header.frame_id = frame_id
@@ -164,7 +180,7 @@ class LidarScan(Sensor):
         return self._msg
 
 
-class LidarPoints(Sensor):
+class LidarPoints(_LidarOutput):
     """The PointCloud2 of one lidar (module docstring); skipped while nobody listens."""
 
     message_type = PointCloud2
@@ -172,11 +188,7 @@ class LidarPoints(Sensor):
 
     def __init__(self, cast, name, topics, frame_id, rate):
         """Prepare the reused message (see the module docstring)."""
-        self.cast = cast
-        self.name = name
-        self.topic, self.gz_name = topics
-        self.frame_id = frame_id
-        self.rate = float(rate)
+        super().__init__(cast, name, topics, frame_id, rate)
         msg = PointCloud2()
         msg.header.frame_id = frame_id
         msg.height = len(cast.vertical)
