@@ -373,3 +373,21 @@ def test_noise_model_mean_and_stddev_over_10000_samples():
                            generator(1))
     values = quantized.apply(np.zeros(100))
     assert np.allclose(values / 0.25, np.round(values / 0.25))
+
+
+def test_check_model_says_what_becomes_of_each_sensor_block():
+    from amr_description.core.model_check.gazebo import check_gazebo
+    from amr_description.core.urdf_model import parse_xml
+    extra = ('<gazebo reference="base_link"><sensor name="cam" type="camera"/></gazebo>'
+             '<gazebo reference="ghost"><sensor name="g" type="imu"/></gazebo>')
+    xml = _robot(_lidar(rmin=5.0, rmax=1.0).replace('name="lidar"', 'name="bad"')
+                 + _lidar(), _imu(), extra)
+    found = {f.element: (f.severity, f.message) for f in check_gazebo(parse_xml(xml, 'x'))}
+    ok = found['<gazebo reference="lidar_link"><sensor lidar>']
+    assert ok[1] == 'simulated as a ray-cast lidar of 360 rays at 10 Hz (docs/sensors.md)'
+    assert found['<gazebo reference="imu_link"><sensor imu>'][1].startswith('simulated as an IMU')
+    bad = found['<gazebo reference="lidar_link"><sensor bad>']
+    assert bad[0] != ok[0] and '<range><max>' in bad[1] and bad[1].endswith('skipped')
+    assert found['<gazebo reference="base_link"><sensor cam>'][1] == \
+        "sensor 'cam' of type 'camera' is not simulated"
+    assert 'skipped' in found['<gazebo reference="ghost"><sensor g>'][1]

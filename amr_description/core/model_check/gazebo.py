@@ -5,11 +5,14 @@ The Gazebo dialect of a description: what the simulator does with each ``<gazebo
 
 Every ``<gazebo>`` child gets one finding (docs/gazebo.md has the table): gz_ros2_control's
 plugin and the gz-sim systems the simulator runs (DiffDrive, JointStatePublisher,
-OdometryPublisher) are used; ``mu1``/``mu2`` are mapped to contact friction; the tags
+OdometryPublisher) are used; lidar and IMU ``<sensor>`` blocks are simulated
+(docs/sensors.md), other sensor types and bad fields are warnings; ``mu1``/``mu2`` are mapped to contact friction; the tags
 Harmonic's default engine ignores are ignored here too; everything else is reported as not
 read by the simulator (yet).
 """
 
+from amr_description.core.gazebo_sensors import read_sensor
+from amr_description.core.gazebo_sensors import SensorError
 from amr_description.core.gazebo_systems import parse_gazebo_systems
 from amr_description.core.gazebo_systems import system_class
 from amr_description.core.gazebo_tags import FRICTION_TAGS
@@ -56,6 +59,8 @@ def check_gazebo(root):
                 findings += _control_plugin(root, f"{where}<plugin {child.get('name', '')}>")
             elif child.tag == 'plugin':
                 findings.append(_system(child, where, reference, systems))
+            elif child.tag == 'sensor':
+                findings.append(_sensor(child, where, reference, links))
             elif reference in links and child.tag in FRICTION_TAGS:
                 findings.append(_friction(child, where))
             elif child.tag in KEPT_JOINT_TAGS:
@@ -80,6 +85,25 @@ def _system(plugin, where, reference, systems):
     if reference or name in systems.unknown:
         return Finding(WARNING, element, f'system plugin not simulated: {NOT_YET}')
     return Finding(INFO, element, f'simulated as gz-sim\'s {name.rsplit("::", 1)[-1]}')
+
+
+def _sensor(sensor, where, reference, links):
+    element = f"{where}<sensor {sensor.get('name', '')}>"
+    if reference not in links:
+        return Finding(WARNING, element, 'not on a link of the description: skipped')
+    try:
+        block = read_sensor(sensor, reference)
+    except SensorError as exc:
+        text = str(exc).split(': ', 1)[-1] if ': ' in str(exc) else str(exc)
+        return Finding(WARNING, element, text + ('' if 'not simulated' in text
+                                                 else '; the sensor is skipped'))
+    rate = f'{block.update_rate:g} Hz' if block.update_rate > 0 else 'every physics step'
+    if block.kind == 'lidar':
+        rays = block.lidar.horizontal.count * block.lidar.vertical.count
+        what = f'a ray-cast lidar of {rays} rays'
+    else:
+        what = 'an IMU'
+    return Finding(INFO, element, f'simulated as {what} at {rate} (docs/sensors.md)')
 
 
 def _friction(tag, where):
