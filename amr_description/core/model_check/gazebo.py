@@ -6,9 +6,9 @@ The Gazebo dialect of a description: what the simulator does with each ``<gazebo
 Every ``<gazebo>`` child gets one finding (docs/gazebo.md has the table): gz_ros2_control's
 plugin and the gz-sim systems the simulator runs (DiffDrive, JointStatePublisher,
 OdometryPublisher) are used; lidar and IMU ``<sensor>`` blocks are simulated
-(docs/sensors.md), other sensor types and bad fields are warnings; ``mu1``/``mu2`` are mapped to contact friction; the tags
-Harmonic's default engine ignores are ignored here too; everything else is reported as not
-read by the simulator (yet).
+(docs/sensors.md), other sensor types and bad fields are warnings; ``mu1``/``mu2`` are
+mapped to contact friction; the tags Harmonic's default engine ignores are ignored here too;
+everything else is reported as not read by the simulator (yet).
 """
 
 from amr_description.core.gazebo_sensors import read_sensor
