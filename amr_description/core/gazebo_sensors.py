@@ -7,9 +7,10 @@ Elements and defaults are SDF 1.11's (``sensor.sdf``, ``lidar.sdf``, ``imu.sdf``
 ``noise.sdf`` of sdformat 14): ``<update_rate>`` 0 (every physics step), ``<always_on>``
 false, ``<topic>`` unset (gz's default name, :func:`default_topic`), ``<pose>`` ``x y z roll
 pitch yaw`` in the link frame (m, rad; ``degrees="true"``), ``<gz_frame_id>`` (gz-sensors 8
-``Sensor::PopulateFromSDF``). A lidar is ``<lidar>`` or its older name ``<ray>``:
-``<scan><horizontal>`` and optional ``<vertical>`` (``samples`` 640 / 1, ``resolution`` 1,
-``min_angle``/``max_angle`` 0), ``<range>`` (``min``, ``max``, ``resolution``) and a
+``Sensor::PopulateFromSDF``; :data:`FRAME_TAGS`). A lidar is ``<lidar>`` or its older name
+``<ray>``: ``<scan><horizontal>`` and optional ``<vertical>`` (``samples`` 640 / 1,
+``resolution`` 1, ``min_angle``/``max_angle`` 0), ``<range>`` (``min``, ``max``,
+``resolution``) and a
 ``<noise>`` whose type is a child element; an IMU has ``<angular_velocity>`` and
 ``<linear_acceleration>``, each ``<x>/<y>/<z>`` holding a ``<noise type="...">`` (the type
 is an attribute there) with ``mean``, ``stddev``, ``bias_mean``, ``bias_stddev`` and
@@ -39,6 +40,11 @@ KINDS = {'gpu_lidar': 'lidar', 'lidar': 'lidar', 'ray': 'lidar', 'gpu_ray': 'lid
 
 DEFAULT_TOPIC_SUFFIX = {'lidar': 'scan', 'imu': 'imu'}
 """Last part of gz-sim's default topic per kind (gz-sim 8 ``RenderUtil.cc``, ``Imu.cc``)."""
+
+FRAME_TAGS = ('gz_frame_id', 'ignition_frame_id', 'frame_id')
+"""``<sensor>`` children naming the frame id, first found wins: gz-sensors 8 reads only
+``gz_frame_id``; ``ignition_frame_id`` is Fortress's and ``frame_id`` the one TurtleBot
+descriptions write (both ignored by Harmonic, which then says ``model/link/sensor``)."""
 
 MAX_RAYS = 10 ** 6
 """Most rays of one lidar scan."""
@@ -156,7 +162,8 @@ class SensorBlock:
     :param update_rate: Hz of sim time; 0 means every physics step.
     :param always_on: ``<always_on>``.
     :param topic: ``<topic>``, '' when unset.
-    :param frame_id: ``<gz_frame_id>``, '' when unset.
+    :param frame_id: ``<gz_frame_id>`` (else ``<ignition_frame_id>``, else ``<frame_id>``),
+        '' when unset.
     :param xyz: (3,) m, ``<pose>`` in the link frame.
     :param rpy: (3,) rad, ``<pose>`` fixed-axis roll pitch yaw.
     :param lidar: :class:`LidarSpec` of a lidar, else None.
@@ -349,7 +356,8 @@ def read_sensor(sensor, link):
         update_rate=_number(sensor, 'update_rate', 0.0, where, low=0.0),
         always_on=_bool(sensor, 'always_on', False, where),
         topic=(_text(sensor, 'topic', '') or '').strip(),
-        frame_id=(_text(sensor, 'gz_frame_id', '') or '').strip(),
+        frame_id=next((text.strip() for text in (_text(sensor, tag, '') for tag in FRAME_TAGS)
+                       if text and text.strip()), ''),
         xyz=xyz, rpy=rpy)
     if block.topic == '__default__':
         block.topic = ''

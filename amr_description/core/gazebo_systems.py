@@ -38,6 +38,19 @@ FILENAMES = {'gz-sim-diff-drive-system': DIFF_DRIVE,
              'gz-sim-odometry-publisher-system': ODOMETRY_PUBLISHER}
 """Normalised ``filename`` -> class name of the systems the simulator runs."""
 
+SENSOR_SYSTEMS = {'gz-sim-sensors-system': 'gz::sim::systems::Sensors',
+                  'gz-sim-imu-system': 'gz::sim::systems::Imu'}
+"""gz-sim systems that make sensors run (rendering sensors, IMUs): not needed here, where
+every simulated ``<sensor>`` block runs (docs/sensors.md); neither system nor warning."""
+
+
+def is_sensor_system(plugin):
+    """Return True for a ``<plugin>`` of one of :data:`SENSOR_SYSTEMS`."""
+    name = normalize_class(plugin.get('name'))
+    return name in SENSOR_SYSTEMS.values() or \
+        normalize_filename(plugin.get('filename')) in SENSOR_SYSTEMS
+
+
 LIMIT_KINDS = ('velocity', 'acceleration', 'jerk')
 
 
@@ -338,7 +351,7 @@ def parse_gazebo_systems(root, moving_joints):
     systems = GazeboSystems()
     for gazebo in root.findall('gazebo'):
         for plugin in gazebo.findall('plugin'):
-            if is_control_plugin(plugin):
+            if is_control_plugin(plugin) or is_sensor_system(plugin):
                 continue
             name = system_class(plugin)
             if gazebo.get('reference') or name not in _READERS:

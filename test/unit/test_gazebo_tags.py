@@ -148,7 +148,9 @@ def test_check_model_reads_the_dialect(tmp_path, capsys):
     text = text.replace('</robot>', '<gazebo reference="front_left_wheel"><mu1>0.8</mu1>'
                         '<kp>1e6</kp><selfCollide>true</selfCollide></gazebo><gazebo>'
                         '<plugin filename="gz-sim-sensors-system" '
-                        'name="gz::sim::systems::Sensors"/></gazebo></robot>')
+                        'name="gz::sim::systems::Sensors"/><plugin '
+                        'filename="gz-sim-pose-publisher-system" '
+                        'name="gz::sim::systems::PosePublisher"/></gazebo></robot>')
     urdf.write_text(text)
     assert check_model.main([str(urdf)]) == 0
     out = capsys.readouterr().out
@@ -157,8 +159,9 @@ def test_check_model_reads_the_dialect(tmp_path, capsys):
     assert 'OK      <gazebo reference="front_left_wheel"><mu1>: contact friction 0.8' in out
     assert 'OK      <gazebo reference="front_left_wheel"><kp>: ignored' in out
     assert 'WARNING <gazebo reference="front_left_wheel"><selfCollide>: not read' in out
-    assert 'WARNING <gazebo><plugin gz::sim::systems::Sensors>: system plugin not ' \
+    assert 'WARNING <gazebo><plugin gz::sim::systems::PosePublisher>: system plugin not ' \
         'simulated' in out
+    assert 'OK      <gazebo><plugin gz::sim::systems::Sensors>: not needed' in out
     # the controllers YAML came from <parameters>: the wheels of diff_drive_controller
     assert 'unknown hardware plugin' not in out
     assert 'diff_drive_controller: wheel_radius 0.1 m matches' in out

@@ -90,6 +90,8 @@ def test_other_systems_defaults_and_unknown_ones():
                'name="ignition::gazebo::systems::OdometryPublisher"><dimensions>3</dimensions>'
                '</plugin><plugin filename="gz-sim-sensors-system" '
                'name="gz::sim::systems::Sensors"/>'
+               '<plugin filename="gz-sim-pose-publisher-system" '
+               'name="gz::sim::systems::PosePublisher"/>'
                '<plugin filename="libgz_ros2_control-system.so" '
                'name="gz_ros2_control::GazeboSimROS2ControlPlugin"/>')
     systems = gs.resolve_defaults(gs.parse_gazebo_systems(_robot(plugins), JOINTS), 'bot',
@@ -101,7 +103,8 @@ def test_other_systems_defaults_and_unknown_ones():
         ('bot/odom', 'bot/base_footprint', 3)
     assert (odometry.odom_topic, odometry.odom_covariance_topic, odometry.tf_topic) == \
         ('/model/bot/odometry', '/model/bot/odometry_with_covariance', '/model/bot/pose')
-    assert systems.unknown == ['gz::sim::systems::Sensors']  # gz_ros2_control is not a system
+    # gz_ros2_control is not a system; the Sensors system is not needed (docs/sensors.md)
+    assert systems.unknown == ['gz::sim::systems::PosePublisher']
 
 
 def test_friction_tags_value_or_text_smaller_wins_and_mujoco_block_wins():

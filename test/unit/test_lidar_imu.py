@@ -391,3 +391,18 @@ def test_check_model_says_what_becomes_of_each_sensor_block():
     assert found['<gazebo reference="base_link"><sensor cam>'][1] == \
         "sensor 'cam' of type 'camera' is not simulated"
     assert 'skipped' in found['<gazebo reference="ghost"><sensor g>'][1]
+
+
+def test_fortress_and_turtlebot_frame_tags_and_sensor_systems_are_understood():
+    from amr_description.core.gazebo_systems import parse_gazebo_systems
+    from amr_description.core.urdf_model import parse_xml
+    lidar = _lidar().replace('<topic>', '<ignition_frame_id>laser</ignition_frame_id><topic>')
+    imu = _imu().replace('<topic>', '<frame_id>imu_frame</frame_id><topic>')
+    extra = ('<gazebo><plugin filename="gz-sim-sensors-system" name="gz::sim::systems::Sensors">'
+             '<render_engine>ogre2</render_engine></plugin>'
+             '<plugin filename="libignition-gazebo-imu-system.so" '
+             'name="ignition::gazebo::systems::Imu"/></gazebo>')
+    xml = _robot(lidar, imu, extra)
+    blocks = {b.name: b for b in RobotDescription(xml).sensors.sensors}
+    assert (blocks['lidar'].frame_id, blocks['imu'].frame_id) == ('laser', 'imu_frame')
+    assert parse_gazebo_systems(parse_xml(xml, 'x'), []).unknown == []

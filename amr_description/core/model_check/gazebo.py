@@ -13,6 +13,7 @@ everything else is reported as not read by the simulator (yet).
 
 from amr_description.core.gazebo_sensors import read_sensor
 from amr_description.core.gazebo_sensors import SensorError
+from amr_description.core.gazebo_systems import is_sensor_system
 from amr_description.core.gazebo_systems import parse_gazebo_systems
 from amr_description.core.gazebo_systems import system_class
 from amr_description.core.gazebo_tags import FRICTION_TAGS
@@ -57,6 +58,10 @@ def check_gazebo(root):
                 continue
             if child.tag == 'plugin' and is_control_plugin(child):
                 findings += _control_plugin(root, f"{where}<plugin {child.get('name', '')}>")
+            elif child.tag == 'plugin' and is_sensor_system(child):
+                findings.append(Finding(INFO, f"{where}<plugin {child.get('name', '')}>",
+                                        'not needed: every lidar and IMU <sensor> runs here '
+                                        '(docs/sensors.md)'))
             elif child.tag == 'plugin':
                 findings.append(_system(child, where, reference, systems))
             elif child.tag == 'sensor':
