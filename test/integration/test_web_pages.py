@@ -108,6 +108,7 @@ def test_viewer_drives_the_robot_from_the_page(ros_env, procs, exe, tmp_path):
             peer.spin_until(lambda: False, 0.5)
             x0 = peer.position()
             button = page.page.get_by_role('button', name='Forward', exact=True)
+            button.scroll_into_view_if_needed()  # below the sensor displays' rows
             box = button.bounding_box()
             page.page.mouse.move(box['x'] + box['width'] / 2, box['y'] + box['height'] / 2)
             page.page.mouse.down()
