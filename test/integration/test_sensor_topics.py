@@ -71,9 +71,12 @@ def test_our_robot_in_a_room_publishes_scan_points_and_imu_at_their_rates(
     peer.step(500)  # settle on the wheels
     start = peer.now
     peer.step(2000)
-    assert peer.spin_until(lambda: peer.scans and _stamp(peer.scans[-1]) >= start + 2.0 - 1e-6
-                           and peer.imus and _stamp(peer.imus[-1]) >= start + 2.0 - 1e-6, 30), \
-        sim.output[-2000:]
+    # the last measurement instants (multiples of the periods) at most 2 s after the start
+    last_scan = math.floor((start + 2.0) / 0.1 + 1e-6) * 0.1
+    last_imu = math.floor((start + 2.0) / 0.01 + 1e-6) * 0.01
+    assert peer.spin_until(lambda: peer.scans and _stamp(peer.scans[-1]) >= last_scan - 1e-6
+                           and peer.imus and _stamp(peer.imus[-1]) >= last_imu - 1e-6, 30), \
+        (start, [_stamp(m) for m in peer.scans[-3:]], sim.output[-2000:])
     window = (start + 1e-6, start + 2.0 + 1e-6)  # 2 s of sim time at 10 Hz and 100 Hz
     scans = [m for m in peer.scans if window[0] < _stamp(m) < window[1]]
     imus = [m for m in peer.imus if window[0] < _stamp(m) < window[1]]

@@ -72,9 +72,22 @@ class Peer:
         return future.result()
 
     def set_state(self, state):
+        """
+        Set the simulation state; once paused, wait until :attr:`now` is the paused time.
+
+        /clock messages sent before the pause may still be queued when the answer comes (a
+        fast-forwarding world sends many): the paused simulator repeats its unchanged time at
+        10 Hz (wall), so two equal times received after the answer mean the queue is drained.
+        """
         request = self.srv.SetSimulationState.Request()
         request.state.state = state
-        return self.call('state', request).result
+        result = self.call('state', request).result
+        if state == request.state.STATE_PAUSED and result.result == result.RESULT_OK:
+            seen = len(self.clock)
+            assert self.spin_until(lambda: len(self.clock) > seen + 1
+                                   and self.clock[-1] == self.clock[-2], 30), \
+                'no unchanged /clock after the pause'
+        return result
 
     def close(self):
         self.executor.shutdown()
