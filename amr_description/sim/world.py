@@ -306,9 +306,24 @@ class World:
         """
         Advance the physics by ``nstep`` steps (``mujoco.mj_step`` batch).
 
+        MuJoCo's sensors (the IMUs' accelerometer, gyro and orientation) are computed in the
+        last step only: the steps before it run with ``mjDSBL_SENSOR``, which skips
+        ``mj_sensorPos/Vel/Acc`` and nothing else (the trajectory is the same). A cycle ends
+        where a measurement is due, so ``data.sensordata`` is what every step would have left
+        there, without the accelerometer's ``mj_rnePostConstraint`` at every physics step.
+
         :param nstep: number of physics steps (int >= 1).
         """
-        mujoco.mj_step(self.model, self.data, nstep=int(nstep))
+        model, data, nstep = self.model, self.data, int(nstep)
+        if nstep > 1 and model.nsensor:
+            flags = model.opt.disableflags
+            model.opt.disableflags = flags | mujoco.mjtDisableBit.mjDSBL_SENSOR
+            try:
+                mujoco.mj_step(model, data, nstep=nstep - 1)
+            finally:
+                model.opt.disableflags = flags
+            nstep = 1
+        mujoco.mj_step(model, data, nstep=nstep)
         self._poses_current = False
 
     def update_kinematics(self):

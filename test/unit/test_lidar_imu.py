@@ -293,6 +293,38 @@ def test_one_seed_gives_identical_scans_in_lock_step_another_seed_does_not():
     assert scans(7) != scans(8)
 
 
+def test_instants_nobody_hears_are_advanced_and_leave_the_heard_messages_unchanged():
+    """Sensor.advance draws the noise of an unheard instant: later messages do not change."""
+    def run(heard):
+        sim = _sim(seed=3)
+        entity = sim.spawn(_robot(_lidar(stddev=0.02), _imu(stddev=0.01)), name='probe',
+                           pose=[0, 0, 0.1, 0, 0, 0, 1])
+        sensors = _sensors(entity)
+        out, casts = [], 0
+        for k in range(1, 9):
+            t = _settle(sim, 0.1 * k)
+            for name in ('lidar', 'lidar/points', 'imu'):
+                sensor = sensors[name]
+                if name in heard(k):
+                    before = sensors['lidar'].cast.time
+                    message = sensor.measure(sim.world, t)
+                    casts += name.startswith('lidar') and before != t
+                    out.append((k, name, bytes(message.ranges) if name == 'lidar' else
+                                bytes(message.data) if name == 'lidar/points' else
+                                message.linear_acceleration.z))
+                elif not sensor.costly:
+                    sensor.advance(sim.world, t)
+        sim.close()
+        return out, casts
+
+    everything, cast_all = run(lambda k: ('lidar', 'lidar/points', 'imu'))
+    odd_scans, cast_odd = run(lambda k: ('lidar', 'imu') if k % 2 else ())
+    points_only, cast_points = run(lambda k: ('lidar/points',) if k > 4 else ())
+    assert (cast_all, cast_odd, cast_points) == (8, 4, 4)  # no ray cast for an unheard scan
+    assert odd_scans == [m for m in everything if m[0] % 2 and m[1] != 'lidar/points']
+    assert points_only == [m for m in everything if m[0] > 4 and m[1] == 'lidar/points']
+
+
 def test_each_sensor_is_due_at_its_own_rate_in_sim_time():
     sim = _sim()
     entity = sim.spawn(_robot(_lidar(rate=10), _imu(rate=100)), name='probe',
@@ -359,6 +391,27 @@ def test_imu_while_turning_reads_the_yaw_rate_and_the_centripetal_acceleration(t
     yaw = 2 * math.atan2(q.z, q.w)
     assert yaw == pytest.approx(omega * (t - sim.physics_step), abs=1e-6)
     sim.close()
+
+
+def test_sensors_computed_in_the_last_step_only_leave_the_same_state_and_readings():
+    """World.step(n) skips MuJoCo's sensor stage but in its last step: same as n single steps."""
+    import mujoco
+    sims = [_sim(), _sim()]
+    for sim in sims:
+        sim.spawn(_robot('', _imu()), name='probe', pose=[0, 0, 0.1, 0, 0, 0, 1])
+        qvel = sim.world.free_joint_address('probe')[1]
+        sim.world.data.qvel[qvel:qvel + 6] = [0.3, 0.1, 0.0, 0.0, 0.0, 1.5]
+    batch, single = (sim.world for sim in sims)
+    for _ in range(30):
+        batch.step(10)
+        for _ in range(10):
+            single.step(1)
+        assert np.array_equal(batch.data.qpos, single.data.qpos)
+        assert np.array_equal(batch.data.sensordata, single.data.sensordata)
+    assert abs(batch.data.sensordata).max() > 1.0  # gravity is in the readings
+    assert not batch.model.opt.disableflags & mujoco.mjtDisableBit.mjDSBL_SENSOR
+    for sim in sims:
+        sim.close()
 
 
 def test_noise_model_mean_and_stddev_over_10000_samples():

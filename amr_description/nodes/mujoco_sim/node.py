@@ -248,19 +248,18 @@ class MujocoSim(Node):
         """
         Measure and publish the sensors due at step ``step_count`` (all when None).
 
-        A costly sensor is measured only while its topic has a subscriber; every message
-        is published only then (volatile: an unheard message reaches nobody).
+        A sensor is measured and published only while its topic has a subscriber (volatile:
+        an unheard message reaches nobody); otherwise a sensor that is not costly advances
+        its noise generator past the instant (``Sensor.advance``).
         """
         world = self.sim.world
         for item in self._published:
             if step_count is not None and step_count % item.steps:
                 continue
-            heard = has_subscribers(item.publisher)
-            if not heard and item.sensor.costly:
-                continue
-            message = item.sensor.measure(world, t)
-            if heard:
-                item.publisher.publish(message)
+            if has_subscribers(item.publisher):
+                item.publisher.publish(item.sensor.measure(world, t))
+            elif not item.sensor.costly:
+                item.sensor.advance(world, t)
 
     def _on_sim_reset(self):
         self._publish_clock(0.0)

@@ -21,8 +21,9 @@ class Sensor:
     :ivar rate: measurements per second of sim time (Hz, > 0).
     :ivar message_type: the ROS message class :meth:`measure` returns.
     :ivar costly: True when measuring costs enough to be skipped while nobody subscribes
-        (the node then does not call :meth:`measure`); False when every due measurement is
-        taken (e.g. to keep a noise generator's sequence independent of subscribers).
+        (the node then calls neither :meth:`measure` nor :meth:`advance`); False when every
+        due instant counts: the node calls :meth:`advance` while nobody subscribes, so that
+        a noise generator's sequence does not depend on who listens.
     :ivar gz_name: the gz topic a Gazebo user's ros_gz_bridge configuration
         (``bridge_config``) maps to ROS, absolute; '' for a sensor that is only a ROS topic.
     """
@@ -57,6 +58,17 @@ class Sensor:
         :param t: sim time in s; the message's stamp.
         """
         raise NotImplementedError
+
+    def advance(self, world, t):
+        """
+        Account for the due instant ``t`` (s) that nobody hears, without its message.
+
+        Afterwards the sensor is where :meth:`measure` at ``t`` would have left it (its noise
+        generator drew the same numbers), so the messages heard later are the same whoever
+        listened before. This default measures; a sensor whose measurement costs more than
+        its noise draws overrides it.
+        """
+        self.measure(world, t)
 
 
 def fill_odometry(msg, t, position, quaternion, linear, angular):

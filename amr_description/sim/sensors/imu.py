@@ -80,6 +80,10 @@ class Imu(Sensor):
             q.w, q.x, q.y, q.z = values[self._quat:self._quat + 4].tolist()
         return msg
 
+    def advance(self, world, t):
+        """Draw the noise of the measurement at ``t`` (s) that nobody hears; no message."""
+        self._noise.skip()
+
 
 def create(entity, settings):
     """

@@ -81,6 +81,7 @@ class LidarCast:
         self.ranges = np.full((len(self.vertical), len(self.horizontal)), np.inf)
         self.time = None
         self._model = None
+        self._owed = None  # the instant of a scan accounted for but not cast (advance)
 
     def cast(self, world, t):
         """
@@ -90,6 +91,9 @@ class LidarCast:
         """
         if self.time == t and self._model is world.model:
             return self.ranges
+        if self._owed != t:
+            self._settle()
+        self._owed = None
         model, data = world.model, world.data
         if self._model is not model:
             site = model.site(self.site)
@@ -105,6 +109,25 @@ class LidarCast:
         self.ranges = self.ranges_from_distances(self._dist).reshape(self.ranges.shape)
         self.time = t
         return self.ranges
+
+    def advance(self, t):
+        """
+        Account for the scan of sim time ``t`` (s) that nobody hears, without casting it.
+
+        The scan is owed: a :meth:`cast` at the same ``t`` (another output of this lidar is
+        heard) casts it as usual; otherwise its noise is drawn and discarded before the next
+        instant's, so the generator's sequence is the same as if every scan had been cast.
+        """
+        if self.time == t or self._owed == t:
+            return
+        self._settle()
+        self._owed = t
+
+    def _settle(self):
+        """Draw and discard the noise of an owed scan (one number per ray)."""
+        if self._owed is not None:
+            self.noise.skip(len(self._dist))
+            self._owed = None
 
     def ranges_from_distances(self, dist):
         """
@@ -178,6 +201,10 @@ class LidarScan(_LidarOutput):
         set_stamp(self._msg.header.stamp, t)
         self._msg.ranges = array.array('f', ranges[self._row].astype(np.float32).tobytes())
         return self._msg
+
+    def advance(self, world, t):
+        """Owe the cast of ``t`` (s) to the lidar (:meth:`LidarCast.advance`): no rays."""
+        self.cast.advance(t)
 
 
 class LidarPoints(_LidarOutput):

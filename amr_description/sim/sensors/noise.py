@@ -61,6 +61,16 @@ class NoiseModel:
             noisy = np.round(noisy / noise.precision) * noise.precision
         return np.where(np.isfinite(values), noisy, values)
 
+    def skip(self, count):
+        """
+        Draw the gaussian numbers of :meth:`apply` on ``count`` values and discard them.
+
+        numpy's ``normal(mean, stddev, n)`` takes n standard normals from the generator, as
+        ``standard_normal(n)`` does, so the following draws are those after an ``apply``.
+        """
+        if self.active and self.noise.stddev > 0:
+            self.rng.standard_normal(int(count))
+
 
 class AxesNoise:
     """
@@ -98,3 +108,8 @@ class AxesNoise:
             step = np.where(self.precision > 0, self.precision, 1.0)
             noisy = np.where(self.precision > 0, np.round(noisy / step) * step, noisy)
         return noisy
+
+    def skip(self):
+        """Draw the gaussian numbers of one :meth:`apply` and discard them."""
+        if self.active and self._draw:
+            self.rng.standard_normal(len(self.stddev))

@@ -19,11 +19,13 @@ from amr_description.tools.benchmark.observer import Observer
 from amr_description.tools.benchmark.stack import Stack
 
 
-def measure(count, rtf, duration, domain_id, log, startup_timeout=120.0, extra=()):
+def measure(count, rtf, duration, domain_id, log, startup_timeout=120.0, extra=(),
+            listen=()):
     """
     Bring a stack up, drive every robot, measure, stop it.
 
-    ``extra``: more launch arguments of the stack (``name:=value``).
+    ``extra``: more launch arguments of the stack (``name:=value``); ``listen``: topics the
+    observer subscribes to (:class:`~amr_description.tools.benchmark.observer.Observer`).
 
     :returns: dict ``startup`` (s), ``speed`` (sim s per wall s), ``cpu_sim`` and
         ``cpu_stack`` (cores, over the window).
@@ -34,7 +36,7 @@ def measure(count, rtf, duration, domain_id, log, startup_timeout=120.0, extra=(
     try:
         startup = stack.wait_active(timeout=startup_timeout + 3.0 * count)
         log(f'  {stack.stage}: controllers active after {startup:.2f} s')
-        observer = Observer(domain_id, namespaces(count))
+        observer = Observer(domain_id, namespaces(count), listen)
         first = observer.clock_sample()
         if first is None:
             stack.check('measuring')
