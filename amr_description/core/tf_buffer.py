@@ -168,8 +168,16 @@ class TransformBuffer:
         self._known = None  # every frame id (children and parents), rebuilt when one is added
 
     def clear(self):
-        """Forget every transform (tf2's ``clear``; e.g. after the simulation was reset)."""
-        self._frames = {}
+        """
+        Forget every dynamic transform; keep the static ones (``/tf_static``).
+
+        As tf2's ``BufferCore::clear``, which empties each frame's time cache while tf2's
+        ``StaticCache::clearList`` does nothing: ``/tf_static`` is latched and published
+        once, so a buffer cleared on a backward jump of the clock (a reset simulation,
+        ``ros2 bag play --clock``) would otherwise lose the fixed links for good.
+        """
+        self._frames = {child: frame for child, frame in self._frames.items()
+                        if frame.static is not None}
         self._known = None
 
     def set_transform(self, parent, child, time, translation, rotation, static=False):

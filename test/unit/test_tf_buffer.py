@@ -192,3 +192,16 @@ def test_slerp_endpoints_and_shorter_arc():
     # -q1 is the same rotation: the result must still be yaw 0.5
     half = slerp(q0, -q1, 0.5)
     np.testing.assert_allclose(abs(np.dot(half, yaw(0.5))), 1.0, atol=1e-12)
+
+
+def test_clear_forgets_dynamic_transforms_and_keeps_static_ones_as_tf2():
+    buffer = robot_buffer()
+    buffer.clear()  # a backward jump of /clock: /tf_static is not published again
+    T, _ = buffer.lookup('base_link', 'wheel')
+    np.testing.assert_allclose(T[:3, 3], [0.0, 0.5, 0.0])
+    with pytest.raises(LookupException):
+        buffer.lookup('odom', 'wheel')
+    # the dynamic transform comes back with the next /tf, older stamps included
+    buffer.set_transform('odom', 'base_link', 0.5, (2.0, 0.0, 0.0), IDENTITY)
+    T, _ = buffer.lookup('odom', 'wheel')
+    np.testing.assert_allclose(T[:3, 3], [2.0, 0.5, 0.0])

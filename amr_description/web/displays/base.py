@@ -59,13 +59,19 @@ class FrameManager:
     """
     The viewer's TF buffer from ``/tf`` and ``/tf_static``, its fixed frame and its time.
 
-    A backward jump of ``/clock`` (a reset simulation) clears the buffer, as tf2's listener.
+    A backward jump of ``/clock`` (a reset or restarted simulation, ``ros2 bag play --clock``
+    beside a running one) clears the buffer's dynamic transforms, as tf2_ros' ``Buffer`` does
+    on a jump back of its clock (static ones stay, as in tf2); the robot is drawn again from
+    the next ``/tf``. Each jump is logged once (INFO, as RViz's "Detected jump back in time")
+    and kept in :attr:`last_jump` for the status text.
 
     :param node: the viewer node (subscriptions, logger).
     :ivar buffer: the :class:`~amr_description.core.tf_buffer.TransformBuffer`.
     :ivar sim_time: the last ``/clock`` time (s), or None.
     :ivar clock_samples: ``(wall, sim)`` pairs of the last :data:`RATE_WINDOW` s.
     :ivar rates: ``{'/clock': Rate, '/tf': Rate}``.
+    :ivar jumps: backward jumps of ``/clock`` seen (int).
+    :ivar last_jump: ``(wall s, from sim s, to sim s)`` of the last one, or None.
     """
 
     def __init__(self, node):
@@ -75,6 +81,8 @@ class FrameManager:
         self.sim_time = None
         self.clock_samples = collections.deque()
         self.rates = {'/clock': Rate(), '/tf': Rate()}
+        self.jumps = 0
+        self.last_jump = None
         static_qos = QoSProfile(depth=100, durability=DurabilityPolicy.TRANSIENT_LOCAL)
         node.create_subscription(TFMessage, '/tf', self._on_tf, 100)
         node.create_subscription(TFMessage, '/tf_static', self._on_tf_static, static_qos)
@@ -103,8 +111,13 @@ class FrameManager:
         self.rates['/clock'].tick(now)
         sim = msg.clock.sec + msg.clock.nanosec * 1e-9
         if self.sim_time is not None and sim < self.sim_time:
-            self.clock_samples.clear()  # the simulation was reset
+            self.clock_samples.clear()
             self.buffer.clear()
+            self.jumps += 1
+            self.last_jump = (now, self.sim_time, sim)
+            self.node.get_logger().info(
+                f'/clock jumped back in time ({self.sim_time:.3f} s -> {sim:.3f} s): '
+                'transforms cleared', throttle_duration_sec=5.0)
         self.sim_time = sim
         self.clock_samples.append((now, sim))
         while self.clock_samples and now - self.clock_samples[0][0] > RATE_WINDOW:

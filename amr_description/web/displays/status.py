@@ -4,8 +4,9 @@
 Status: what RViz's status panel and time panel say, as one text on the page.
 
 Description errors, the fixed frame (and why another is shown), frames without a transform,
-sim time and real-time factor from ``/clock``, and the rates of ``/clock``,
-``/joint_states`` (as remapped), the first odometry topic, the sensor topics and ``/tf``.
+a backward jump of ``/clock`` (for :data:`JUMP_SHOWN` s), sim time and real-time factor from
+``/clock``, and the rates of ``/clock``, ``/joint_states`` (as remapped), the first odometry
+topic, the sensor topics and ``/tf``.
 Refreshed every :data:`PERIOD` s, and at once when a robot description arrives.
 """
 
@@ -19,6 +20,8 @@ from sensor_msgs.msg import JointState
 
 PERIOD = 0.5
 """Seconds (wall) between two refreshes of the text."""
+JUMP_SHOWN = 10.0
+"""Seconds (wall) a backward jump of ``/clock`` stays in the text."""
 
 
 class StatusDisplay(Display):
@@ -82,6 +85,11 @@ class StatusDisplay(Display):
         if missing and robot_model.robots:
             lines.append(f'No transform to {", ".join(missing[:4])}'
                          + (' ...' if len(missing) > 4 else ''))
+        if frames.last_jump is not None and now - frames.last_jump[0] < JUMP_SHOWN:
+            _, before, after = frames.last_jump
+            lines.append(f'/clock jumped back in time ({before:.2f} s -> {after:.2f} s'
+                         + (f', {frames.jumps} jumps' if frames.jumps > 1 else '')
+                         + '): transforms cleared')
         samples = frames.clock_samples
         running = bool(samples) and now - samples[-1][0] < RATE_WINDOW
         if frames.sim_time is not None and running:

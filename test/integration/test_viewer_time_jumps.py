@@ -1,0 +1,60 @@
+# Copyright 2026 The amr_description Authors
+# Licensed under the Apache License, Version 2.0
+"""
+``ros2 bag play --clock`` beside a running sim stack and its viewer (a real browser).
+
+The bag's /clock is older than the simulator's: /clock then jumps back and forth while the bag
+plays. The viewer clears its dynamic transforms on each jump back, as tf2's listener does,
+keeps the static ones (/tf_static is published once), says so in its status, and once the
+bag has ended draws the robot again: no "No transform to" stays on the page.
+"""
+
+import time
+
+from browser import ensure_chromium  # noqa: I100 - helpers next to this file
+from browser import free_port
+from browser import open_page
+
+TOPICS = ('/clock', '/tf', '/tf_static', '/joint_states')
+
+
+def test_bag_play_clock_beside_the_viewer_leaves_it_with_its_transforms(
+        procs, exe, ros_env, tmp_path):
+    assert ensure_chromium(), 'Debian chromium is missing: run scripts/setup'
+    port = free_port()
+    stack = procs.start([exe('bringup'), 'sim', f'viewer_port:={port}'], ros_env)
+    assert stack.wait_for_output(f'viewer: open http://127.0.0.1:{port}/ in a browser', 90.0), \
+        stack.output[-3000:]
+    bag = tmp_path / 'run1'
+    record = procs.start([exe('ros2'), 'bag', 'record', '-o', str(bag), '--use-sim-time',
+                          '--max-duration', '3', *TOPICS], ros_env)
+    assert record.wait(240.0) == 0, record.output + stack.output[-2000:]
+    with open_page(f'http://127.0.0.1:{port}/') as page:
+        assert page.wait_for_text('Fixed Frame', 120.0), page.page.inner_text('body')
+
+        def posed():
+            text = page.page.inner_text('body')
+            return 'Sim time' in text and 'No transform to' not in text and \
+                'Waiting for' not in text
+
+        deadline = time.monotonic() + 120.0
+        while time.monotonic() < deadline and not posed():
+            page.page.wait_for_timeout(500)
+        assert posed(), page.page.inner_text('body')
+        play = procs.start([exe('ros2'), 'bag', 'play', str(bag), '--clock'], ros_env)
+        said = False
+        while play.popen.poll() is None:
+            said = said or 'jumped back in time' in page.page.inner_text('body')
+            page.page.wait_for_timeout(250)
+        assert play.popen.returncode == 0, play.output
+        text = page.page.inner_text('body')
+        assert said or 'jumped back in time' in text, text
+        deadline = time.monotonic() + 60.0
+        while time.monotonic() < deadline and not posed():
+            page.page.wait_for_timeout(500)
+        assert posed(), page.page.inner_text('body')
+        # it stays so: the simulator's /clock and /tf alone from now on
+        page.page.wait_for_timeout(3000)
+        assert posed(), page.page.inner_text('body')
+    assert stack.interrupt(timeout=30.0) == 0, stack.output[-3000:]
+    assert 'Traceback' not in stack.output, stack.output[-3000:]
