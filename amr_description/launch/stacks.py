@@ -30,6 +30,7 @@ from amr_description.launch.actions import OnProcessExit
 from amr_description.launch.actions import parse_bool
 from amr_description.launch.actions import parse_float
 from amr_description.launch.actions import parse_launch_arguments
+from amr_description.web.server import PORT_ARGUMENT
 
 PACKAGE = 'amr_description'
 
@@ -146,8 +147,19 @@ FLEET_ARGUMENTS = [
 ] + DESCRIPTION_ARGUMENTS
 
 
-def _port(args, name):
-    """Return launch argument ``name`` as a TCP port (int 1..65535)."""
+def _page(args, name):
+    """
+    Return the ``parameters`` entry and ``env`` of a page node whose port is argument ``name``.
+
+    The port goes to the node only when the user gave ``name``: then it is exact, and the
+    node's error for a port in use names ``name:=N`` (:data:`PORT_ARGUMENT`); otherwise the
+    node takes its default port or the next free one.
+
+    :raises LaunchError: when the given value is not a TCP port 1..65535.
+    """
+    env = {PORT_ARGUMENT: name}
+    if name not in args.given:
+        return {}, env
     try:
         port = int(args[name])
     except ValueError:
@@ -155,13 +167,20 @@ def _port(args, name):
     if not 0 < port < 65536:
         raise LaunchError(f"launch argument '{name}': expected a TCP port 1..65535, got "
                           f"'{args[name]}'")
-    return port
+    return {'port': port}, env
+
+
+class _Arguments(dict):
+    """Launch-argument values; ``given`` holds the names the user set."""
+
+    given = frozenset()
 
 
 def _with_defaults(declared, args):
     """Return ``args`` completed with the default values of the ``declared`` arguments."""
-    values = {d.name: d.default_value for d in declared}
+    values = _Arguments((d.name, d.default_value) for d in declared)
     values.update(args)
+    values.given = frozenset(args)
     return values
 
 
@@ -190,17 +209,17 @@ def display(args):
              parameters=[{'robot_description': description, 'use_sim_time': use_sim_time}]),
     ]
     if gui:
-        actions.append(Node(PACKAGE, 'joint_state_publisher_gui', output='screen',
-                            parameters=[{'use_sim_time': use_sim_time,
-                                         'port': _port(args, 'gui_port')}]))
+        port, env = _page(args, 'gui_port')
+        actions.append(Node(PACKAGE, 'joint_state_publisher_gui', output='screen', env=env,
+                            parameters=[{'use_sim_time': use_sim_time, **port}]))
     else:
         actions.append(Node(PACKAGE, 'joint_state_publisher', output='screen',
                             parameters=[{'use_sim_time': use_sim_time}]))
     if viewer:
-        actions.append(Node(PACKAGE, 'viewer', output='screen',
+        port, env = _page(args, 'viewer_port')
+        actions.append(Node(PACKAGE, 'viewer', output='screen', env=env,
                             parameters=[{'use_sim_time': use_sim_time,
-                                         'fixed_frame': 'base_footprint',
-                                         'port': _port(args, 'viewer_port')}]))
+                                         'fixed_frame': 'base_footprint', **port}]))
     return actions
 
 
@@ -233,7 +252,7 @@ def sim(args):
     robot = args['robot'] or 'amr'
     pose = {k: parse_float(args[k], k) for k in ('x', 'y', 'z', 'yaw')}
     viewer = parse_bool(args['viewer'], 'viewer')
-    viewer_port = _port(args, 'viewer_port')
+    viewer_port, viewer_env = _page(args, 'viewer_port')
     description = _description(args)
 
     mujoco_sim = Node(
@@ -260,9 +279,9 @@ def sim(args):
     if parse_xml(description, 'description').find('ros2_control') is not None:
         actions.append(OnProcessExit(create, [spawner], only_on_success=True))
     if viewer:
-        actions.append(Node(PACKAGE, 'viewer', output='screen',
+        actions.append(Node(PACKAGE, 'viewer', output='screen', env=viewer_env,
                             parameters=[{'use_sim_time': use_sim_time, 'fixed_frame': 'odom',
-                                         'port': viewer_port, 'world': args['world']}]))
+                                         'world': args['world'], **viewer_port}]))
     return actions
 
 
@@ -331,7 +350,7 @@ def fleet(args):
                           f"'{args['spacing']}'")
     use_composition = parse_bool(args['use_composition'], 'use_composition')
     viewer = parse_bool(args['viewer'], 'viewer')
-    viewer_port = _port(args, 'viewer_port')
+    viewer_port, viewer_env = _page(args, 'viewer_port')
     description = _description(args)
     names = [f'r{i}' for i in range(1, count + 1)]
     grid = fleet_grid(count, spacing)
@@ -380,8 +399,8 @@ def fleet(args):
                                            '--child-frame-id', f'{ns}/odom']))
         actions += [create, OnProcessExit(create, [spawner], only_on_success=True)]
     if viewer:
-        actions.append(Node(PACKAGE, 'viewer', output='screen', parameters=[{
-            'use_sim_time': use_sim_time, 'fixed_frame': 'world', 'port': viewer_port,
+        actions.append(Node(PACKAGE, 'viewer', output='screen', env=viewer_env, parameters=[{
+            'use_sim_time': use_sim_time, 'fixed_frame': 'world', **viewer_port,
             'world': args['world'],
             'robot_description_topics': [f'/{ns}/robot_description' for ns in names],
             'odometry_topics': [f'/{ns}/ground_truth/odom' for ns in names],

@@ -9,7 +9,7 @@ by a web page (viser) so it runs where no desktop GUI can be installed:
 
 - parameters of our ``joint_state_publisher`` (``robot_description``, ``rate`` 10 Hz,
   ``source_list``, ``zeros``) plus ``host`` (127.0.0.1: only this machine can open the page;
-  use ``ssh -L`` from another one) and ``port`` (8081);
+  use ``ssh -L`` from another one) and ``port`` (not set: 8081 or the next free port);
 - one slider with a number box per moving, non-mimic joint of the description (continuous
   joints -pi..pi, revolute/prismatic their limits; logic in
   :mod:`amr_description.core.joint_sliders`), **Center** and **Randomize** buttons;
@@ -18,7 +18,7 @@ by a web page (viser) so it runs where no desktop GUI can be installed:
 - the page shows the robot posed by the sliders (forward kinematics from the URDF root);
 - a description that does not parse is shown on the page and logged; the node keeps running
   with the previous model;
-- a port in use: one line naming the port and the parameter, exit code 1.
+- a port set explicitly and in use: one line naming the port and the argument, exit code 1.
 
 Prints ``joint_state_publisher_gui: open http://HOST:PORT/ in a browser`` once serving.
 """
@@ -28,14 +28,15 @@ import threading
 
 from amr_description.core import joint_sliders
 from amr_description.nodes.joint_state_publisher import JointStatePublisher
-from amr_description.web.server import page_url
 from amr_description.web.server import run_web_node
-from amr_description.web.server import start_server
+from amr_description.web.server import serve_page
 from amr_description.web.server import stop_server
 from rclpy.clock import Clock
 from rclpy.clock import ClockType
 
 NODE_NAME = 'joint_state_publisher_gui'
+DEFAULT_PORT = 8081
+"""TCP port of the page when ``port`` is not set (the next free one when it is taken)."""
 
 
 class JointStatePublisherGui(JointStatePublisher):
@@ -57,12 +58,7 @@ class JointStatePublisherGui(JointStatePublisher):
         self._pose_dirty = False
         self._server = None
         super().__init__(NODE_NAME)
-        self.declare_parameter('host', '127.0.0.1')
-        self.declare_parameter('port', 8081)
-        host = str(self.get_parameter('host').value)
-        port = int(self.get_parameter('port').value)
-        self._server = start_server(host, port)
-        self.url = page_url(host, port)
+        self._server, self.url = serve_page(self, DEFAULT_PORT)
         server = self._server
         server.scene.set_up_direction('+z')
         server.initial_camera.position = (0.8, -0.9, 0.6)

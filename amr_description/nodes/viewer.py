@@ -45,10 +45,11 @@ Each display is a module of :mod:`amr_description.web.displays` (RViz's display 
 this node declares the parameters, serves the page and composes them.
 
 Parameters ``host`` (127.0.0.1: only this machine can open the page; use ``ssh -L`` from
-another one) and ``port`` (8080); ``update_rate`` (Hz of scene updates, 30). A port in use:
-one line naming it and the parameter, exit code 1. A description that does not parse: the
-error on the page and in the log, the node keeps running. Prints
-``viewer: open http://HOST:PORT/ in a browser`` once serving.
+another one) and ``port`` (not set: 8080, or the next free port when 8080 is taken; the
+parameter then holds the port bound); ``update_rate`` (Hz of scene updates, 30). A port set
+explicitly and in use: one line naming it and the argument that set it, exit code 1. A
+description that does not parse: the error on the page and in the log, the node keeps running.
+Prints ``viewer: open http://HOST:PORT/ in a browser`` once serving.
 """
 
 import sys
@@ -65,9 +66,8 @@ from amr_description.web.displays.teleop_pad import TeleopPadDisplay
 from amr_description.web.displays.tf_axes import TfAxesDisplay
 from amr_description.web.displays.trails import TrailsDisplay
 from amr_description.web.displays.world import WorldDisplay
-from amr_description.web.server import page_url
 from amr_description.web.server import run_web_node
-from amr_description.web.server import start_server
+from amr_description.web.server import serve_page
 from amr_description.web.server import stop_server
 from rcl_interfaces.msg import ParameterDescriptor
 from rcl_interfaces.msg import ParameterType
@@ -75,6 +75,8 @@ from rclpy.clock import Clock
 from rclpy.clock import ClockType
 
 NODE_NAME = 'viewer'
+DEFAULT_PORT = 8080
+"""TCP port of the page when ``port`` is not set (the next free one when it is taken)."""
 
 
 class Viewer(Node):
@@ -98,8 +100,6 @@ class Viewer(Node):
         self.declare_parameter('frame_id', 'base_link')
         self.declare_parameter('speed', 0.5)
         self.declare_parameter('turn', 1.0)
-        self.declare_parameter('host', '127.0.0.1')
-        self.declare_parameter('port', 8080)
         self.declare_parameter('update_rate', 30.0)
         self.declare_parameter('world', '')
         self.declare_parameter('scan_topics', ['/scan'], string_array)
@@ -108,10 +108,7 @@ class Viewer(Node):
         update_rate = float(self.get_parameter('update_rate').value)
         if not update_rate > 0.0:
             raise ValueError(f'update_rate must be > 0 Hz, found {update_rate}')
-        host = str(self.get_parameter('host').value)
-        port = int(self.get_parameter('port').value)
-        self._server = start_server(host, port)
-        self.url = page_url(host, port)
+        self._server, self.url = serve_page(self, DEFAULT_PORT)
 
         value = self.get_parameter
         server = self._server

@@ -13,6 +13,7 @@ import contextlib
 import errno
 import io
 import logging
+import os
 import socket
 
 
@@ -37,6 +38,49 @@ def page_url(host, port):
     return f'http://{host}:{port}/'
 
 
+PORT_ARGUMENT = 'AMR_PORT_ARGUMENT'
+"""Environment variable with the launch argument that set a page node's port (e.g.
+``viewer_port``): set by the stacks for their page nodes, so that the error names the argument
+the user typed (:func:`serve_page`)."""
+
+
+def _argument(parameter):
+    """Return how the user sets ``parameter``: ``viewer_port:=N`` in a launch, else ``-p``."""
+    launch_argument = os.environ.get(PORT_ARGUMENT, '')
+    return f'{launch_argument}:=N' if launch_argument else f'-p {parameter}:=N'
+
+
+def serve_page(node, default_port):
+    """
+    Declare a page node's ``host`` and ``port`` parameters and start its server.
+
+    ``port`` given (``-p port:=N``, or a stack's ``viewer_port:=N``): exactly that port, or
+    :class:`PortInUse` naming the argument the user typed. ``port`` not given: ``default_port``
+    or the next free port above it; the parameter is then set to the port bound, so
+    ``ros2 param get`` tells it.
+
+    :param node: the rclpy node (not yet serving).
+    :param default_port: TCP port tried first when ``port`` is not given.
+    :returns: ``(server, url)``.
+    :raises PortInUse: one line (see above).
+    """
+    from rclpy.exceptions import ParameterUninitializedException
+    from rclpy.parameter import Parameter
+    node.declare_parameter('host', '127.0.0.1')
+    node.declare_parameter('port', Parameter.Type.INTEGER)
+    host = str(node.get_parameter('host').value)
+    try:
+        given = node.get_parameter('port').value
+    except ParameterUninitializedException:
+        given = None
+    port = int(default_port if given is None else given)
+    server = start_server(host, port, fallback=given is None)
+    bound = server.get_port()
+    if given is None:
+        node.set_parameters([Parameter('port', Parameter.Type.INTEGER, bound)])
+    return server, page_url(host, bound)
+
+
 def check_port(host, port, parameter='port'):
     """
     Raise :class:`PortInUse` when ``host:port`` cannot be bound.
@@ -55,35 +99,39 @@ def check_port(host, port, parameter='port'):
     except OSError as exc:
         if exc.errno == errno.EADDRINUSE:
             raise PortInUse(f'port {port} on {host} is already in use; choose another with '
-                            f'-p {parameter}:=N') from None
-        raise PortInUse(f'cannot listen on {host}:{port} ({exc.strerror}); set -p '
-                        f'{parameter}:=N or -p host:=ADDRESS') from None
+                            f'{_argument(parameter)}') from None
+        raise PortInUse(f'cannot listen on {host}:{port} ({exc.strerror}); set '
+                        f'{_argument(parameter)} or -p host:=ADDRESS') from None
     finally:
         sock.close()
 
 
-def start_server(host, port, parameter='port'):
+def start_server(host, port, parameter='port', fallback=False):
     """
-    Start a ``viser.ViserServer`` on exactly ``host:port`` (its banner off).
+    Start a ``viser.ViserServer`` on ``host:port`` (its banner off).
 
     :param host: bind address (127.0.0.1 keeps the page on this machine).
     :param port: TCP port.
     :param parameter: the node parameter to name in an error.
+    :param fallback: False: exactly ``port`` (the user chose it); True: ``port`` or, when it
+        is taken, the next free one above it (viser's own search, as development servers do;
+        read the one bound with ``server.get_port()``).
     :returns: the running ``viser.ViserServer``; stop it with :func:`stop_server`.
-    :raises PortInUse: when the port is taken (checked before and after starting).
+    :raises PortInUse: when an exact port is taken (checked before and after starting).
 
     The page's share button is hidden and its request ignored: sharing opens a tunnel through
     a server on the internet, and nothing of the page may leave this machine.
     """
-    check_port(host, port, parameter)
+    if not fallback:
+        check_port(host, port, parameter)
     import viser  # noqa: I100 - heavy import (~1 s), only once the port is known to be free
     logging.getLogger('websockets').setLevel(logging.CRITICAL)
     with contextlib.redirect_stdout(io.StringIO()):  # viser prints a banner even when quiet
         server = viser.ViserServer(host=host, port=port, verbose=False)
-    if server.get_port() != port:  # lost a race for the port: viser moved to another one
+    if server.get_port() != port and not fallback:  # lost a race: viser moved elsewhere
         stop_server(server)
         raise PortInUse(f'port {port} on {host} is already in use; choose another with '
-                        f'-p {parameter}:=N')
+                        f'{_argument(parameter)}')
     server.request_share_url = lambda *args, **kwargs: None
     server.gui.configure_theme(show_share_button=False, control_width='large')
     return server
@@ -125,6 +173,7 @@ def run_web_node(node_class, node_name, args=None, executor_class=None):
     except (PortInUse, ValueError) as exc:
         if node is not None:
             raise
+        shutdown.ignore_signals()  # a stack stopping now must not interrupt the exit
         rclpy.logging.get_logger(node_name).error(str(exc))
         return 1
     except KeyboardInterrupt:

@@ -22,6 +22,7 @@ import os
 import re
 import shutil
 import signal
+import subprocess
 import time
 
 from browser import centroid  # noqa: I100 - helpers next to this file
@@ -293,3 +294,39 @@ def test_port_in_use_and_stopping_closes_the_port(ros_env, procs, exe):
     print(f'port closed {closed:.2f} s, process gone {time.monotonic() - started:.2f} s '
           'after SIGTERM')
     assert 'Traceback' not in viewer.output, viewer.output
+
+
+def test_a_page_without_a_port_takes_the_next_free_one_and_a_launch_names_its_argument(
+        ros_env, procs, exe):
+    import socket
+    holder = socket.socket()
+    try:  # 8080 taken (by us, or already by something else)
+        holder.bind(('127.0.0.1', 8080))
+        holder.listen()
+    except OSError:
+        pass
+    try:
+        viewer = procs.start([exe('viewer')], ros_env)
+        assert viewer.wait_for_output('in a browser', 60.0), viewer.output
+        found = re.search(r'viewer: open http://127\.0\.0\.1:(\d+)/ in a browser', viewer.output)
+        assert found, viewer.output
+        port = int(found.group(1))
+        assert port > 8080 and port_open(port), viewer.output
+        # the parameter tells the port bound, as the printed URL
+        deadline = time.monotonic() + 60.0
+        answer = ''
+        while f'Integer value is: {port}' not in answer and time.monotonic() < deadline:
+            answer = subprocess.run([exe('ros2'), 'param', 'get', '/viewer', 'port'],
+                                    env=ros_env, capture_output=True, text=True,
+                                    timeout=60).stdout
+        assert f'Integer value is: {port}' in answer, answer
+        # a port given to a stack and taken: the error names the launch argument
+        stack = procs.start([exe('bringup'), 'display', 'gui:=false',
+                             f'viewer_port:={port}'], ros_env)
+        assert stack.wait_for_output('is already in use', 90.0), stack.output
+        assert f'port {port} on 127.0.0.1 is already in use; choose another with ' \
+            'viewer_port:=N' in stack.output, stack.output
+        assert stack.interrupt(timeout=30.0) == 0, stack.output
+        assert 'Traceback' not in stack.output + viewer.output
+    finally:
+        holder.close()

@@ -4,6 +4,7 @@
 
 import argparse
 import os
+import re
 import sys
 import time
 
@@ -26,12 +27,39 @@ START_POSES = {'arena': (1.55, -0.55, 0.0)}
 (worlds/arena.sdf has a pillar at (1, 0)); (0, 0, 0) in any other world."""
 
 
-def _bringup(rtf, robots, log_path, viewer_port=8080, world='empty'):
+class _StackLog:
     """
-    Start the ``sim`` or ``fleet`` stack, output in ``log_path``; return (orch, log, url).
+    The stack's output stream: lines go to the log file; the viewer's URL line is printed.
 
-    The viewer runs on ``viewer_port`` when the stack has one (``url`` is then its page,
-    otherwise None); ``viewer_port`` 0 leaves it out. ``world`` is the stack's ``world``.
+    The viewer takes port 8080 or the next free one (a second main job beside the first), so
+    the URL to open is the one its node prints.
+    """
+
+    def __init__(self, log):
+        self.log = log
+        self.url = None
+
+    def write(self, text):
+        self.log.write(text)
+        found = None if self.url else re.search(r'viewer: open (http://\S+) in a browser', text)
+        if found:
+            self.url = found.group(1)
+            print(f'[drive_square] watch it drive: open {self.url} in a browser', flush=True)
+
+    def flush(self):
+        self.log.flush()
+
+    def close(self):
+        self.log.close()
+
+
+def _bringup(rtf, robots, log_path, viewer_port=None, world='empty'):
+    """
+    Start the ``sim`` or ``fleet`` stack, output in ``log_path``; return (orch, log).
+
+    The viewer runs on ``viewer_port`` when given, else on 8080 or the next free port; its
+    URL is printed once its node prints it; ``viewer_port`` 0 leaves it out. ``world`` is the
+    stack's ``world``.
     """
     from amr_description.launch import stacks
     from amr_description.launch.orchestrator import Orchestrator
@@ -45,17 +73,15 @@ def _bringup(rtf, robots, log_path, viewer_port=8080, world='empty'):
         x, y, yaw = START_POSES.get(world, (0.0, 0.0, 0.0))
         argv += [f'x:={x!r}', f'y:={y!r}', f'yaw:={yaw!r}']
     declared = {d.name for d in stacks.STACKS[name][1]}
-    url = None
     if 'viewer' in declared:
-        if viewer_port and 'viewer_port' in declared:
-            argv.append(f'viewer_port:={viewer_port}')
-            url = f'http://127.0.0.1:{viewer_port}/'
-        else:
+        if viewer_port == 0:
             argv.append('viewer:=false')
-    log = open(log_path, 'w')
+        elif viewer_port is not None:
+            argv.append(f'viewer_port:={viewer_port}')
+    log = _StackLog(open(log_path, 'w'))
     orchestrator = Orchestrator(stacks.describe(name, argv), stream=log)
     orchestrator.start()
-    return orchestrator, log, url
+    return orchestrator, log
 
 
 def _parse(argv):
@@ -87,9 +113,9 @@ def _parse(argv):
     parser.add_argument('--startup-timeout', type=float, default=180.0,
                         help='wall seconds for the stack to come up (180; a loaded machine is '
                         'slow)')
-    parser.add_argument('--viewer-port', type=int, default=8080,
-                        help='port of the viewer page that shows the robot live (8080; 0 = '
-                        'no viewer)')
+    parser.add_argument('--viewer-port', type=int, default=None,
+                        help='port of the viewer page that shows the robot live (default '
+                        '8080 or the next free port; 0 = no viewer)')
     parser.add_argument('--world', default=None,
                         help='SDF world of the stack (arena for one robot: the lidar map is '
                         'drawn in out/scans.png; empty for a fleet; empty gives the run '
@@ -132,10 +158,8 @@ def main(args=None):
             what = f'{opts.robots} robots' if opts.robots > 1 else 'the sim stack'
             print(f'[drive_square] starting {what} (rtf {opts.rtf:g}); its output goes '
                   f'to {log_path}', flush=True)
-            orchestrator, log, url = _bringup(opts.rtf, opts.robots, log_path,
-                                              opts.viewer_port, opts.world)
-            if url:
-                print(f'[drive_square] watch it drive: open {url} in a browser', flush=True)
+            orchestrator, log = _bringup(opts.rtf, opts.robots, log_path, opts.viewer_port,
+                                         opts.world)
         legs = square_course(opts.side, opts.speed, opts.turn_rate)
         node = shutdown.create(SquareDriver, legs, robot_namespaces(opts.robots))
         scans = ScanRecorder(node) if opts.robots == 1 else None
