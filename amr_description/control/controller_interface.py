@@ -16,6 +16,7 @@ the rclpy lifecycle callbacks ``on_configure(state)``/``on_activate``/``on_deact
 """
 
 from amr_description.ros.node import LifecycleNode
+from rcl_interfaces.msg import ParameterDescriptor
 from rclpy.lifecycle import TransitionCallbackReturn
 from rclpy.parameter import Parameter
 
@@ -41,11 +42,19 @@ class ControllerInterface(LifecycleNode):
     def __init__(self, name, namespace='', parameter_overrides=None, robot_description='',
                  update_rate=100, **node_kwargs):
         """Create the node and call :meth:`on_init` (see the class docstring)."""
+        own = list(parameter_overrides or [])
         super().__init__(
-            name, namespace=namespace, parameter_overrides=list(parameter_overrides or []),
+            name, namespace=namespace, parameter_overrides=own,
             allow_undeclared_parameters=True,
-            automatically_declare_parameters_from_overrides=True,
+            automatically_declare_parameters_from_overrides=False,
             enable_communication_interface=False, **node_kwargs)
+        # declared from the controller's own parameters (its YAML, as the manager gives
+        # them), not from every override of the process: a '/**' parameter file meant for
+        # the simulator hosting the manager (headless, real_time_factor, ...) must not show
+        # up in the controller's parameters; a global override of a parameter the controller
+        # declares still applies to it
+        self.declare_parameters('', [(p.name, p.value, ParameterDescriptor()) for p in own
+                                     if not self.has_parameter(p.name)])
         self.robot_description = robot_description or ''
         # the parsed robot_description (RobotDescription) when the manager has one, else None
         self.description = None

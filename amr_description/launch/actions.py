@@ -207,19 +207,38 @@ def find_executable(package, executable):
     return path
 
 
-def write_params_file(params, directory=None):
+def params_key(node_name, namespace):
+    """
+    Return the YAML key of a node's parameter dict, as ``launch_ros`` Node writes it.
+
+    ``launch_ros``' ``_create_params_file_from_dict`` keys the dict with the node's full name
+    when both name and namespace are given (``is_node_name_fully_specified``), so that only
+    that node of the process takes the parameters (a process may hold more nodes: the
+    simulator's controller manager and controllers); otherwise with ``/**`` (every node).
+
+    :param node_name: node name or None.
+    :param namespace: namespace (leading ``/``) or None.
+    :returns: e.g. ``/mujoco_sim``, ``/r1/mujoco_sim`` or ``/**``.
+    """
+    if node_name is None or namespace is None:
+        return '/**'
+    return ('' if namespace in ('', '/') else namespace.rstrip('/')) + '/' + node_name
+
+
+def write_params_file(params, directory=None, key='/**'):
     """
     Write a parameter dict to a temporary YAML file as ``launch_ros`` does.
 
-    The file holds ``{'/**': {'ros__parameters': params}}`` so it applies to any node name.
+    The file holds ``{key: {'ros__parameters': params}}`` (:func:`params_key`).
 
     :param params: dict parameter name -> value (bool, int, float, str or lists of those).
     :param directory: where to create the file (default: the system temp directory).
+    :param key: the node name the parameters are for, ``/**`` for any node.
     :returns: the file path (prefix ``launch_params_``).
     """
     with tempfile.NamedTemporaryFile(mode='w', prefix='launch_params_', dir=directory,
                                      delete=False) as f:
-        yaml.safe_dump({'/**': {'ros__parameters': dict(params)}}, f, default_flow_style=False)
+        yaml.safe_dump({key: {'ros__parameters': dict(params)}}, f, default_flow_style=False)
         return f.name
 
 
@@ -245,8 +264,8 @@ def _ros_args(node_name, namespace, parameters, remappings, params_dir, temp_fil
     """
     Return ``--ros-args`` and the node's remappings and parameter files (launch_ros order).
 
-    Parameter dicts are written with :func:`write_params_file`; their paths are appended to
-    ``temp_files``.
+    Parameter dicts are written with :func:`write_params_file` under :func:`params_key`; their
+    paths are appended to ``temp_files``.
     """
     args = ['--ros-args']
     if node_name is not None:
@@ -255,7 +274,7 @@ def _ros_args(node_name, namespace, parameters, remappings, params_dir, temp_fil
         args += ['-r', f'__ns:={namespace}']
     for params in parameters:
         if isinstance(params, dict):
-            file_path = write_params_file(params, params_dir)
+            file_path = write_params_file(params, params_dir, params_key(node_name, namespace))
             temp_files.append(file_path)
         else:
             file_path = os.fspath(params)

@@ -12,6 +12,7 @@ stops it; held ``j`` turns it counter-clockwise.
 
 import math
 import os
+import subprocess
 import time
 
 from test_drive import DrivePeer  # noqa: I100 - the drive tests' DDS peer
@@ -40,6 +41,13 @@ def test_teleop_drives_simulated_robot(ros_env, procs, exe):
     peer = DrivePeer(int(ros_env['ROS_DOMAIN_ID']))
     try:
         assert peer.spin_until(lambda: peer.odom and peer.ctrl_odom, 15.0), stack.output[-2000:]
+        # each node its own parameters: the simulator's (passed to its process as a '/**'
+        # file, as launch_ros writes a dict) are not the controller's, which runs there too
+        listed = subprocess.run([exe('ros2'), 'param', 'list', '/diff_drive_controller'],
+                                env=ros_env, capture_output=True, text=True, timeout=60).stdout
+        names = listed.split()
+        assert 'wheel_separation' in names and 'use_sim_time' in names, listed
+        assert 'headless' not in names and 'real_time_factor' not in names, listed
         teleop, master = _start_teleop(procs, exe, ros_env, extra=('-p', 'use_sim_time:=true'))
         assert teleop.wait_for_output('currently:', 15.0), teleop.output
         # hold 'i' until the robot moves (the controller has discovered the teleop), then 2 s

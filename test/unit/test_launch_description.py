@@ -57,6 +57,18 @@ def test_parameter_dicts_and_files(tmp_path):
     assert node.temp_files() == [files[0], files[2]]
 
 
+@pytest.mark.parametrize('name, namespace, key', [
+    ('n', None, '/**'), (None, 'r1', '/**'), ('n', '/', '/n'), ('n', 'r1', '/r1/n'),
+    ('n', '/a/b', '/a/b/n')])
+def test_parameter_dicts_are_keyed_by_the_full_node_name_only_when_fully_specified(
+        tmp_path, name, namespace, key):
+    # as launch_ros' Node: name and namespace given -> the node's name, else every node
+    cmd = _node(name=name, namespace=namespace, parameters=[{'rate': 2}]).build_cmd(
+        params_dir=str(tmp_path))
+    with open(cmd[cmd.index('--params-file') + 1]) as f:
+        assert yaml.safe_load(f) == {key: {'ros__parameters': {'rate': 2}}}
+
+
 def test_params_before_remappings():
     cmd = _node(parameters=['/p.yaml'], remappings=[('a', 'b')]).build_cmd()
     assert cmd[-4:] == ['--params-file', '/p.yaml', '-r', 'a:=b']
