@@ -19,6 +19,9 @@ import time
 
 STRICT = 2
 BEST_EFFORT = 1
+DISCOVERY_GRACE = 3.0
+"""Seconds a new node waits silently for a service to be discovered before saying it waits
+(discovery measured here: 0.3 to 2.7 s on a loaded 2-core machine)."""
 
 
 class bcolors:  # noqa: N801 - the upstream name, imported by the CLI verbs
@@ -113,6 +116,10 @@ def service_caller(node, service_name, service_type, request, service_timeout=0.
     name = resolve_controller_manager(node, service_name)
     client = node.create_client(service_type, name)
     try:
+        # a new node needs discovery before any service is ready (ros2cli's direct node
+        # spins for its spin time first): no "waiting" line for a service that exists
+        _spin_until(node, client.service_is_ready,
+                    min(DISCOVERY_GRACE, service_timeout) if service_timeout else DISCOVERY_GRACE)
         while not client.service_is_ready():
             node.get_logger().info(f'waiting for service {name} to become available...')
             wait = service_timeout if service_timeout else 10.0

@@ -79,7 +79,9 @@ def main(args=None):
         else:
             urdf_xml = _description_from_topic(argv, options.timeout)
             if urdf_xml is None:
-                raise ValueError(f'no message on /robot_description within {options.timeout:g} s')
+                raise ValueError(f'no message on /robot_description within {options.timeout:g} s '
+                                 '(it reads a running stack, e.g. ros2 launch amr_description '
+                                 'display; or give a file with --urdf PATH)')
         from amr_description.core.urdf_model import parse_urdf
         from amr_description.sim.render import render_urdf
         from amr_description.sim.render import save_png

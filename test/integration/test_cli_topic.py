@@ -43,6 +43,22 @@ def test_echo_of_talker(ros_env, procs, exe):
     assert 'Traceback' not in echo.output
 
 
+def test_echo_of_a_published_topic_does_not_warn_it_is_unpublished(ros_env, procs, exe):
+    # the warning waits for discovery to settle, not a fixed second (a false warning while
+    # /tf was being published, seen beside the sim stack)
+    talker = procs.start([exe('talker')], ros_env)
+    assert talker.wait_for_output('Publishing', 60.0), talker.output
+    echo = procs.start([exe('ros2'), 'topic', 'echo', '--once', '/topic'], ros_env)
+    assert echo.wait(90.0) == 0, echo.output
+    assert 'does not appear to be published yet' not in echo.output, echo.output
+    # nobody publishes: the warning comes, once
+    absent = procs.start([exe('ros2'), 'topic', 'echo', '/nobody_publishes'], ros_env)
+    assert absent.wait_for_output('WARNING: topic [/nobody_publishes] does not appear to be '
+                                  'published yet', 60.0), absent.output
+    assert absent.interrupt() == 0
+    assert absent.output.count('does not appear') == 1, absent.output
+
+
 def test_header_auto_is_stamped(ros_env, procs, exe):
     # The publisher sees the subscription matched before the subscription has matched the
     # publisher; a message sent in between is lost for a volatile reader. With a reliable,

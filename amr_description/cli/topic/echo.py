@@ -71,6 +71,12 @@ def format_value(value, *, csv=False, truncate_length=None, no_arr=False, no_str
                            no_str=no_str, flow_style=flow_style) + '---\n'
 
 
+WARN_SETTLE = 1.0
+"""Seconds the discovered graph stays unchanged before "does not appear to be published"."""
+WARN_LATEST = 5.0
+"""Seconds after which that warning is printed anyway."""
+
+
 def _echo(args):
     fields = [f for f in args.field.split('.') if f] if args.field else []
     truncate = None if args.full_length else args.truncate_length
@@ -79,8 +85,9 @@ def _echo(args):
     with cli_node(default_node_name()) as node:
         topic = expand(node, args.topic_name)
         type_name = args.message_type
-        start = time.monotonic()
+        start = changed = time.monotonic()
         warned = False
+        graph = None
         while type_name is None:
             types = topic_types(node, topic)
             if len(types) > 1:
@@ -90,7 +97,17 @@ def _echo(args):
                 type_name = types[0]
                 msg_class = message_class(type_name)
                 break
-            if not warned and time.monotonic() - start > 1.0:
+            # warn once discovery looks done (the graph unchanged for a while), not after a
+            # fixed time: on a loaded machine a busy graph takes seconds to be discovered
+            now = time.monotonic()
+            signature = (len(node.get_node_names_and_namespaces()),
+                         len(node.get_topic_names_and_types()))
+            if signature != graph:
+                graph, changed = signature, now
+            # (another node seen, and nothing new since WARN_SETTLE s)
+            discovered = (graph[0] > 1 and now - changed > WARN_SETTLE) or \
+                now - start > WARN_LATEST
+            if not warned and now - start > 1.0 and discovered:
                 print(f'WARNING: topic [{topic}] does not appear to be published yet',
                       file=sys.stderr)
                 warned = True
