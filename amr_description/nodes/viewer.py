@@ -39,7 +39,7 @@ What RViz's displays of the tutorial show, on a web page served by this node:
   page closed, focus lost, connection dropped) is released within 0.25 s (buttons) or
   0.6 s (keys, which repeat only after the keyboard's auto-repeat delay). Speed (m/s) and
   turn rate (rad/s) are set on the page (``speed`` 0.5, ``turn`` 1.0 to start, as
-  teleop_twist_keyboard).
+  teleop_twist_keyboard). Shown only while something subscribes to ``cmd_vel_topic``.
 
 Each display is a module of :mod:`amr_description.web.displays` (RViz's display plugins);
 this node declares the parameters, serves the page and composes them.
@@ -132,7 +132,7 @@ class Viewer(Node):
             float(value('turn').value))
         # drawn in this order in every update (the status last: it reports what others saw)
         self.displays = [self.world, self.robot_model, self.tf_axes, self.trails, *sensors,
-                         self.status]
+                         self.teleop_pad, self.status]
         self._build_page()
         self.create_timer(1.0 / update_rate, self._update_scene,
                           clock=Clock(clock_type=ClockType.STEADY_TIME))

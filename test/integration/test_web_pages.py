@@ -330,3 +330,26 @@ def test_a_page_without_a_port_takes_the_next_free_one_and_a_launch_names_its_ar
         assert 'Traceback' not in stack.output + viewer.output
     finally:
         holder.close()
+
+
+def test_the_teleop_pad_is_shown_only_while_its_cmd_vel_topic_is_heard(ros_env, procs, exe):
+    port = free_port()
+    viewer = procs.start([exe('viewer'), '--ros-args', '-p', f'port:={port}'], ros_env)
+    assert viewer.wait_for_output('in a browser', 60.0), viewer.output
+    peer = OdomPeer(int(ros_env['ROS_DOMAIN_ID']))
+    try:
+        with open_page(f'http://127.0.0.1:{port}/') as page:
+            assert page.wait_for_text('Fixed Frame', 120.0), page.page.inner_text('body')
+            forward = page.page.get_by_role('button', name='Forward', exact=True)
+            assert forward.count() == 0 or not forward.is_visible()  # nothing would move
+            from geometry_msgs.msg import TwistStamped
+            peer.node.create_subscription(TwistStamped, '/diff_drive_controller/cmd_vel',
+                                          lambda msg: None, 10)
+            deadline = time.monotonic() + 60.0
+            while time.monotonic() < deadline and not (forward.count() and
+                                                       forward.is_visible()):
+                peer.spin_until(lambda: False, 0.2)
+            assert forward.count() and forward.is_visible(), page.page.inner_text('body')
+    finally:
+        peer.close()
+    assert viewer.interrupt(timeout=30.0) == 0, viewer.output

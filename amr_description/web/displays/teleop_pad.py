@@ -10,7 +10,9 @@ is not available to page hotkeys), to publish ``geometry_msgs/TwistStamped`` on
 (:mod:`amr_description.core.teleop_pad`): a control that the page stops refreshing (released,
 page closed, focus lost, connection dropped) is released within :data:`BUTTON_HOLD` s
 (buttons) or :data:`KEY_HOLD` s (keys, which repeat only after the keyboard's auto-repeat
-delay). Speed (m/s) and turn rate (rad/s) are set on the page.
+delay). Speed (m/s) and turn rate (rad/s) are set on the page. The pad is shown only while
+something subscribes to ``cmd_vel_topic`` (a controller or a simulated robot that would move;
+the display stack has none), checked every :data:`VISIBILITY_PERIOD` s.
 """
 
 import threading
@@ -26,6 +28,8 @@ RATE = 20.0
 """Hz of the commands while a control is held."""
 BUTTON_HOLD = 0.25
 """Seconds a button press lasts unless the page refreshes it."""
+VISIBILITY_PERIOD = 1.0
+"""Seconds (wall) between two looks at the subscribers of ``cmd_vel_topic``."""
 KEY_HOLD = 0.6
 """Seconds a key press lasts unless the page refreshes it."""
 
@@ -51,7 +55,9 @@ class TeleopPadDisplay(Display):
 
     def build(self, gui):
         """Add the ``Teleop`` folder and the hotkeys; a disconnected page releases all."""
-        with gui.add_folder('Teleop'):
+        self._folder = gui.add_folder('Teleop', visible=self._heard())
+        self._next_look = time.monotonic() + VISIBILITY_PERIOD
+        with self._folder:
             self._speed = gui.add_slider('speed (m/s)', min=0.0, max=2.0, step=0.01,
                                          initial_value=self._initial[0])
             self._turn = gui.add_slider('turn (rad/s)', min=0.0, max=4.0, step=0.01,
@@ -73,6 +79,19 @@ class TeleopPadDisplay(Display):
         self.server.on_client_disconnect(lambda _: self._release_all())
         self.node.create_timer(1.0 / RATE, self._tick,
                                clock=Clock(clock_type=ClockType.STEADY_TIME))
+
+    def _heard(self):
+        return self._publisher.get_subscription_count() > 0
+
+    def draw(self, context):
+        """Show the pad while ``cmd_vel_topic`` has a subscriber, hide it otherwise."""
+        now = time.monotonic()
+        if now < self._next_look:
+            return
+        self._next_look = now + VISIBILITY_PERIOD
+        heard = self._heard()
+        if self._folder.visible != heard:
+            self._folder.visible = heard
 
     def _callback(self, control, hold):
         def press(_):
