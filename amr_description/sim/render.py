@@ -22,7 +22,7 @@ def _ensure_gl():
 
 
 def build_scene(urdf_xml, width=640, height=480, pose=(0.0, 0.0, 0.0, 0.0, 0.0, 0.0),
-                path=()):
+                path=(), others=()):
     """
     Return a compiled ``(model, data)`` of the robot on a ground plane with a light.
 
@@ -31,6 +31,7 @@ def build_scene(urdf_xml, width=640, height=480, pose=(0.0, 0.0, 0.0, 0.0, 0.0, 
     :param height: image height, pixels.
     :param pose: root-link pose in the world, ``(x, y, z, roll, pitch, yaw)`` in m and rad.
     :param path: planar points ``(x, y)`` in m drawn as small green markers on the ground.
+    :param others: ``(pose, path)`` pairs of more copies of the robot (a fleet), as above.
     :returns: ``(mujoco.MjModel, mujoco.MjData)`` after ``mj_forward``.
     :raises ValueError: one line when the URDF cannot be converted.
     """
@@ -46,12 +47,17 @@ def build_scene(urdf_xml, width=640, height=480, pose=(0.0, 0.0, 0.0, 0.0, 0.0, 
         name='grid', type=mujoco.mjtTexture.mjTEXTURE_2D,
         builtin=mujoco.mjtBuiltin.mjBUILTIN_CHECKER, rgb1=[0.82, 0.82, 0.8],
         rgb2=[0.7, 0.7, 0.68], width=256, height=256)
-    material = spec.add_material(name='ground', texrepeat=[8, 8], reflectance=0.05)
+    material = spec.add_material(name='ground', texrepeat=[32, 32], reflectance=0.05)
     material.textures[mujoco.mjtTextureRole.mjTEXROLE_RGB] = texture.name
     spec.worldbody.add_geom(
-        name='ground', type=mujoco.mjtGeom.mjGEOM_PLANE, size=[5.0, 5.0, 0.05],
+        name='ground', type=mujoco.mjtGeom.mjGEOM_PLANE, size=[20.0, 20.0, 0.05],
         material='ground', contype=0, conaffinity=0)
-    for x, y in path:
+    points = list(path)
+    for index, (other_pose, other_path) in enumerate(others, start=1):
+        robot = urdf_to_spec(urdf_xml, name=f'render{index}', pose=other_pose, free=False)
+        spec.attach(robot, prefix=f'robot{index}/', frame=spec.worldbody.add_frame())
+        points += list(other_path)
+    for x, y in points:
         spec.worldbody.add_geom(
             type=mujoco.mjtGeom.mjGEOM_SPHERE, size=[0.012, 0, 0], pos=[x, y, 0.012],
             rgba=[0.1, 0.7, 0.2, 1.0], contype=0, conaffinity=0)
@@ -127,7 +133,7 @@ def render_urdf(urdf_xml, width=640, height=480, frames=False):
         renderer.close()
 
 
-def render_scene(urdf_xml, pose, path=(), width=800, height=600, markers=150):
+def render_scene(urdf_xml, pose, path=(), width=800, height=600, markers=150, others=()):
     """
     Render the robot at a planar pose on the ground, with the path it drove.
 
@@ -137,17 +143,24 @@ def render_scene(urdf_xml, pose, path=(), width=800, height=600, markers=150):
         ones are drawn.
     :param width: pixels (> 0).
     :param height: pixels (> 0).
-    :param markers: largest number of path markers, int > 0.
+    :param markers: largest number of path markers per robot, int > 0.
+    :param others: ``(pose, path)`` of more robots (a fleet), as ``pose`` and ``path``.
     :returns: numpy array of shape (height, width, 3), dtype uint8, seen from above at 55 deg
         so that the whole path and the robot are in view.
     :raises ValueError: when the URDF cannot be converted.
     """
-    points = list(path)
-    if len(points) > markers:
-        step = len(points) / float(markers)
-        points = [points[int(i * step)] for i in range(markers)] + [points[-1]]
-    model, data = build_scene(urdf_xml, width, height,
-                              pose=(pose[0], pose[1], 0.0, 0.0, 0.0, pose[2]), path=points)
+    def thin(path):
+        points = list(path)
+        if len(points) > markers:
+            step = len(points) / float(markers)
+            points = [points[int(i * step)] for i in range(markers)] + [points[-1]]
+        return points
+
+    def pose6(pose):
+        return (pose[0], pose[1], 0.0, 0.0, 0.0, pose[2])
+
+    model, data = build_scene(urdf_xml, width, height, pose=pose6(pose), path=thin(path),
+                              others=[(pose6(p), thin(q)) for p, q in others])
     import mujoco
 
     renderer = mujoco.Renderer(model, height=int(height), width=int(width))

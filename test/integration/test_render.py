@@ -79,3 +79,18 @@ def test_render_pure(frames):
     assert ((b > 90) & (r < 50) & (g < 50)).mean() > 0.02  # the blue chassis is in view
     red = ((r > 128) & (g < 50) & (b < 50)).sum()  # x axes of the body frames
     assert (red > 5) if frames else (red == 0), red
+
+
+def test_a_fleet_scene_draws_every_robot_where_it_stands():
+    # the main job's out/scene.png of a fleet run: one chassis per robot, side by side
+    import math
+    from amr_description.launch.stacks import read_urdf
+    from amr_description.sim.render import render_scene
+    urdf = read_urdf(os.path.join(ROOT, 'urdf', 'amr.urdf'))
+    poses = [(2.0 * i, 0.0, math.pi / 2) for i in range(3)]
+    image = render_scene(urdf, poses[0], [(0.0, -0.5)],
+                         others=[(pose, [(pose[0], -0.5)]) for pose in poses[1:]])
+    r, g, b = (image[..., k].astype(int) for k in range(3))
+    columns = np.flatnonzero(((b > 90) & (r < 50) & (g < 50)).any(axis=0))
+    groups = np.split(columns, np.flatnonzero(np.diff(columns) > 5) + 1)
+    assert len(groups) == 3, [(int(c[0]), int(c[-1])) for c in groups]
