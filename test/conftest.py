@@ -56,8 +56,11 @@ def release_domain_id(domain):
     """
     Give back a domain ID claimed by :func:`next_domain_id` (no-op when not held).
 
+    A ``ros2`` daemon a graph verb started in the domain is stopped first.
+
     :param domain: the domain ID, an int.
     """
+    stop_daemon(domain)
     for entry in list(_DOMAIN_LOCKS):
         if entry[0] == domain:
             _DOMAIN_LOCKS.remove(entry)
@@ -102,6 +105,30 @@ def ros_env():
     env.pop('ROS_LOCALHOST_ONLY', None)
     yield env
     release_domain_id(domain)
+
+
+def stop_daemon(domain, timeout=10.0):
+    """
+    Stop the ``ros2`` daemon of ``domain`` if one runs (a graph verb started it).
+
+    The daemon outlives the command that started it, as ros2cli's; a test's must not outlive
+    the test. Asked over its XML-RPC port (ros2cli's 11511 + domain), then waited for.
+    """
+    import xmlrpc.client
+    proxy = xmlrpc.client.ServerProxy(f'http://127.0.0.1:{11511 + domain}/')
+    try:
+        pid = int(proxy.pid())
+        proxy.shutdown()
+    except (OSError, xmlrpc.client.Error):
+        return
+    deadline = time.monotonic() + timeout
+    while time.monotonic() < deadline:
+        try:
+            os.kill(pid, 0)
+        except ProcessLookupError:
+            return
+        time.sleep(0.05)
+    os.kill(pid, signal.SIGKILL)
 
 
 def run_until(argv, env, check, timeout=90.0, **kwargs):

@@ -49,6 +49,8 @@ def wait_for_graph(node, query, settle=0.4, minimum=0.3, maximum=3.0, ready=None
     """
     Spin ``node`` until the answer of ``query(node)`` has settled, then return it.
 
+    A node that has followed the graph all along (the daemon's, ``settled``) answers at once.
+
     Discovery over DDS takes a while (measured here: 0.3 to 2.7 s before a new participant
     sees an existing one); ros2cli's direct node also spins before asking the graph. This
     polls every 50 ms and returns once the answer is ``ready`` and has not changed for
@@ -62,6 +64,8 @@ def wait_for_graph(node, query, settle=0.4, minimum=0.3, maximum=3.0, ready=None
     :param ready: optional predicate on the answer; the settle clock starts only when true.
     :returns: the last value of ``query(node)``.
     """
+    if getattr(node, 'settled', False):
+        return query(node)  # the daemon's graph (amr_description.cli.daemon)
     start = last_change = time.monotonic()
     value = query(node)
     while True:
@@ -78,15 +82,20 @@ def wait_for_graph(node, query, settle=0.4, minimum=0.3, maximum=3.0, ready=None
 
 def add_spin_time_argument(parser, default=3.0):
     """
-    Add ``-s/--spin-time``, the seconds a verb listens to discovery before answering.
+    Add ``-s/--spin-time`` and ``--no-daemon``, as ros2cli's ``NodeStrategy``.
+
+    The spin time is what a verb listens to discovery before answering from its own node;
+    ``--no-daemon`` never asks the daemon (:mod:`amr_description.cli.daemon`).
 
     :param parser: the verb's argparse parser.
     :param default: default seconds.
     """
     parser.add_argument(
         '-s', '--spin-time', type=float, default=default, metavar='SECONDS',
-        help='Spin time in seconds to wait for discovery (there is no daemon; '
-             f'default: {default})')
+        help='Spin time in seconds to wait for discovery (only applies when not using an '
+             f'already running daemon; default: {default})')
+    parser.add_argument('--no-daemon', action='store_true',
+                        help='Do not spawn nor use an already running daemon')
 
 
 class _Interrupts:

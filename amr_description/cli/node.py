@@ -20,6 +20,7 @@ from amr_description.cli.common import CliError
 from amr_description.cli.common import default_node_name
 from amr_description.cli.common import is_hidden_name
 from amr_description.cli.common import wait_for_graph
+from amr_description.cli.daemon import graph_node
 
 
 def fully_qualified(name, namespace):
@@ -34,8 +35,10 @@ def fully_qualified(name, namespace):
 
 
 def _list(args):
-    with cli_node(default_node_name()) as node:
-        own = fully_qualified(node.get_name(), node.get_namespace())
+    with graph_node(args, default_node_name()) as node:
+        # our own node is left out; the daemon's is listed with --all, as upstream's
+        own = None if getattr(node, 'settled', False) else \
+            fully_qualified(node.get_name(), node.get_namespace())
         names = wait_for_graph(
             node, lambda n: sorted(fully_qualified(*pair)
                                    for pair in n.get_node_names_and_namespaces()),

@@ -17,6 +17,7 @@ from amr_description.cli.common import fail
 from amr_description.cli.common import is_hidden_name
 from amr_description.cli.common import spin_once
 from amr_description.cli.common import wait_for_graph
+from amr_description.cli.daemon import graph_node
 
 
 def _service_types(node, name):
@@ -31,7 +32,7 @@ def _full_name(name):
 
 
 def _list(args):
-    with cli_node(default_node_name()) as node:
+    with graph_node(args, default_node_name()) as node:
         services = wait_for_graph(node, lambda n: n.get_service_names_and_types(),
                                   settle=args.spin_time, minimum=args.spin_time,
                                   maximum=args.spin_time)
@@ -47,7 +48,7 @@ def _list(args):
 
 
 def _find(args):
-    with cli_node(default_node_name()) as node:
+    with graph_node(args, default_node_name()) as node:
         services = wait_for_graph(node, lambda n: n.get_service_names_and_types(),
                                   settle=args.spin_time, minimum=args.spin_time,
                                   maximum=args.spin_time)
@@ -63,7 +64,7 @@ def _find(args):
 
 def _type(args):
     name = _full_name(args.service_name)
-    with cli_node(default_node_name()) as node:
+    with graph_node(args, default_node_name()) as node:
         types = wait_for_graph(node, lambda n: _service_types(n, name), settle=0.0,
                                minimum=0.0, maximum=args.spin_time, ready=bool)
     if not types:

@@ -14,13 +14,14 @@ from amr_description.cli.common import default_node_name
 from amr_description.cli.common import fail
 from amr_description.cli.common import is_hidden_name
 from amr_description.cli.common import wait_for_graph
+from amr_description.cli.daemon import graph_node
 from amr_description.cli.topic.api import expand
 from amr_description.cli.topic.api import topic_types
 
 
 def _graph_topics(args):
     """Return ``[(name, types, publishers, subscribers)]`` after discovery settled."""
-    with cli_node(default_node_name()) as node:
+    with graph_node(args, default_node_name()) as node:
         topics = wait_for_graph(node, lambda n: n.get_topic_names_and_types(),
                                 settle=args.spin_time, minimum=args.spin_time,
                                 maximum=args.spin_time)
@@ -72,7 +73,7 @@ def _find(args):
 
 
 def _type(args):
-    with cli_node(default_node_name()) as node:
+    with graph_node(args, default_node_name()) as node:
         topic = expand(node, args.topic_name)
         types = wait_for_graph(node, lambda n: topic_types(n, topic), settle=0.0,
                                minimum=0.0, maximum=args.spin_time, ready=bool)

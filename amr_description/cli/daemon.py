@@ -1,0 +1,264 @@
+# Copyright 2026 The amr_description Authors
+# Licensed under the Apache License, Version 2.0
+"""
+``ros2 daemon start|stop|status`` and the daemon the graph verbs ask, as ros2cli's.
+
+The daemon is a background process per ``ROS_DOMAIN_ID`` holding one hidden node
+(``_ros2cli_daemon_<domain>_<hex>``) that follows the ROS graph, and an XML-RPC server on
+``127.0.0.1:11511 + ROS_DOMAIN_ID`` (ros2cli's port) that answers graph questions from it. A
+graph verb (``topic list|find|type``, ``service list|find|type``, ``node list``) asks a running
+daemon and answers at once, without a node of its own waiting for discovery; when none runs it
+starts one in the background (a new session, detached from the terminal) and answers this
+time from its own node, as ros2cli's ``NodeStrategy`` does; so does a verb that finds a daemon
+younger than its ``--spin-time`` (it may not have discovered the graph yet); ``--no-daemon``
+always uses its own node. The daemon ends after :data:`IDLE_TIMEOUT` s without a request
+(ros2cli's two hours) or on ``ros2 daemon stop``. A daemon started with other discovery settings
+(``ROS_AUTOMATIC_DISCOVERY_RANGE``, ``ROS_STATIC_PEERS``, the RMW) than the caller's is
+stale: the caller stops it and starts one with its own.
+
+Output lines of the verbs are ros2cli's: ``The daemon is running`` / ``The daemon is not
+running``, ``The daemon has been started`` / ``The daemon is already running``, ``The daemon
+has been stopped``.
+"""
+
+import contextlib
+import os
+import subprocess
+import sys
+import time
+
+BASE_PORT = 11511
+"""ros2cli's daemon port for ROS_DOMAIN_ID 0; domain N listens on ``BASE_PORT + N``."""
+IDLE_TIMEOUT = 2 * 60 * 60
+"""Seconds without a request after which the daemon ends (ros2cli's default)."""
+START_TIMEOUT = 10.0
+"""Seconds ``ros2 daemon start`` waits for a new daemon to answer."""
+SETTINGS = ('ROS_DOMAIN_ID', 'ROS_AUTOMATIC_DISCOVERY_RANGE', 'ROS_STATIC_PEERS',
+            'RMW_IMPLEMENTATION')
+"""Environment a daemon's answers depend on; a daemon with other values is stale."""
+
+
+def domain_id():
+    """Return the ``ROS_DOMAIN_ID`` of this process (0 when unset or empty)."""
+    return int(os.environ.get('ROS_DOMAIN_ID') or 0)
+
+
+def daemon_port(domain=None):
+    """Return the daemon's TCP port of ``domain`` (default: this process's domain)."""
+    return BASE_PORT + (domain_id() if domain is None else int(domain))
+
+
+def settings():
+    """Return this process's values of :data:`SETTINGS` (a dict of str)."""
+    values = {name: os.environ.get(name, '') for name in SETTINGS}
+    values['ROS_DOMAIN_ID'] = str(domain_id())
+    return values
+
+
+def _proxy(timeout=2.0):
+    import xmlrpc.client
+
+    class _Transport(xmlrpc.client.Transport):
+
+        def make_connection(self, host):
+            connection = super().make_connection(host)
+            connection.timeout = timeout
+            return connection
+
+    return xmlrpc.client.ServerProxy(f'http://127.0.0.1:{daemon_port()}/',
+                                     transport=_Transport(), allow_none=True)
+
+
+def running_daemon():
+    """
+    Return an XML-RPC proxy of this domain's daemon when one answers, else None.
+
+    :returns: ``xmlrpc.client.ServerProxy`` or None (nothing listens, or not a daemon).
+    """
+    import xmlrpc.client
+    proxy = _proxy()
+    try:
+        proxy.settings()
+    except (OSError, xmlrpc.client.Error):
+        return None
+    return proxy
+
+
+def spawn_daemon():
+    """Start this domain's daemon in the background (a new session); do not wait for it."""
+    subprocess.Popen(  # noqa: S603 - our own interpreter and module
+        [sys.executable, '-m', 'amr_description.cli.daemon_server', '--timeout',
+         str(IDLE_TIMEOUT)],
+        stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
+        start_new_session=True, close_fds=True)
+
+
+def _alive(pid):
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except PermissionError:
+        return True
+    return True
+
+
+def stop_daemon(proxy):
+    """Ask ``proxy``'s daemon to end; return True once its process is gone."""
+    import xmlrpc.client
+    pid = None
+    with contextlib.suppress(OSError, xmlrpc.client.Error):
+        pid = int(proxy.pid())
+        proxy.shutdown()
+    deadline = time.monotonic() + START_TIMEOUT
+    while time.monotonic() < deadline:
+        if running_daemon() is None and (pid is None or not _alive(pid)):
+            return True
+        time.sleep(0.05)
+    return False
+
+
+class DaemonNode:
+    """
+    The graph questions of an rclpy node, answered by the daemon (ros2cli's ``DaemonNode``).
+
+    Only what the graph verbs ask: names, namespaces, topic and service names and types,
+    publisher and subscriber counts. Its own name is the daemon's (a hidden name).
+
+    :param proxy: the daemon's XML-RPC proxy.
+    """
+
+    settled = True  # the daemon has followed the graph for a while: no discovery wait
+
+    def __init__(self, proxy):
+        """Keep the proxy."""
+        self._proxy = proxy
+        self._name, self._namespace = proxy.get_name_and_namespace()
+
+    def get_name(self):
+        """Return the daemon node's name."""
+        return self._name
+
+    def get_namespace(self):
+        """Return the daemon node's namespace."""
+        return self._namespace
+
+    def get_fully_qualified_name(self):
+        """Return ``/namespace/name`` of the daemon node."""
+        return self._namespace.rstrip('/') + '/' + self._name
+
+    def get_node_names_and_namespaces(self):
+        """Return ``[(name, namespace)]`` of every node in the graph."""
+        return [tuple(pair) for pair in self._proxy.get_node_names_and_namespaces()]
+
+    def get_topic_names_and_types(self):
+        """Return ``[(topic, [types])]``."""
+        return [(name, list(types)) for name, types in self._proxy.get_topic_names_and_types()]
+
+    def get_service_names_and_types(self):
+        """Return ``[(service, [types])]``."""
+        return [(name, list(types))
+                for name, types in self._proxy.get_service_names_and_types()]
+
+    def count_publishers(self, topic):
+        """Return the number of publishers of ``topic``."""
+        return int(self._proxy.count_publishers(topic))
+
+    def count_subscribers(self, topic):
+        """Return the number of subscriptions of ``topic``."""
+        return int(self._proxy.count_subscribers(topic))
+
+
+def _usable_daemon(spin_time):
+    """
+    Return the proxy of a daemon to ask, or None (then start one when none runs).
+
+    :param spin_time: s a daemon must have run to have discovered the graph.
+    """
+    import xmlrpc.client
+    proxy = running_daemon()
+    if proxy is None:
+        spawn_daemon()
+        return None
+    try:
+        if proxy.settings() != settings():
+            stop_daemon(proxy)  # stale: started with other discovery settings
+            spawn_daemon()
+            return None
+        if proxy.uptime() < spin_time:
+            return None  # too young to have discovered the graph: our own node this time
+    except (OSError, xmlrpc.client.Error):
+        return None
+    return proxy
+
+
+@contextlib.contextmanager
+def graph_node(args, name):
+    """
+    Yield what answers a graph verb: the running daemon, or a node of this process.
+
+    :param args: the verb's arguments (``no_daemon``).
+    :param name: the node name when this process makes its own node.
+    :returns: a context manager yielding a :class:`DaemonNode` or an rclpy node.
+    """
+    from amr_description.cli.common import cli_node
+    if not getattr(args, 'no_daemon', False):
+        proxy = _usable_daemon(getattr(args, 'spin_time', 0.0))
+        if proxy is not None:
+            import xmlrpc.client
+            from amr_description.cli.common import CliError
+            try:
+                yield DaemonNode(proxy)
+            except (OSError, xmlrpc.client.Error) as exc:
+                raise CliError(f'the daemon stopped answering ({exc}): run the command '
+                               'again, or add --no-daemon') from None
+            return
+    with cli_node(name) as node:
+        yield node
+
+
+def _status(args):
+    print('The daemon is running' if running_daemon() is not None
+          else 'The daemon is not running')
+    return 0
+
+
+def _start(args):
+    if running_daemon() is not None:
+        print('The daemon is already running')
+        return 0
+    spawn_daemon()
+    deadline = time.monotonic() + START_TIMEOUT
+    while time.monotonic() < deadline:
+        if running_daemon() is not None:
+            print('The daemon has been started')
+            return 0
+        time.sleep(0.05)
+    from amr_description.cli.common import fail
+    return fail(f'The daemon did not answer within {START_TIMEOUT:g} s on port '
+                f'{daemon_port()}')
+
+
+def _stop(args):
+    proxy = running_daemon()
+    if proxy is None:
+        print('The daemon is not running')
+        return 0
+    if not stop_daemon(proxy):
+        from amr_description.cli.common import fail
+        return fail('The daemon did not stop')
+    print('The daemon has been stopped')
+    return 0
+
+
+def add_command(subparsers):
+    """Register ``ros2 daemon`` and its verbs."""
+    parser = subparsers.add_parser('daemon', help='Various daemon related sub-commands')
+    parser.set_defaults(_command_parser=parser)
+    verbs = parser.add_subparsers(title='Commands', dest='verb',
+                                  metavar='Call `ros2 daemon <command> -h` for more detailed '
+                                          'usage.')
+    for verb, func, text in (('start', _start, "Start the daemon if it isn't running"),
+                             ('status', _status, 'Output the status of the daemon'),
+                             ('stop', _stop, 'Stop the daemon if it is running')):
+        verbs.add_parser(verb, help=text).set_defaults(main=func)

@@ -1,0 +1,94 @@
+# Copyright 2026 The amr_description Authors
+# Licensed under the Apache License, Version 2.0
+"""
+``ros2 daemon`` and the graph verbs that use it, as ros2cli's (real processes, real DDS).
+
+A graph verb starts the daemon on first use and answers from it afterwards; ``--no-daemon``
+neither starts nor asks it; ``ros2 daemon start|status|stop`` print upstream's lines; a daemon
+started with other discovery settings is replaced by the next verb; no daemon outlives its
+test (conftest's ``release_domain_id``).
+"""
+
+import os
+import subprocess
+import time
+import xmlrpc.client
+
+from conftest import run_until
+
+
+def _ros2(exe, env, *argv, timeout=60):
+    return subprocess.run([exe('ros2'), *argv], env=env, capture_output=True, text=True,
+                          timeout=timeout)
+
+
+def _daemon_pid(env):
+    proxy = xmlrpc.client.ServerProxy(f'http://127.0.0.1:{11511 + int(env["ROS_DOMAIN_ID"])}/')
+    try:
+        return int(proxy.pid())
+    except (OSError, xmlrpc.client.Error):
+        return None
+
+
+def _wait_status(exe, env, text, timeout=30.0):
+    result = run_until([exe('ros2'), 'daemon', 'status'], env,
+                       lambda r: r.stdout.strip() == text, timeout=timeout)
+    return result.stdout.strip()
+
+
+def test_a_graph_verb_starts_the_daemon_and_then_answers_from_it(procs, exe, ros_env):
+    assert _ros2(exe, ros_env, 'daemon', 'status').stdout == 'The daemon is not running\n'
+    # --no-daemon: its own node, no daemon started
+    listed = _ros2(exe, ros_env, 'topic', 'list', '--no-daemon', '-s', '0.5')
+    assert listed.returncode == 0 and '/rosout' in listed.stdout, listed.stderr
+    assert _ros2(exe, ros_env, 'daemon', 'status').stdout == 'The daemon is not running\n'
+    # first use: answered by its own node, and the daemon is started in the background
+    first = _ros2(exe, ros_env, 'topic', 'list')
+    assert first.returncode == 0 and '/rosout' in first.stdout, first.stderr
+    assert _wait_status(exe, ros_env, 'The daemon is running') == 'The daemon is running'
+    pid = _daemon_pid(ros_env)
+    # a talker appears in the daemon's graph; the verbs answer from it
+    procs.start([exe('talker')], ros_env)
+    found = run_until([exe('ros2'), 'topic', 'list', '-t'], ros_env,
+                      lambda r: '/topic [std_msgs/msg/String]' in r.stdout)
+    assert '/topic [std_msgs/msg/String]' in found.stdout, found.stdout + found.stderr
+    typed = _ros2(exe, ros_env, 'topic', 'type', '/topic')
+    assert typed.stdout == 'std_msgs/msg/String\n', typed.stdout + typed.stderr
+    nodes = run_until([exe('ros2'), 'node', 'list', '-a'], ros_env,
+                      lambda r: '/minimal_publisher' in r.stdout)
+    lines = nodes.stdout.split()
+    assert '/minimal_publisher' in lines, nodes.stdout
+    # the daemon's own node is hidden: listed with --all only, as upstream's
+    assert any(n.startswith('/_ros2cli_daemon_') for n in lines), nodes.stdout
+    assert not any(n.startswith('/_ros2cli_daemon_')
+                   for n in _ros2(exe, ros_env, 'node', 'list').stdout.split())
+    assert _daemon_pid(ros_env) == pid  # the same daemon answered every verb
+    # start when running, stop, stop when stopped: upstream's lines
+    assert _ros2(exe, ros_env, 'daemon', 'start').stdout == 'The daemon is already running\n'
+    stopped = _ros2(exe, ros_env, 'daemon', 'stop')
+    assert stopped.stdout == 'The daemon has been stopped\n', stopped.stdout + stopped.stderr
+    try:
+        os.kill(pid, 0)
+        alive = True
+    except ProcessLookupError:
+        alive = False
+    assert not alive, 'the daemon process is still there after "has been stopped"'
+    assert _ros2(exe, ros_env, 'daemon', 'stop').stdout == 'The daemon is not running\n'
+    started = _ros2(exe, ros_env, 'daemon', 'start')
+    assert started.stdout == 'The daemon has been started\n', started.stdout + started.stderr
+
+
+def test_a_daemon_with_other_discovery_settings_is_replaced(exe, ros_env):
+    subnet = dict(ros_env, ROS_AUTOMATIC_DISCOVERY_RANGE='SUBNET')
+    assert _ros2(exe, subnet, 'daemon', 'start').stdout == 'The daemon has been started\n'
+    stale = _daemon_pid(ros_env)
+    assert stale is not None
+    listed = _ros2(exe, ros_env, 'topic', 'list')  # LOCALHOST: the SUBNET daemon is stale
+    assert listed.returncode == 0 and '/rosout' in listed.stdout, listed.stderr
+    deadline = time.monotonic() + 30.0
+    while time.monotonic() < deadline and _daemon_pid(ros_env) in (None, stale):
+        time.sleep(0.1)
+    fresh = _daemon_pid(ros_env)
+    assert fresh is not None and fresh != stale
+    proxy = xmlrpc.client.ServerProxy(f'http://127.0.0.1:{11511 + int(ros_env["ROS_DOMAIN_ID"])}/')
+    assert proxy.settings()['ROS_AUTOMATIC_DISCOVERY_RANGE'] == 'LOCALHOST'
