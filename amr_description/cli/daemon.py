@@ -169,7 +169,7 @@ class DaemonNode:
         return int(self._proxy.count_subscribers(topic))
 
 
-def _usable_daemon(spin_time):
+def usable_daemon(spin_time):
     """
     Return the proxy of a daemon to ask, or None (then start one when none runs).
 
@@ -203,7 +203,7 @@ def graph_node(args, name):
     """
     from amr_description.cli.common import cli_node
     if not getattr(args, 'no_daemon', False):
-        proxy = _usable_daemon(getattr(args, 'spin_time', 0.0))
+        proxy = usable_daemon(getattr(args, 'spin_time', 0.0))
         if proxy is not None:
             import xmlrpc.client
             from amr_description.cli.common import CliError

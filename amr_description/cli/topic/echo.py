@@ -71,10 +71,30 @@ def format_value(value, *, csv=False, truncate_length=None, no_arr=False, no_str
                            no_str=no_str, flow_style=flow_style) + '---\n'
 
 
+DAEMON_AGE = 3.0
+"""Seconds a daemon must have followed the graph before echo takes a topic's type from it."""
 WARN_SETTLE = 1.0
 """Seconds the discovered graph stays unchanged before "does not appear to be published"."""
 WARN_LATEST = 5.0
 """Seconds after which that warning is printed anyway."""
+
+
+def _daemon_type(args):
+    """Return the topic's one type as a running daemon knows it, else None (no wait)."""
+    if args.no_daemon:
+        return None
+    from amr_description.cli.daemon import usable_daemon
+    from amr_description.cli.daemon import DaemonNode
+    import xmlrpc.client
+    proxy = usable_daemon(DAEMON_AGE)
+    if proxy is None:
+        return None
+    try:
+        daemon = DaemonNode(proxy)
+        types = topic_types(daemon, expand(daemon, args.topic_name))
+    except (OSError, xmlrpc.client.Error):
+        return None
+    return types[0] if len(types) == 1 else None
 
 
 def _echo(args):
@@ -82,9 +102,11 @@ def _echo(args):
     truncate = None if args.full_length else args.truncate_length
     deadline = time.monotonic() + args.timeout if args.timeout else None
     msg_class = message_class(args.message_type) if args.message_type else None
+    type_name = args.message_type or _daemon_type(args)
+    if type_name is not None and msg_class is None:
+        msg_class = message_class(type_name)
     with cli_node(default_node_name()) as node:
         topic = expand(node, args.topic_name)
-        type_name = args.message_type
         start = changed = time.monotonic()
         warned = False
         graph = None
@@ -165,5 +187,7 @@ def add_verbs(verbs):
                         f'{DEFAULT_TRUNCATE_LENGTH})')
     p.add_argument('--timeout', type=float, default=None,
                    help='Stop after this many seconds (default: wait forever)')
+    p.add_argument('--no-daemon', action='store_true',
+                   help='Do not spawn nor use an already running daemon')
     add_qos_arguments(p, 'subscribe', 'sensor_data')
     p.set_defaults(main=_echo)
