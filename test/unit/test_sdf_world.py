@@ -230,6 +230,11 @@ def test_a_robot_driven_into_a_shelf_stops_and_a_pushed_box_moves():
     end = sim.world.data.qpos[box.qposadr[0]:box.qposadr[0] + 3].copy()
     print(f'box pushed from y {start[1]:.3f} to {end[1]:.3f} m')
     assert end[1] < start[1] - 0.3 and abs(end[0] - 1.0) < 0.2
+    # the boxes nobody touched are asleep (out of the solver); the robots never sleep
+    data, model = sim.world.data, sim.world.model
+    assert not data.body_awake[model.body('box_2::link').id]
+    assert data.body_awake[model.body('pusher/base_footprint').id]
+    assert data.body_awake[model.body('wall/base_footprint').id]  # at rest against the shelf
 
 
 def test_a_robot_spawned_into_a_pillar_is_one_warning_naming_it(caplog):
