@@ -5,9 +5,11 @@
 ``render``: draw the robot headless to a PNG, from a URDF file or ``/robot_description``.
 
 ``ros2 run amr_description render [--urdf PATH] [-o out.png] [--width W] [--height H]
-[--frames] [--timeout S]``. Without ``--urdf`` a short-lived node ``render`` takes the model
-from the ``/robot_description`` topic (std_msgs/String, transient local, as published by
-robot_state_publisher). The picture itself: :mod:`amr_description.sim.render`.
+[--frames] [--world WORLD] [--timeout S]``; ``--world`` draws the robot at the origin of an
+SDF world (as the sim stack spawns it) with the whole world in view. Without ``--urdf`` a
+short-lived node ``render`` takes the model from the ``/robot_description`` topic
+(std_msgs/String, transient local, as published by robot_state_publisher). The picture
+itself: :mod:`amr_description.sim.render`.
 """
 
 import argparse
@@ -26,6 +28,9 @@ def _parse(argv):
     parser.add_argument('--width', type=int, default=640, help='pixels (640)')
     parser.add_argument('--height', type=int, default=480, help='pixels (480)')
     parser.add_argument('--frames', action='store_true', help='draw the link frame axes')
+    parser.add_argument('--world', metavar='WORLD', default=None,
+                        help='draw the robot at the origin of an SDF world: a shipped world '
+                        '(empty, arena, warehouse), a file or a package:// URI')
     parser.add_argument('--timeout', type=float, default=10.0,
                         help='seconds to wait for /robot_description (10)')
     return parser.parse_args(argv)
@@ -88,7 +93,11 @@ def main(args=None):
         # the package's one loader: what robot_state_publisher and the simulator refuse is
         # refused here too, before any pixel is drawn or file written
         parse_urdf(urdf_xml, source=options.urdf or '/robot_description')
-        image = render_urdf(urdf_xml, options.width, options.height, options.frames)
+        world = None
+        if options.world:
+            from amr_description.core.sdf_world import load_world
+            world = load_world(options.world)  # WorldError (a ValueError): one line
+        image = render_urdf(urdf_xml, options.width, options.height, options.frames, world)
         save_png(image, options.output)
     except KeyboardInterrupt:
         return 1

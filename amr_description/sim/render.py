@@ -69,7 +69,7 @@ def build_scene(urdf_xml, width=640, height=480, pose=(0.0, 0.0, 0.0, 0.0, 0.0, 
     return model, data
 
 
-def frame_camera(model, data, azimuth=135.0, elevation=-25.0):
+def frame_camera(model, data, azimuth=135.0, elevation=-25.0, scale=2.2):
     """
     Return a free ``mujoco.MjvCamera`` that frames every robot geom.
 
@@ -77,8 +77,9 @@ def frame_camera(model, data, azimuth=135.0, elevation=-25.0):
     :param data: ``mujoco.MjData`` after ``mj_forward``.
     :param azimuth: deg, 0 = looking along +x.
     :param elevation: deg, negative = looking down.
+    :param scale: distance in half-diagonals of that box.
     :returns: the camera: ``lookat`` = centre of the geoms' bounding spheres' box,
-        ``distance`` = 2.2 x its half-diagonal (at least 0.5 m).
+        ``distance`` = ``scale`` x its half-diagonal (at least 0.5 m).
     """
     import mujoco
 
@@ -95,7 +96,7 @@ def frame_camera(model, data, azimuth=135.0, elevation=-25.0):
         points = np.array(points)
         low, high = points.min(axis=0), points.max(axis=0)
         camera.lookat[:] = (low + high) / 2.0
-        camera.distance = max(2.2 * np.linalg.norm(high - low) / 2.0, 0.5)
+        camera.distance = max(scale * np.linalg.norm(high - low) / 2.0, 0.5)
     else:
         camera.lookat[:] = [0.0, 0.0, 0.0]
         camera.distance = 2.0
@@ -104,20 +105,48 @@ def frame_camera(model, data, azimuth=135.0, elevation=-25.0):
     return camera
 
 
-def render_urdf(urdf_xml, width=640, height=480, frames=False):
+def render_urdf(urdf_xml, width=640, height=480, frames=False, world=None):
     """
-    Render a URDF robot to an RGB image.
+    Render a URDF robot to an RGB image, alone or in a world.
 
     :param urdf_xml: URDF text.
     :param width: pixels (> 0).
     :param height: pixels (> 0).
     :param frames: draw every body frame's axes (x red, y green, z blue).
+    :param world: None (the robot on a plain ground), or a
+        :class:`~amr_description.core.sdf_world.World` (``load_world``): the robot spawned at
+        the origin of that world (as the sim stack spawns it), the whole world in view.
     :returns: numpy array of shape (height, width, 3), dtype uint8.
     :raises ValueError: when the URDF cannot be converted or the size is not positive.
     """
     if int(width) <= 0 or int(height) <= 0:
         raise ValueError(f'image size must be positive, found {width}x{height}')
+    if world is not None:
+        return _render_in_world(urdf_xml, world, int(width), int(height), frames)
     model, data = build_scene(urdf_xml, width, height)
+    return _render(model, data, width, height, frames)
+
+
+def _render_in_world(urdf_xml, world, width, height, frames):
+    """Spawn the robot at the origin of ``world`` (an engine, no ROS) and render it all."""
+    import mujoco
+    from amr_description.sim.simulation import Simulation
+    _ensure_gl()
+    sim = Simulation(real_time_factor=0.0, world=world,
+                     sensor_settings={'publish_ground_truth': False})
+    try:
+        sim.spawn(urdf_xml, name='robot', pose=[0.0, 0.0, 0.01, 0.0, 0.0, 0.0, 1.0])
+        model, data = sim.world.model, sim.world.data
+        model.vis.global_.offwidth = max(int(model.vis.global_.offwidth), width)
+        model.vis.global_.offheight = max(int(model.vis.global_.offheight), height)
+        mujoco.mj_forward(model, data)
+        return _render(model, data, width, height, frames, elevation=-50.0, scale=1.1)
+    finally:
+        sim.close()
+
+
+def _render(model, data, width, height, frames, elevation=-25.0, scale=2.2):
+    """Return the RGB image of ``model``/``data`` seen by :func:`frame_camera`."""
     import mujoco
 
     option = mujoco.MjvOption()
@@ -127,7 +156,8 @@ def render_urdf(urdf_xml, width=640, height=480, frames=False):
         model.vis.scale.framewidth = 0.06
     renderer = mujoco.Renderer(model, height=int(height), width=int(width))
     try:
-        renderer.update_scene(data, camera=frame_camera(model, data), scene_option=option)
+        camera = frame_camera(model, data, elevation=elevation, scale=scale)
+        renderer.update_scene(data, camera=camera, scene_option=option)
         return renderer.render().copy()
     finally:
         renderer.close()

@@ -44,6 +44,8 @@ PLAYBOOK = {
         ('ros2 run amr_description render -o robot.png', 'once', None),
         ('ros2 run amr_description render --urdf urdf/amr.urdf --frames -o robot.png', 'once',
          None),
+        ('ros2 run amr_description render --urdf urdf/amr.urdf --world warehouse -o world.png',
+         'once', 'wrote world.png'),
     ],
     'display without sliders': [
         ('ros2 launch amr_description display gui:=false', 'serve', 'viewer: open http://'),

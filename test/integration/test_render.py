@@ -68,6 +68,26 @@ def test_bad_urdf_is_one_line_error(procs, exe, ros_env, tmp_path):
     assert not (tmp_path / 'x.png').exists()
 
 
+def test_render_in_a_world_draws_the_world_and_the_robot(procs, exe, ros_env, tmp_path):
+    import matplotlib.image
+    out = tmp_path / 'warehouse.png'
+    env = dict(ros_env, MUJOCO_GL='egl')
+    proc = procs.start([exe('render'), '--urdf', URDF_PATH, '--world', 'warehouse', '-o',
+                        str(out)], env)
+    assert proc.wait(60.0) == 0, proc.output
+    image = matplotlib.image.imread(str(out))[..., :3]
+    r, g, b = image[..., 0], image[..., 1], image[..., 2]
+    shelves = (r > 0.8) & (g > 0.4) & (g < 0.75) & (b < 0.3)  # the shelves' orange
+    chassis = (b > 0.6) & (r < 0.2) & (g < 0.2)
+    assert shelves.mean() > 0.05 and chassis.sum() > 20, (shelves.mean(), chassis.sum())
+    # an unknown world: one line, exit 1, no file
+    bad = procs.start([exe('render'), '--urdf', URDF_PATH, '--world', 'nowhere', '-o',
+                       str(tmp_path / 'x.png')], env)
+    assert bad.wait(60.0) == 1
+    assert "render: world 'nowhere': no such file" in bad.output, bad.output
+    assert 'Traceback' not in bad.output and not (tmp_path / 'x.png').exists()
+
+
 @pytest.mark.parametrize('frames', [False, True])
 def test_render_pure(frames):
     os.environ.setdefault('MUJOCO_GL', 'egl')
