@@ -63,6 +63,14 @@ def test_a_graph_verb_starts_the_daemon_and_then_answers_from_it(procs, exe, ros
     assert not any(n.startswith('/_ros2cli_daemon_')
                    for n in _ros2(exe, ros_env, 'node', 'list').stdout.split())
     assert _daemon_pid(ros_env) == pid  # the same daemon answered every verb
+    # echo takes the type from the warm daemon, then waits until its own node sees the
+    # publisher, so that a transient-local (latched) message reaches it
+    procs.start([exe('static_transform_publisher'), '--x', '1', '--frame-id', 'world',
+                 '--child-frame-id', 'probe'], ros_env)
+    run_until([exe('ros2'), 'topic', 'list'], ros_env, lambda r: '/tf_static' in r.stdout)
+    for _ in range(3):
+        latched = _ros2(exe, ros_env, 'topic', 'echo', '--once', '/tf_static', timeout=90)
+        assert 'child_frame_id: probe' in latched.stdout, latched.stdout + latched.stderr
     # start when running, stop, stop when stopped: upstream's lines
     assert _ros2(exe, ros_env, 'daemon', 'start').stdout == 'The daemon is already running\n'
     stopped = _ros2(exe, ros_env, 'daemon', 'stop')

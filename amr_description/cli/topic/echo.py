@@ -73,6 +73,8 @@ def format_value(value, *, csv=False, truncate_length=None, no_arr=False, no_str
 
 DAEMON_AGE = 3.0
 """Seconds a daemon must have followed the graph before echo takes a topic's type from it."""
+KNOWN_PUBLISHERS_WAIT = 10.0
+"""Seconds echo waits for its node to discover the publishers a daemon reported."""
 WARN_SETTLE = 1.0
 """Seconds the discovered graph stays unchanged before "does not appear to be published"."""
 WARN_LATEST = 5.0
@@ -80,21 +82,27 @@ WARN_LATEST = 5.0
 
 
 def _daemon_type(args):
-    """Return the topic's one type as a running daemon knows it, else None (no wait)."""
+    """
+    Return ``(type, publishers)`` of the topic as a warm daemon knows it, else ``(None, 0)``.
+
+    Only when the daemon knows exactly one type; no wait for discovery.
+    """
     if args.no_daemon:
-        return None
+        return None, 0
     from amr_description.cli.daemon import usable_daemon
     from amr_description.cli.daemon import DaemonNode
     import xmlrpc.client
     proxy = usable_daemon(DAEMON_AGE)
     if proxy is None:
-        return None
+        return None, 0
     try:
         daemon = DaemonNode(proxy)
-        types = topic_types(daemon, expand(daemon, args.topic_name))
+        topic = expand(daemon, args.topic_name)
+        types = topic_types(daemon, topic)
+        publishers = daemon.count_publishers(topic)
     except (OSError, xmlrpc.client.Error):
-        return None
-    return types[0] if len(types) == 1 else None
+        return None, 0
+    return (types[0], publishers) if len(types) == 1 else (None, 0)
 
 
 def _echo(args):
@@ -102,7 +110,7 @@ def _echo(args):
     truncate = None if args.full_length else args.truncate_length
     deadline = time.monotonic() + args.timeout if args.timeout else None
     msg_class = message_class(args.message_type) if args.message_type else None
-    type_name = args.message_type or _daemon_type(args)
+    type_name, known = (args.message_type, 0) if args.message_type else _daemon_type(args)
     if type_name is not None and msg_class is None:
         msg_class = message_class(type_name)
     with cli_node(default_node_name()) as node:
@@ -136,9 +144,12 @@ def _echo(args):
             if deadline is not None and time.monotonic() > deadline:
                 return 0
             spin_once(node, timeout_sec=0.05)
-        # let discovery settle so the QoS can match every publisher (ros2cli choose_qos)
+        # let discovery settle so the QoS can match every publisher (ros2cli choose_qos); with
+        # the type from the daemon, until this node sees the publishers the daemon knows (a
+        # transient-local publisher's messages reach only a subscription that matches it)
         wait_for_graph(node, lambda n: len(n.get_publishers_info_by_topic(topic)),
-                       settle=0.2, minimum=0.1, maximum=1.0)
+                       settle=0.2, minimum=0.1, maximum=KNOWN_PUBLISHERS_WAIT if known else 1.0,
+                       ready=lambda count: count >= known)
         qos = qos_from_args(args, 'sensor_data', node, topic)
         received = []
 
