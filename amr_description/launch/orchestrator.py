@@ -135,7 +135,8 @@ class Orchestrator:
         """
         Request the stack shutdown: SIGINT, then SIGTERM, then SIGKILL to each process.
 
-        Safe to call from any thread or a signal handler, and more than once.
+        Safe to call from any thread, and more than once (not from a signal handler: it takes
+        the event queue's lock; :meth:`run` records signals and calls it from its loop).
 
         :param reason: text for the log.
         :param due_to_sigint: True when the user pressed Ctrl-C (logs as launch does).
@@ -162,15 +163,25 @@ class Orchestrator:
 
         :returns: exit code: 0, or 1 when an action could not be started.
         """
+        # the handler only records the signal: it runs in the main thread between any two
+        # bytecodes, also while that thread holds the event queue's lock (Queue.put is not
+        # reentrant: a shutdown() from the handler deadlocked a stack that then ignored every
+        # further signal); the loop below turns each recorded signal into a shutdown()
+        received = []
+
         def on_signal(signum, _frame):
-            self.shutdown('signal', due_to_sigint=(signum == signal.SIGINT))
+            received.append(signum)
 
         old_int = signal.signal(signal.SIGINT, on_signal)
         old_term = signal.signal(signal.SIGTERM, on_signal)
         try:
             self.start()
-            while not self.wait(0.2):
-                pass
+            handled = 0
+            while not self.wait(0.1):
+                while handled < len(received):
+                    signum = received[handled]
+                    handled += 1
+                    self.shutdown('signal', due_to_sigint=(signum == signal.SIGINT))
         finally:
             signal.signal(signal.SIGINT, old_int)
             signal.signal(signal.SIGTERM, old_term)
