@@ -44,10 +44,20 @@ def test_echo_of_talker(ros_env, procs, exe):
 
 
 def test_echo_of_a_published_topic_does_not_warn_it_is_unpublished(ros_env, procs, exe):
-    # the warning waits for discovery to settle, not a fixed second (a false warning while
-    # /tf was being published, seen beside the sim stack)
+    # with a warm daemon that knows the topic (as upstream, whose warning comes from the
+    # daemon's graph) echo takes the type from it: no false warning (seen beside the sim
+    # stack while /tf was being published)
+    import xmlrpc.client
     talker = procs.start([exe('talker')], ros_env)
     assert talker.wait_for_output('Publishing', 60.0), talker.output
+    assert subprocess.run([exe('ros2'), 'daemon', 'start'], env=ros_env,
+                          timeout=60).returncode == 0
+    daemon = xmlrpc.client.ServerProxy(
+        f'http://127.0.0.1:{11511 + int(ros_env["ROS_DOMAIN_ID"])}/')
+    deadline = time.monotonic() + 60.0
+    while time.monotonic() < deadline and not (
+            daemon.uptime() > 3.5 and daemon.count_publishers('/topic') > 0):
+        time.sleep(0.1)
     echo = procs.start([exe('ros2'), 'topic', 'echo', '--once', '/topic'], ros_env)
     assert echo.wait(90.0) == 0, echo.output
     assert 'does not appear to be published yet' not in echo.output, echo.output

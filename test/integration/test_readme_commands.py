@@ -6,7 +6,9 @@ Every command block of README.md's tutorial sections runs as printed.
 The command lines are read from README.md ("The tutorial path" up to "Nodes and topics"), their
 ``\`` continuations joined and ``#`` comments dropped; :data:`PLAYBOOK` says for each how a user
 runs it: ``once`` (runs to its end), ``serve`` (keeps running until Ctrl-C; started, its
-expected line awaited, stopped with SIGINT at the end of its scene) or ``skip`` (with why).
+expected line awaited, stopped with SIGINT at the end of its scene), ``stop`` (the same, but
+stopped before the next command, as ``bag record`` before ``bag info``) or ``skip`` (with
+why).
 Commands run in scenes, each in its own ROS domain and in a scratch directory that sees the
 repository's urdf/ and config/: a command of README.md that the playbook does not know fails
 the test, so README.md cannot drift from what is tested. A command fails on a non-zero exit
@@ -68,7 +70,7 @@ PLAYBOOK = {
         ('ros2 param dump /diff_drive_controller > ddc.yaml', 'once', None),
         ('ros2 node info /diff_drive_controller', 'once', 'Subscribers:'),
         ('ros2 topic bw /tf', 'serve', 'B/s from'),
-        ('ros2 bag record -a -o run1', 'serve', 'Recording...'),
+        ('ros2 bag record -a -o run1', 'stop', 'Recording...'),
         ('ros2 bag info run1', 'once', 'Storage id:'),
         ('ros2 bag play run1', 'once', None),
         ('ros2 doctor', 'once', None),
@@ -149,6 +151,9 @@ def test_a_scene_of_the_readme_runs_as_printed(scene, procs, ros_env, tmp_path):
                 continue
             assert proc.wait_for_output(expected, 180.0) if expected else \
                 proc.popen.poll() is None, f'{command}:\n{proc.output[-3000:]}'
+            if kind == 'stop':  # the user presses Ctrl-C before the next command
+                _check(proc, command, None, proc.interrupt(timeout=60.0))
+                continue
             serving.append((proc, command, master))
         for proc, command, master in reversed(serving):
             _check(proc, command, None, proc.interrupt(timeout=60.0))
