@@ -107,28 +107,21 @@ def ros_env():
     release_domain_id(domain)
 
 
-def stop_daemon(domain, timeout=10.0):
+def stop_daemon(domain):
     """
     Stop the ``ros2`` daemon of ``domain`` if one runs (a graph verb started it).
 
     The daemon outlives the command that started it, as ros2cli's; a test's must not outlive
-    the test. Asked over its XML-RPC port (ros2cli's 11511 + domain), then waited for.
+    the test: asked to end (``amr_description.cli.daemon.stop_daemon``), killed if it does not.
     """
-    import xmlrpc.client
-    proxy = xmlrpc.client.ServerProxy(f'http://127.0.0.1:{11511 + domain}/')
-    try:
-        pid = int(proxy.pid())
-        proxy.shutdown()
-    except (OSError, xmlrpc.client.Error):
+    from amr_description.cli.daemon import running_daemon
+    from amr_description.cli.daemon import stop_daemon as ask_to_stop
+    proxy = running_daemon(domain)
+    if proxy is None:
         return
-    deadline = time.monotonic() + timeout
-    while time.monotonic() < deadline:
-        try:
-            os.kill(pid, 0)
-        except ProcessLookupError:
-            return
-        time.sleep(0.05)
-    os.kill(pid, signal.SIGKILL)
+    stopped, pid = ask_to_stop(proxy, domain)
+    if not stopped and pid is not None:
+        os.kill(pid, signal.SIGKILL)
 
 
 def run_until(argv, env, check, timeout=90.0, **kwargs):

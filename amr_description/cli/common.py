@@ -94,6 +94,11 @@ def add_spin_time_argument(parser, default=3.0):
         '-s', '--spin-time', type=float, default=default, metavar='SECONDS',
         help='Spin time in seconds to wait for discovery (only applies when not using an '
              f'already running daemon; default: {default})')
+    add_no_daemon_argument(parser)
+
+
+def add_no_daemon_argument(parser):
+    """Add ros2cli's ``--no-daemon`` (:mod:`amr_description.cli.daemon`)."""
     parser.add_argument('--no-daemon', action='store_true',
                         help='Do not spawn nor use an already running daemon')
 

@@ -55,7 +55,7 @@ def settings():
     return values
 
 
-def _proxy(timeout=2.0):
+def _proxy(domain=None, timeout=2.0):
     import xmlrpc.client
 
     class _Transport(xmlrpc.client.Transport):
@@ -65,18 +65,19 @@ def _proxy(timeout=2.0):
             connection.timeout = timeout
             return connection
 
-    return xmlrpc.client.ServerProxy(f'http://127.0.0.1:{daemon_port()}/',
+    return xmlrpc.client.ServerProxy(f'http://127.0.0.1:{daemon_port(domain)}/',
                                      transport=_Transport(), allow_none=True)
 
 
-def running_daemon():
+def running_daemon(domain=None):
     """
-    Return an XML-RPC proxy of this domain's daemon when one answers, else None.
+    Return an XML-RPC proxy of a domain's daemon when one answers, else None.
 
+    :param domain: ROS domain ID (default: this process's).
     :returns: ``xmlrpc.client.ServerProxy`` or None (nothing listens, or not a daemon).
     """
     import xmlrpc.client
-    proxy = _proxy()
+    proxy = _proxy(domain)
     try:
         proxy.settings()
     except (OSError, xmlrpc.client.Error):
@@ -93,7 +94,8 @@ def spawn_daemon():
         start_new_session=True, close_fds=True)
 
 
-def _alive(pid):
+def process_alive(pid):
+    """Return True while process ``pid`` exists (also one of another user)."""
     try:
         os.kill(pid, 0)
     except ProcessLookupError:
@@ -103,8 +105,12 @@ def _alive(pid):
     return True
 
 
-def stop_daemon(proxy):
-    """Ask ``proxy``'s daemon to end; return True once its process is gone."""
+def stop_daemon(proxy, domain=None):
+    """
+    Ask ``proxy``'s daemon (of ``domain``, default this process's) to end.
+
+    :returns: ``(stopped, pid)``: True once its process is gone; its pid (None if unknown).
+    """
     import xmlrpc.client
     pid = None
     with contextlib.suppress(OSError, xmlrpc.client.Error):
@@ -112,10 +118,10 @@ def stop_daemon(proxy):
         proxy.shutdown()
     deadline = time.monotonic() + START_TIMEOUT
     while time.monotonic() < deadline:
-        if running_daemon() is None and (pid is None or not _alive(pid)):
-            return True
+        if running_daemon(domain) is None and (pid is None or not process_alive(pid)):
+            return True, pid
         time.sleep(0.05)
-    return False
+    return False, pid
 
 
 class DaemonNode:
@@ -244,7 +250,7 @@ def _stop(args):
     if proxy is None:
         print('The daemon is not running')
         return 0
-    if not stop_daemon(proxy):
+    if not stop_daemon(proxy)[0]:
         from amr_description.cli.common import fail
         return fail('The daemon did not stop')
     print('The daemon has been stopped')

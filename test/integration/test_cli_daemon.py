@@ -9,12 +9,12 @@ started with other discovery settings is replaced by the next verb; no daemon ou
 test (conftest's ``release_domain_id``).
 """
 
-import os
 import subprocess
 import time
 import xmlrpc.client
 
-from conftest import run_until
+from amr_description.cli.daemon import process_alive
+from conftest import run_until  # noqa: I100 - the suite's helpers
 
 
 def _ros2(exe, env, *argv, timeout=60):
@@ -75,12 +75,7 @@ def test_a_graph_verb_starts_the_daemon_and_then_answers_from_it(procs, exe, ros
     assert _ros2(exe, ros_env, 'daemon', 'start').stdout == 'The daemon is already running\n'
     stopped = _ros2(exe, ros_env, 'daemon', 'stop')
     assert stopped.stdout == 'The daemon has been stopped\n', stopped.stdout + stopped.stderr
-    try:
-        os.kill(pid, 0)
-        alive = True
-    except ProcessLookupError:
-        alive = False
-    assert not alive, 'the daemon process is still there after "has been stopped"'
+    assert not process_alive(pid), 'the daemon process is still there after "has been stopped"'
     assert _ros2(exe, ros_env, 'daemon', 'stop').stdout == 'The daemon is not running\n'
     started = _ros2(exe, ros_env, 'daemon', 'start')
     assert started.stdout == 'The daemon has been started\n', started.stdout + started.stderr

@@ -13,6 +13,7 @@ any other value (a number, a string, a list of messages, an array) is printed wi
 import sys
 import time
 
+from amr_description.cli.common import add_no_daemon_argument
 from amr_description.cli.common import cli_node
 from amr_description.cli.common import CliError
 from amr_description.cli.common import default_node_name
@@ -198,7 +199,6 @@ def add_verbs(verbs):
                         f'{DEFAULT_TRUNCATE_LENGTH})')
     p.add_argument('--timeout', type=float, default=None,
                    help='Stop after this many seconds (default: wait forever)')
-    p.add_argument('--no-daemon', action='store_true',
-                   help='Do not spawn nor use an already running daemon')
+    add_no_daemon_argument(p)
     add_qos_arguments(p, 'subscribe', 'sensor_data')
     p.set_defaults(main=_echo)
