@@ -9,6 +9,7 @@ keeps the static ones (/tf_static is published once), says so in its status, and
 bag has ended draws the robot again: no "No transform to" stays on the page.
 """
 
+import re
 import time
 
 from browser import ensure_chromium  # noqa: I100 - helpers next to this file
@@ -16,6 +17,12 @@ from browser import free_port
 from browser import open_page
 
 TOPICS = ('/clock', '/tf', '/tf_static', '/joint_states')
+
+
+def _sim_time(text):
+    """Return the sim time the viewer's status shows (s), or None."""
+    found = re.search(r'Sim time ([0-9.]+) s', text)
+    return float(found.group(1)) if found else None
 
 
 def test_bag_play_clock_beside_the_viewer_leaves_it_with_its_transforms(
@@ -53,8 +60,16 @@ def test_bag_play_clock_beside_the_viewer_leaves_it_with_its_transforms(
         while time.monotonic() < deadline and not posed():
             page.page.wait_for_timeout(500)
         assert posed(), page.page.inner_text('body')
-        # it stays so: the simulator's /clock and /tf alone from now on
-        page.page.wait_for_timeout(3000)
-        assert posed(), page.page.inner_text('body')
+        # it stays so while the simulator's /clock and /tf alone move on (2 s of sim time)
+        first = _sim_time(page.page.inner_text('body'))
+        deadline = time.monotonic() + 60.0
+        while time.monotonic() < deadline:
+            text = page.page.inner_text('body')
+            assert posed(), text
+            if first is not None and (_sim_time(text) or 0.0) > first + 2.0:
+                break
+            page.page.wait_for_timeout(250)
+        else:
+            raise AssertionError(f'sim time did not advance 2 s: {text}')
     assert stack.interrupt(timeout=30.0) == 0, stack.output[-3000:]
     assert 'Traceback' not in stack.output, stack.output[-3000:]
