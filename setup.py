@@ -71,6 +71,7 @@ setup(
             'amr_description.control.diff_drive_controller:DiffDriveController',
         ],
         'amr_description.sensors': [
+            'camera = amr_description.sim.sensors.camera:create',
             'ground_truth = amr_description.sim.sensors.ground_truth:create',
             'imu = amr_description.sim.sensors.imu:create',
             'lidar = amr_description.sim.sensors.lidar:create',

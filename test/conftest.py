@@ -19,6 +19,8 @@ import time
 
 import pytest
 
+os.environ.setdefault('MUJOCO_GL', 'egl')  # cameras render headless (before MuJoCo's import)
+
 # Domain IDs 1..199 are handed out to tests; 200..232 stay free for hand-started stacks.
 _FIRST_DOMAIN, _LAST_DOMAIN = 1, 199
 _DOMAIN_IDS = itertools.count((os.getpid() * 7) % _LAST_DOMAIN)

@@ -14,7 +14,12 @@ pitch yaw`` in the link frame (m, rad; ``degrees="true"``), ``<gz_frame_id>`` (g
 ``<noise>`` whose type is a child element; an IMU has ``<angular_velocity>`` and
 ``<linear_acceleration>``, each ``<x>/<y>/<z>`` holding a ``<noise type="...">`` (the type
 is an attribute there) with ``mean``, ``stddev``, ``bias_mean``, ``bias_stddev`` and
-``precision``, and ``<enable_orientation>`` (true).
+``precision``, and ``<enable_orientation>`` (true). A camera (``camera``, ``depth_camera`` /
+``depth``, ``rgbd_camera`` / ``rgbd``) has ``<camera>``: ``horizontal_fov`` 1.047 rad,
+``<image>`` ``width`` 320, ``height`` 240, ``format`` R8G8B8, ``<clip>`` ``near`` 0.1 m and
+``far`` 100 m, ``<depth_camera><clip>`` for the depth image, ``<noise>`` (type a child
+element), ``<lens><intrinsics>``, ``<optical_frame_id>`` and ``<camera_info_topic>``
+(:class:`CameraSpec`).
 
 A sensor that cannot be simulated as written is left out with one line naming the sensor and
 the field (:attr:`SensorBlocks.messages`); the robot keeps its other sensors.
@@ -35,11 +40,25 @@ SDF_SENSOR_TYPES = (
 """Sensor types SDF 1.11 names (``sensor.sdf``)."""
 
 KINDS = {'gpu_lidar': 'lidar', 'lidar': 'lidar', 'ray': 'lidar', 'gpu_ray': 'lidar',
-         'imu': 'imu'}
+         'imu': 'imu', 'camera': 'camera', 'depth_camera': 'depth', 'depth': 'depth',
+         'rgbd_camera': 'rgbd', 'rgbd': 'rgbd'}
 """Simulated sensor types -> the simulator's kind: every lidar type is ray-cast."""
 
-DEFAULT_TOPIC_SUFFIX = {'lidar': 'scan', 'imu': 'imu'}
-"""Last part of gz-sim's default topic per kind (gz-sim 8 ``RenderUtil.cc``, ``Imu.cc``)."""
+CAMERA_KINDS = ('camera', 'depth', 'rgbd')
+"""Kinds rendered by a camera (``<camera>`` element)."""
+
+DEFAULT_TOPIC_SUFFIX = {'lidar': 'scan', 'imu': 'imu', 'camera': 'image',
+                        'depth': 'depth_image', 'rgbd': ''}
+"""Last part of gz-sim's default topic per kind (gz-sim 8 ``RenderUtil.cc``, ``Imu.cc``);
+an RGB-D camera's topics are below its base name (``<base>/image``, ...)."""
+
+IMAGE_FORMATS = {'R8G8B8': 'rgb8', 'RGB_INT8': 'rgb8', 'B8G8R8': 'bgr8', 'BGR_INT8': 'bgr8',
+                 'L8': 'mono8', 'L_INT8': 'mono8', 'L16': 'mono16', 'L_INT16': 'mono16'}
+"""SDF ``<image><format>`` values simulated -> the ``sensor_msgs/Image`` encoding
+ros_gz_bridge gives them (``ros_gz_bridge`` ``convert/sensor_msgs.cpp``)."""
+
+MAX_IMAGE_SIZE = 4096
+"""Largest image width or height (pixels): the offscreen buffer is sized for the largest."""
 
 FRAME_TAGS = ('gz_frame_id', 'ignition_frame_id', 'frame_id')
 """``<sensor>`` children naming the frame id, first found wins: gz-sensors 8 reads only
@@ -152,6 +171,54 @@ class ImuSpec:
 
 
 @dataclass
+class CameraSpec:
+    """
+    SDF ``<camera>`` (sdformat 14 ``camera.sdf`` defaults).
+
+    :param horizontal_fov: rad, in (0.01, pi) (a pinhole image).
+    :param width: pixels (1..:data:`MAX_IMAGE_SIZE`).
+    :param height: pixels (1..:data:`MAX_IMAGE_SIZE`).
+    :param format: ``<image><format>`` (a key of :data:`IMAGE_FORMATS`).
+    :param near: m, ``<clip><near>`` (> 0).
+    :param far: m, ``<clip><far>`` (> near).
+    :param depth_near: m, ``<depth_camera><clip><near>`` of a depth image (default ``near``).
+    :param depth_far: m, ``<depth_camera><clip><far>`` (default ``far``).
+    :param noise: :class:`Noise` of every pixel (gaussian only; colour values in [0, 1],
+        depth in m).
+    :param optical_frame_id: ``<optical_frame_id>``, '' when unset.
+    :param camera_info_topic: ``<camera_info_topic>``, '' when unset.
+    :param intrinsics: ``(fx, fy, cx, cy)`` in pixels from ``<lens><intrinsics>``, or None:
+        from the field of view, ``fx = fy = width / (2 tan(hfov / 2))``, ``cx = width / 2``,
+        ``cy = height / 2`` (sdformat's ``Camera::LensIntrinsicsFx`` and its defaults).
+    """
+
+    horizontal_fov: float = 1.047
+    width: int = 320
+    height: int = 240
+    format: str = 'R8G8B8'  # noqa: A003 - SDF's element name
+    near: float = 0.1
+    far: float = 100.0
+    depth_near: float = 0.1
+    depth_far: float = 100.0
+    noise: Noise = field(default_factory=Noise)
+    optical_frame_id: str = ''
+    camera_info_topic: str = ''
+    intrinsics: tuple = None
+
+    @property
+    def encoding(self):
+        """Return the ``sensor_msgs/Image`` encoding of the colour image (e.g. ``rgb8``)."""
+        return IMAGE_FORMATS[self.format]
+
+    def k(self):
+        """Return ``(fx, fy, cx, cy)`` in pixels (:attr:`intrinsics` or from the fov)."""
+        if self.intrinsics is not None:
+            return self.intrinsics
+        f = self.width / (2.0 * math.tan(0.5 * self.horizontal_fov))
+        return f, f, 0.5 * self.width, 0.5 * self.height
+
+
+@dataclass
 class SensorBlock:
     """
     One ``<sensor>`` of a ``<gazebo reference="LINK">`` block.
@@ -168,6 +235,7 @@ class SensorBlock:
     :param rpy: (3,) rad, ``<pose>`` fixed-axis roll pitch yaw.
     :param lidar: :class:`LidarSpec` of a lidar, else None.
     :param imu: :class:`ImuSpec` of an IMU, else None.
+    :param camera: :class:`CameraSpec` of a camera, depth or RGB-D camera, else None.
     """
 
     name: str
@@ -181,10 +249,11 @@ class SensorBlock:
     rpy: tuple = (0.0, 0.0, 0.0)
     lidar: LidarSpec = None
     imu: ImuSpec = None
+    camera: CameraSpec = None
 
     @property
     def kind(self):
-        """Return ``'lidar'``, ``'imu'`` or None (not simulated)."""
+        """Return ``'lidar'``, ``'imu'``, ``'camera'``, ``'depth'``, ``'rgbd'`` or None."""
         return KINDS.get(self.type)
 
 
@@ -318,6 +387,55 @@ def _imu(sensor, where):
                    _bool(element, 'enable_orientation', True, where))
 
 
+def _camera(sensor, where):
+    element = sensor.find('camera')
+    if element is None:
+        return CameraSpec()
+    where = f'{where}<camera>'
+    fov = _number(element, 'horizontal_fov', 1.047, where, positive=True)
+    if not 0.01 <= fov < math.pi:
+        raise SensorError(f'{where}<horizontal_fov>: expected 0.01 to pi rad (a pinhole '
+                          f'camera), found {fov:g}')
+    size = []
+    for axis, default in (('width', 320), ('height', 240)):
+        value = _number(element, f'image/{axis}', default, where, integer=True)
+        if not 1 <= value <= MAX_IMAGE_SIZE:
+            raise SensorError(f'{where}<image><{axis}>: expected 1 to {MAX_IMAGE_SIZE} pixels, '
+                              f'found {value}')
+        size.append(value)
+    image_format = (_text(element, 'image/format', '') or 'R8G8B8').strip()
+    if image_format not in IMAGE_FORMATS:
+        raise SensorError(f'{where}<image><format>: expected one of '
+                          f'{", ".join(IMAGE_FORMATS)}, found {image_format!r}')
+    near = _number(element, 'clip/near', 0.1, where, positive=True)
+    far = _number(element, 'clip/far', 100.0, where, positive=True)
+    if not far > near:
+        raise SensorError(f'{where}<clip><far>: expected > near {near:g}, found {far:g}')
+    depth_near = _number(element, 'depth_camera/clip/near', near, where, positive=True)
+    depth_far = _number(element, 'depth_camera/clip/far', far, where, positive=True)
+    if not depth_far > depth_near:
+        raise SensorError(f'{where}<depth_camera><clip><far>: expected > near {depth_near:g}, '
+                          f'found {depth_far:g}')
+    noise_element = element.find('noise')
+    noise = _noise(noise_element, where,
+                   None if noise_element is None else _text(noise_element, 'type'))
+    if noise.type not in ('none', 'gaussian'):
+        raise SensorError(f'{where}<noise><type>: a camera takes gaussian noise only '
+                          f'(gz-sensors 8), found {noise.type!r}')
+    intrinsics = None
+    lens = element.find('lens/intrinsics')
+    if lens is not None:
+        lens_where = f'{where}<lens>'
+        f0 = size[0] / (2.0 * math.tan(0.5 * fov))
+        intrinsics = (_number(lens, 'fx', f0, lens_where + '<intrinsics>', positive=True),
+                      _number(lens, 'fy', f0, lens_where + '<intrinsics>', positive=True),
+                      _number(lens, 'cx', 0.5 * size[0], lens_where + '<intrinsics>'),
+                      _number(lens, 'cy', 0.5 * size[1], lens_where + '<intrinsics>'))
+    return CameraSpec(fov, size[0], size[1], image_format, near, far, depth_near, depth_far,
+                      noise, (_text(element, 'optical_frame_id', '') or '').strip(),
+                      (_text(element, 'camera_info_topic', '') or '').strip(), intrinsics)
+
+
 def _pose(sensor, where):
     element = sensor.find('pose')
     if element is None or not (element.text or '').strip():
@@ -363,6 +481,8 @@ def read_sensor(sensor, link):
         block.topic = ''
     if block.kind == 'lidar':
         block.lidar = _lidar(sensor, where)
+    elif block.kind in CAMERA_KINDS:
+        block.camera = _camera(sensor, where)
     else:
         block.imu = _imu(sensor, where)
     return block
@@ -432,9 +552,10 @@ def default_topic(world, model_name, link, block):
     """
     Return gz-sim's topic of a sensor without ``<topic>``.
 
-    ``/world/<world>/model/<model>/link/<link>/sensor/<sensor>/<scan|imu>`` (gz-sim 8
-    ``RenderUtil.cc`` and ``Imu.cc``), ``link`` being the link after lumping
-    (:func:`lumped_link`).
+    ``/world/<world>/model/<model>/link/<link>/sensor/<sensor>/<scan|imu|image|depth_image>``
+    (gz-sim 8 ``RenderUtil.cc`` and ``Imu.cc``), ``link`` being the link after lumping
+    (:func:`lumped_link`); an RGB-D camera's base name ends at ``<sensor>``.
     """
-    return (f'/world/{world}/model/{model_name}/link/{link}/sensor/{block.name}/'
-            f'{DEFAULT_TOPIC_SUFFIX[block.kind]}')
+    base = f'/world/{world}/model/{model_name}/link/{link}/sensor/{block.name}'
+    suffix = DEFAULT_TOPIC_SUFFIX[block.kind]
+    return f'{base}/{suffix}' if suffix else base

@@ -79,7 +79,10 @@ class Simulation:
         ``<mujoco><ros2_control parameters=...>``).
     :param logger: a ``logging.Logger``-like object (``info``, ``warning``, ``error``).
     :param sensor_settings: dict of simulator-wide sensor settings handed to the sensor
-        factories (:func:`~amr_description.sim.sensors.registry.make_sensors`).
+        factories (:func:`~amr_description.sim.sensors.registry.make_sensors`); the
+        cameras' shared render thread is kept there as ``camera_renderer`` (a
+        :class:`~amr_description.sim.sensors.camera.CameraRenderer`, made when missing and
+        closed by :meth:`close`).
     :param world: an SDF world (:class:`~amr_description.core.sdf_world.World`) or None (the
         empty world); its physics step is ``physics_step``, not its own (the caller chooses).
     :raises ValueError: one line on a bad ``real_time_factor`` or a world MuJoCo cannot build.
@@ -103,6 +106,9 @@ class Simulation:
         self.parameters_file = parameters_file
         self.logger = logger or logging.getLogger('simulation')
         self.sensor_settings = dict(sensor_settings or {})
+        if 'camera_renderer' not in self.sensor_settings:  # no thread, no GL until a camera
+            from amr_description.sim.sensors.camera import CameraRenderer
+            self.sensor_settings['camera_renderer'] = CameraRenderer()
         self.controller_manager_factory = controller_manager_factory
         self.controller_manager_release = controller_manager_release
         self.entities = {}          # name -> Entity (spawned; possibly still being set up)
@@ -156,8 +162,11 @@ class Simulation:
             self._thread = None
 
     def close(self):
-        """Stop the thread, then release every controller manager (caller's thread)."""
+        """Stop the thread and the camera render thread, then release every controller manager."""
         self.stop()
+        renderer = self.sensor_settings.get('camera_renderer')
+        if renderer is not None:
+            renderer.close()
         self.active = ()
         self._managers = ()
         for entity in list(self.entities.values()):

@@ -170,14 +170,14 @@ def test_bad_fields_name_the_sensor_and_the_field(lidar, field):
 
 def test_a_sensor_on_a_missing_link_or_of_another_type_is_one_line():
     extra = ('<gazebo reference="nowhere"><sensor name="ghost" type="imu"/></gazebo>'
-             '<gazebo reference="base_link"><sensor name="cam" type="camera"/>'
+             '<gazebo reference="base_link"><sensor name="cam" type="thermal_camera"/>'
              '<sensor name="odd" type="sonarx"/></gazebo>')
     description = RobotDescription(_robot(_lidar(), extra=extra))
     assert [b.name for b in description.sensors.sensors] == ['lidar']
     assert description.sensors.messages == [
         "sensor 'ghost': <gazebo reference> names link 'nowhere' that does not exist; the "
         'sensor is skipped',
-        "sensor 'cam' of type 'camera' is not simulated",
+        "sensor 'cam' of type 'thermal_camera' is not simulated",
         "sensor 'odd' of unknown type 'sonarx' is not simulated"]
 
 
@@ -442,7 +442,7 @@ def test_check_model_says_what_becomes_of_each_sensor_block():
     bad = found['<gazebo reference="lidar_link"><sensor bad>']
     assert bad[0] != ok[0] and '<range><max>' in bad[1] and bad[1].endswith('skipped')
     assert found['<gazebo reference="base_link"><sensor cam>'][1] == \
-        "sensor 'cam' of type 'camera' is not simulated"
+        'simulated as a camera of 320x240 pixels at every physics step (docs/sensors.md)'
     assert 'skipped' in found['<gazebo reference="ghost"><sensor g>'][1]
 
 

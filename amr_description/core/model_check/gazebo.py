@@ -106,6 +106,10 @@ def _sensor(sensor, where, reference, links):
     if block.kind == 'lidar':
         rays = block.lidar.horizontal.count * block.lidar.vertical.count
         what = f'a ray-cast lidar of {rays} rays'
+    elif block.camera is not None:
+        camera = block.camera
+        kind = {'camera': 'a camera', 'depth': 'a depth camera', 'rgbd': 'an RGB-D camera'}
+        what = f'{kind[block.kind]} of {camera.width}x{camera.height} pixels'
     else:
         what = 'an IMU'
     return Finding(INFO, element, f'simulated as {what} at {rate} (docs/sensors.md)')

@@ -38,8 +38,9 @@ entity); one topic per sensor of every spawned robot (:mod:`amr_description.sim.
 ``base_footprint`` (``r1/base_footprint`` in namespace ``/r1``); the topics of the gz-sim
 systems a robot's description names (:mod:`amr_description.sim.systems`: e.g. DiffDrive's
 Twist subscription and Odometry and TF publishers) and of its ``<gazebo><sensor>`` blocks
-(lidar: LaserScan on ``<topic>``, PointCloud2 on ``<topic>/points``; IMU: Imu,
-docs/sensors.md), reliable, volatile, depth 10 as ros_gz_bridge's.
+(lidar: LaserScan on ``<topic>``, PointCloud2 on ``<topic>/points``; IMU: Imu; cameras:
+Image, CameraInfo, CompressedImage, depth Image and PointCloud2, docs/sensors.md), reliable,
+volatile, depth 10 as ros_gz_bridge's.
 
 Services (simulation_interfaces): ``~/spawn_entity`` (SpawnEntity; ``entity_namespace``
 gives the robot's controller manager ``<namespace>/controller_manager``, its controllers
@@ -55,5 +56,11 @@ coroutine that awaits the simulation thread's world change, so that the executor
 other robots' controller-manager services meanwhile). The
 simulation thread publishes /clock and the sensors and sets the controller nodes' clocks;
 their /clock subscriptions are removed before the executor ever sees them
-(:class:`amr_description.ros.sim_time.SimTimeExecutor`).
+(:class:`amr_description.ros.sim_time.SimTimeExecutor`). Cameras render and publish on their
+own thread (``camera_render``, :mod:`amr_description.sim.sensors.camera`), through EGL unless
+``MUJOCO_GL`` says otherwise (set here, before MuJoCo is imported).
 """
+
+import os
+
+os.environ.setdefault('MUJOCO_GL', 'egl')

@@ -250,16 +250,25 @@ class MujocoSim(Node):
 
         A sensor is measured and published only while its topic has a subscriber (volatile:
         an unheard message reaches nobody); otherwise a sensor that is not costly advances
-        its noise generator past the instant (``Sensor.advance``).
+        its noise generator past the instant (``Sensor.advance``). A deferred sensor (a
+        camera) is requested, and its renderer given the instant's state once all have asked.
         """
         world = self.sim.world
+        deferred = []
         for item in self._published:
             if step_count is not None and step_count % item.steps:
                 continue
             if has_subscribers(item.publisher):
-                item.publisher.publish(item.sensor.measure(world, t))
+                if item.sensor.deferred:
+                    target = item.sensor.request(t, item.publisher.publish)
+                    if target not in deferred:
+                        deferred.append(target)
+                else:
+                    item.publisher.publish(item.sensor.measure(world, t))
             elif not item.sensor.costly:
                 item.sensor.advance(world, t)
+        for target in deferred:
+            target.flush(world, t)
 
     def _on_sim_reset(self):
         self._publish_clock(0.0)

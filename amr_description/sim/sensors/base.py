@@ -26,6 +26,10 @@ class Sensor:
         a noise generator's sequence does not depend on who listens.
     :ivar gz_name: the gz topic a Gazebo user's ros_gz_bridge configuration
         (``bridge_config``) maps to ROS, absolute; '' for a sensor that is only a ROS topic.
+    :ivar deferred: True for a sensor measured off the simulation thread (a camera): the node
+        calls ``request(t, publish)`` instead of :meth:`measure`, which returns an object
+        whose ``flush(world, t)`` the node calls once every sensor of the instant has asked
+        (``amr_description.sim.sensors.camera.CameraOutput``).
     """
 
     name = ''
@@ -35,6 +39,7 @@ class Sensor:
     message_type = None
     costly = False
     gz_name = ''
+    deferred = False
 
     def period_steps(self, physics_step):
         """
@@ -109,6 +114,11 @@ def sensor_topic(entity, block, world_name):
         link = lumped_link(description.model, block.link, description.gazebo_tags)
         topic = default_topic(world_name, entity.name, link, block)
         return topic, topic
+    return named_topic(entity, topic)
+
+
+def named_topic(entity, topic):
+    """Return ``(ROS topic, gz topic)`` of a topic a sensor block names (:func:`sensor_topic`)."""
     if topic.startswith('/'):
         return topic, topic
     return f'{entity.namespace}/{topic}', '/' + topic

@@ -8,15 +8,41 @@ URDF link (bodies keep their URDF link names; fixed joints are not lumped), at t
 ``<pose>`` in the link frame. An IMU also gets MuJoCo's own sensors on that site
 (``accelerometer``, which includes gravity, ``gyro`` and ``framequat`` in the world frame;
 MuJoCo ``doc/XMLreference.rst``), named ``sensor/<name>/accel``, ``/gyro`` and ``/quat``.
+A camera gets a MuJoCo camera ``camera/<name>`` at the site: MuJoCo's camera looks along its
+-Z with +Y up and +X right, SDF's along the sensor's +X with +Z up, so the camera's axes in
+the sensor frame are x = -y_s, y = z_s, z = -x_s (:data:`CAMERA_IN_SENSOR`); its vertical
+field of view is ``2 atan(height / (2 fy))`` (``fy`` from the SDF intrinsics or the
+horizontal field of view, :meth:`~amr_description.core.gazebo_sensors.CameraSpec.k`).
 The world's attach prefix (``<entity>/``) is put in front of every name.
 """
 
 import math
 
 import mujoco
+import numpy as np
 
 SITE_GROUP = 5
 """MuJoCo group of sensor sites (not drawn by default)."""
+
+
+CAMERA_IN_SENSOR = ((0.0, 0.0, -1.0), (-1.0, 0.0, 0.0), (0.0, 1.0, 0.0))
+"""Rotation matrix (rows) of a MuJoCo camera's axes in an SDF sensor frame (module doc)."""
+
+
+def camera_name(block):
+    """Return the MuJoCo camera name of a camera sensor block."""
+    return f'camera/{block.name}'
+
+
+def camera_quat(rpy):
+    """Return the MuJoCo quaternion (w, x, y, z) of a camera at sensor pose ``rpy`` (rad)."""
+    sensor = np.zeros(4)
+    sensor[:] = quat_wxyz_from_rpy(*rpy)
+    local = np.zeros(4)
+    mujoco.mju_mat2Quat(local, np.array(CAMERA_IN_SENSOR).ravel())
+    result = np.zeros(4)
+    mujoco.mju_mulQuat(result, sensor, local)
+    return result.tolist()
 
 
 def site_name(block):
@@ -53,6 +79,12 @@ def add_mounts(spec, blocks):
         site = body.add_site(name=site_name(block), pos=list(block.xyz),
                              quat=quat_wxyz_from_rpy(*block.rpy), group=SITE_GROUP,
                              size=[0.01, 0.01, 0.01])
+        if block.camera is not None:
+            camera = block.camera
+            fy = camera.k()[1]
+            body.add_camera(name=camera_name(block), pos=list(block.xyz),
+                            quat=camera_quat(block.rpy),
+                            fovy=math.degrees(2.0 * math.atan(0.5 * camera.height / fy)))
         if block.kind == 'imu':
             accel, gyro, quat = imu_sensor_names(block)
             spec.add_sensor(name=accel, type=mujoco.mjtSensor.mjSENS_ACCELEROMETER,
