@@ -23,6 +23,8 @@ What RViz's displays of the tutorial show, on a web page served by this node:
   the fixed frame, coloured by range (:mod:`amr_description.web.displays.laser_scan`);
   **PointCloud2** of ``point_cloud_topics`` (``['/scan/points']``), coloured by height;
   **Imu** arrows (acceleration, angular velocity) of ``imu_topics`` (``['/imu']``);
+  **Image** panels of ``image_topics`` (``['/camera/image']``, subscribed only while a page
+  is open) and each camera's frustum (:mod:`amr_description.web.displays.image`);
 - **Odometry** trails of ``odometry_topics`` (``/odom``, ``/ground_truth/odom``), one colour
   each with a legend and a Clear button. A trail whose ``header.frame_id`` is not in TF (the
   simulator's ``world``) is drawn as if that frame were the fixed frame, and the legend says
@@ -57,6 +59,7 @@ import sys
 from amr_description.ros.node import Node
 from amr_description.web.displays.base import DrawContext
 from amr_description.web.displays.base import FrameManager
+from amr_description.web.displays.image import ImageDisplay
 from amr_description.web.displays.imu import ImuDisplay
 from amr_description.web.displays.laser_scan import LaserScanDisplay
 from amr_description.web.displays.point_cloud import PointCloudDisplay
@@ -105,6 +108,7 @@ class Viewer(Node):
         self.declare_parameter('scan_topics', ['/scan'], string_array)
         self.declare_parameter('point_cloud_topics', ['/scan/points'], string_array)
         self.declare_parameter('imu_topics', ['/imu'], string_array)
+        self.declare_parameter('image_topics', ['/camera/image'], string_array)
         update_rate = float(self.get_parameter('update_rate').value)
         if not update_rate > 0.0:
             raise ValueError(f'update_rate must be > 0 Hz, found {update_rate}')
@@ -123,7 +127,8 @@ class Viewer(Node):
         self.point_cloud = PointCloudDisplay(self, server, self.frames,
                                              value('point_cloud_topics').value)
         self.imu = ImuDisplay(self, server, self.frames, value('imu_topics').value)
-        sensors = (self.laser_scan, self.point_cloud, self.imu)
+        self.image = ImageDisplay(self, server, self.frames, value('image_topics').value)
+        sensors = (self.laser_scan, self.point_cloud, self.imu, self.image)
         self.status = StatusDisplay(self, server, self.frames, self.robot_model, self.trails,
                                     *sensors)
         self.teleop_pad = TeleopPadDisplay(
@@ -148,6 +153,7 @@ class Viewer(Node):
         server.scene.add_grid('/grid', width=10.0, height=10.0, cell_size=0.5,
                               section_size=1.0)
         self.status.build(gui)
+        self.image.build_panel(gui)
         with gui.add_folder('Displays'):
             self._fixed_frame = gui.add_text('Fixed Frame',
                                              str(self.get_parameter('fixed_frame').value))
@@ -156,6 +162,7 @@ class Viewer(Node):
             self.laser_scan.build(gui)
             self.point_cloud.build(gui)
             self.imu.build(gui)
+            self.image.build(gui)
         self.teleop_pad.build(gui)
 
     def _choose_fixed_frame(self):
@@ -171,7 +178,9 @@ class Viewer(Node):
 
     def _update_scene(self):
         if not self._server.get_clients():
-            return  # nobody looks: the scene is brought up to date when a page connects
+            for display in self.displays:  # nobody looks: the scene is brought up to date
+                display.hidden()  # when a page connects
+            return
         # one batch of messages per update: viser wakes its event loop once per batch, not
         # once per changed value (that wake-up was the largest single cost of an update)
         with self._server.atomic():

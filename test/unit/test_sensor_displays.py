@@ -5,6 +5,9 @@
 import array
 import math
 
+from amr_description.web.displays.image import frustum_fov
+from amr_description.web.displays.image import image_array
+from amr_description.web.displays.image import info_topic
 from amr_description.web.displays.imu import ACCEL_SCALE
 from amr_description.web.displays.imu import GYRO_SCALE
 from amr_description.web.displays.imu import imu_segments
@@ -13,6 +16,8 @@ from amr_description.web.displays.point_cloud import cloud_points
 from amr_description.web.displays.sensor_topics import rainbow
 import numpy as np
 import pytest
+from sensor_msgs.msg import CameraInfo
+from sensor_msgs.msg import Image
 from sensor_msgs.msg import Imu
 from sensor_msgs.msg import LaserScan
 from sensor_msgs.msg import PointCloud2
@@ -64,3 +69,55 @@ def test_imu_arrows_are_scaled_and_turned_into_the_fixed_frame():
 def test_rainbow_runs_from_red_to_blue():
     colours = rainbow([0.0, 0.5, 1.0], 0.0, 1.0)
     assert colours.tolist() == [[255, 0, 0], [0, 255, 0], [0, 0, 255]]
+
+
+def _image_msg(encoding, pixels, step=None, bigendian=False):
+    pixels = np.ascontiguousarray(pixels)
+    msg = Image(height=pixels.shape[0], width=pixels.shape[1], encoding=encoding,
+                is_bigendian=int(bigendian))
+    raw = pixels.tobytes()
+    msg.step = step or len(raw) // pixels.shape[0]
+    if step:  # padded rows
+        row = len(raw) // pixels.shape[0]
+        raw = b''.join(raw[i * row:(i + 1) * row] + bytes(step - row)
+                       for i in range(pixels.shape[0]))
+    msg.data = array.array('B', raw)
+    return msg
+
+
+def test_images_of_every_shown_encoding_become_rgb():
+    rgb = np.array([[[255, 0, 0], [0, 255, 0], [0, 0, 255]]], np.uint8)
+    assert (image_array(_image_msg('rgb8', rgb)) == rgb).all()
+    assert (image_array(_image_msg('bgr8', rgb[:, :, ::-1], step=12)) == rgb).all()
+    rgba = np.concatenate([rgb, np.full((1, 3, 1), 7, np.uint8)], axis=2)
+    assert (image_array(_image_msg('rgba8', rgba)) == rgb).all()
+    grey = np.array([[0, 128, 255]], np.uint8)
+    assert (image_array(_image_msg('mono8', grey))[:, :, 1] == grey).all()
+    wide = np.array([[0, 32896, 65535]], '>u2')
+    assert list(image_array(_image_msg('mono16', wide, bigendian=True))[0, :, 0]) == \
+        [0, 128, 255]
+
+
+def test_depth_images_are_grey_white_near_black_far_and_black_without_a_hit():
+    depth = np.array([[1.0, 2.0, 3.0, np.inf, np.nan]], '<f4')
+    grey = image_array(_image_msg('32FC1', depth))[0, :, 0]
+    assert list(grey) == [255, 155, 55, 0, 0]
+
+
+def test_an_unknown_encoding_or_short_data_is_a_value_error():
+    with pytest.raises(ValueError, match="encoding 'yuv422'"):
+        image_array(_image_msg('yuv422', np.zeros((2, 2, 2), np.uint8)))
+    msg = _image_msg('rgb8', np.zeros((2, 2, 3), np.uint8))
+    msg.height = 3
+    with pytest.raises(ValueError, match='12 bytes, step 6'):
+        image_array(msg)
+
+
+def test_the_frustum_takes_the_vertical_fov_of_k_and_the_sibling_camera_info():
+    f = 320 / (2 * math.tan(1.047 / 2))
+    info = CameraInfo(width=320, height=240, k=[f, 0, 160, 0, f, 120, 0, 0, 1])
+    fov, aspect = frustum_fov(info)
+    assert fov == pytest.approx(2 * math.atan(120 / f)) and aspect == pytest.approx(4 / 3)
+    assert frustum_fov(CameraInfo()) is None
+    assert info_topic('/camera/image') == '/camera/camera_info'
+    assert info_topic('/r1/front/image_raw') == '/r1/front/camera_info'

@@ -172,3 +172,6 @@ class Display:
 
     def draw(self, context):
         """Bring the scene up to date for one :class:`DrawContext` (inside the batch)."""
+
+    def hidden(self):
+        """No page is open (called instead of :meth:`draw`): stop costly subscriptions."""
