@@ -117,7 +117,7 @@ def test_the_viewer_shows_the_live_image_only_while_its_page_is_open(
     port = free_port()
     stack = procs.start([exe('bringup'), 'sim', f'world:={TARGETS}', 'xacro_args:=camera:=true',
                          f'viewer_port:={port}'], ros_env)
-    assert stack.wait_for_output(f'viewer: open http://127.0.0.1:{port}/ in a browser', 90.0), \
+    assert stack.wait_for_output(f'viewer: open http://127.0.0.1:{port}/ in a browser', 180.0), \
         stack.output[-3000:]
 
     def viewer_subscriptions():

@@ -125,7 +125,7 @@ def test_the_sim_stack_viewer_draws_the_scan_and_its_rate(procs, exe, ros_env, t
     port = free_port()
     stack = procs.start([exe('bringup'), 'sim', f'world:={ROOM}', f'viewer_port:={port}'],
                         ros_env)
-    assert stack.wait_for_output(f'viewer: open http://127.0.0.1:{port}/ in a browser', 90.0), \
+    assert stack.wait_for_output(f'viewer: open http://127.0.0.1:{port}/ in a browser', 180.0), \
         stack.output[-3000:]
     with open_page(f'http://127.0.0.1:{port}/') as page:
         assert page.wait_for_text('Fixed Frame', 120.0), page.page.inner_text('body')

@@ -30,7 +30,7 @@ def test_bag_play_clock_beside_the_viewer_leaves_it_with_its_transforms(
     assert ensure_chromium(), 'Debian chromium is missing: run scripts/setup'
     port = free_port()
     stack = procs.start([exe('bringup'), 'sim', f'viewer_port:={port}'], ros_env)
-    assert stack.wait_for_output(f'viewer: open http://127.0.0.1:{port}/ in a browser', 90.0), \
+    assert stack.wait_for_output(f'viewer: open http://127.0.0.1:{port}/ in a browser', 180.0), \
         stack.output[-3000:]
     bag = tmp_path / 'run1'
     record = procs.start([exe('ros2'), 'bag', 'record', '-o', str(bag), '--use-sim-time',

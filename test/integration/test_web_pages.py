@@ -84,7 +84,7 @@ def _blue(page, path=None):
 def test_viewer_drives_the_robot_from_the_page(ros_env, procs, exe, tmp_path):
     port = free_port()
     stack = procs.start([exe('bringup'), 'sim', f'viewer_port:={port}'], ros_env)
-    assert stack.wait_for_output(f'viewer: open http://127.0.0.1:{port}/ in a browser', 90.0), \
+    assert stack.wait_for_output(f'viewer: open http://127.0.0.1:{port}/ in a browser', 180.0), \
         stack.output[-3000:]
     assert stack.wait_for_output('Configured and activated diff_drive_controller', 120.0), \
         stack.output[-3000:]
@@ -175,7 +175,7 @@ def test_fleet_viewer_shows_every_robot(ros_env, procs, exe, tmp_path):
     port = free_port()
     stack = procs.start([exe('bringup'), 'fleet', 'robots:=2', f'viewer_port:={port}'],
                         ros_env)
-    assert stack.wait_for_output(f'viewer: open http://127.0.0.1:{port}/ in a browser', 90.0), \
+    assert stack.wait_for_output(f'viewer: open http://127.0.0.1:{port}/ in a browser', 180.0), \
         stack.output[-3000:]
     with open_page(f'http://127.0.0.1:{port}/') as page:
         assert page.wait_for_text('Fixed Frame: world', 120.0), page.page.inner_text('body')

@@ -86,7 +86,7 @@ def test_the_sim_stack_shows_the_robot_among_the_shelves(procs, exe, ros_env, tm
     port = free_port()
     stack = procs.start([exe('bringup'), 'sim', 'world:=warehouse', f'viewer_port:={port}'],
                         ros_env)
-    assert stack.wait_for_output(f'viewer: open http://127.0.0.1:{port}/ in a browser', 90.0), \
+    assert stack.wait_for_output(f'viewer: open http://127.0.0.1:{port}/ in a browser', 180.0), \
         stack.output[-3000:]
     assert stack.wait_for_output("world 'warehouse': 17 models,", 60.0), stack.output[-3000:]
     with open_page(f'http://127.0.0.1:{port}/') as page:
