@@ -75,6 +75,7 @@ setup(
             'ground_truth = amr_description.sim.sensors.ground_truth:create',
             'imu = amr_description.sim.sensors.imu:create',
             'lidar = amr_description.sim.sensors.lidar:create',
+            'navsat = amr_description.sim.sensors.navsat:create',
         ],
         'amr_description.hardware': [
             'amr_description/MujocoSystem = amr_description.sim.mujoco_system:MujocoSystem',

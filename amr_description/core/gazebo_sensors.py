@@ -41,14 +41,14 @@ SDF_SENSOR_TYPES = (
 
 KINDS = {'gpu_lidar': 'lidar', 'lidar': 'lidar', 'ray': 'lidar', 'gpu_ray': 'lidar',
          'imu': 'imu', 'camera': 'camera', 'depth_camera': 'depth', 'depth': 'depth',
-         'rgbd_camera': 'rgbd', 'rgbd': 'rgbd'}
+         'rgbd_camera': 'rgbd', 'rgbd': 'rgbd', 'navsat': 'navsat'}
 """Simulated sensor types -> the simulator's kind: every lidar type is ray-cast."""
 
 CAMERA_KINDS = ('camera', 'depth', 'rgbd')
 """Kinds rendered by a camera (``<camera>`` element)."""
 
 DEFAULT_TOPIC_SUFFIX = {'lidar': 'scan', 'imu': 'imu', 'camera': 'image',
-                        'depth': 'depth_image', 'rgbd': ''}
+                        'depth': 'depth_image', 'rgbd': '', 'navsat': 'navsat'}
 """Last part of gz-sim's default topic per kind (gz-sim 8 ``RenderUtil.cc``, ``Imu.cc``);
 an RGB-D camera's topics are below its base name (``<base>/image``, ...)."""
 
@@ -219,6 +219,21 @@ class CameraSpec:
 
 
 @dataclass
+class NavSatSpec:
+    """
+    SDF ``<navsat>``: the noise of the position (sdformat 14 ``navsat.sdf``).
+
+    :param horizontal: :class:`Noise` of ``<position_sensing><horizontal>``, added to the
+        latitude and to the longitude in degrees (as gz-sensors 8 ``NavSatSensor::Update``).
+    :param vertical: :class:`Noise` of ``<position_sensing><vertical>``, added to the
+        altitude in m.
+    """
+
+    horizontal: Noise = field(default_factory=Noise)
+    vertical: Noise = field(default_factory=Noise)
+
+
+@dataclass
 class SensorBlock:
     """
     One ``<sensor>`` of a ``<gazebo reference="LINK">`` block.
@@ -236,6 +251,7 @@ class SensorBlock:
     :param lidar: :class:`LidarSpec` of a lidar, else None.
     :param imu: :class:`ImuSpec` of an IMU, else None.
     :param camera: :class:`CameraSpec` of a camera, depth or RGB-D camera, else None.
+    :param navsat: :class:`NavSatSpec` of a navsat sensor, else None.
     """
 
     name: str
@@ -250,10 +266,11 @@ class SensorBlock:
     lidar: LidarSpec = None
     imu: ImuSpec = None
     camera: CameraSpec = None
+    navsat: NavSatSpec = None
 
     @property
     def kind(self):
-        """Return ``'lidar'``, ``'imu'``, ``'camera'``, ``'depth'``, ``'rgbd'`` or None."""
+        """Return the simulator's name of the type (a value of KINDS), None if not simulated."""
         return KINDS.get(self.type)
 
 
@@ -436,6 +453,19 @@ def _camera(sensor, where):
                       (_text(element, 'camera_info_topic', '') or '').strip(), intrinsics)
 
 
+def _navsat(sensor, where):
+    element = sensor.find('navsat')
+    spec = NavSatSpec()
+    if element is None:
+        return spec
+    for axis in ('horizontal', 'vertical'):
+        noise = element.find(f'position_sensing/{axis}/noise')
+        value = _noise(noise, f'{where}<navsat><position_sensing><{axis}>',
+                       None if noise is None else (noise.get('type') or _text(noise, 'type')))
+        setattr(spec, axis, value)
+    return spec
+
+
 def _pose(sensor, where):
     element = sensor.find('pose')
     if element is None or not (element.text or '').strip():
@@ -483,6 +513,8 @@ def read_sensor(sensor, link):
         block.lidar = _lidar(sensor, where)
     elif block.kind in CAMERA_KINDS:
         block.camera = _camera(sensor, where)
+    elif block.kind == 'navsat':
+        block.navsat = _navsat(sensor, where)
     else:
         block.imu = _imu(sensor, where)
     return block

@@ -36,6 +36,7 @@ import math
 import os
 import xml.etree.ElementTree as ET
 
+from amr_description.core.geodesy import SphericalCoordinates
 from amr_description.core.kinematics import quaternion_to_matrix
 from amr_description.core.kinematics import rpy_to_matrix
 import numpy as np
@@ -46,7 +47,8 @@ NEWEST_VERSION = (1, 11)
 SHAPES = ('box', 'cylinder', 'sphere', 'capsule', 'ellipsoid', 'plane', 'mesh')
 """SDF geometries simulated; the others (cone, heightmap, polyline, image) are reported."""
 
-SIMULATED_WORLD_ELEMENTS = ('physics', 'gravity', 'model', 'include', 'state', 'frame')
+SIMULATED_WORLD_ELEMENTS = ('physics', 'gravity', 'model', 'include', 'state', 'frame',
+                            'spherical_coordinates')
 """``<world>`` children read; every other one is listed once as not simulated."""
 
 SDF_GRAVITY = (0.0, 0.0, -9.8)
@@ -136,6 +138,9 @@ class World:
     :param source: the world file.
     :param messages: one-line warnings (models left out, shapes skipped, ...).
     :param not_simulated: names of ``<world>`` children not simulated (lights, gui, ...).
+    :param spherical_coordinates: the world origin on the Earth
+        (:class:`~amr_description.core.geodesy.SphericalCoordinates`), None without
+        ``<spherical_coordinates>`` (navsat sensors then have nothing to report).
     """
 
     name: str = 'default'
@@ -146,6 +151,7 @@ class World:
     source: str = ''
     messages: list = field(default_factory=list)
     not_simulated: list = field(default_factory=list)
+    spherical_coordinates: SphericalCoordinates = None
 
     def model(self, name):
         """Return the model named ``name`` or None."""
@@ -311,6 +317,25 @@ class _Reader:
         world.messages = self.messages
         return world
 
+    def _spherical(self, element, world):
+        """Read ``<spherical_coordinates>`` (WGS84 and ENU only; else one line, unset)."""
+        spherical = element.find('spherical_coordinates')
+        if spherical is None:
+            return
+        where = '<spherical_coordinates>'
+        model = _child_text(spherical, 'surface_model', 'EARTH_WGS84')
+        orientation = _child_text(spherical, 'world_frame_orientation', 'ENU')
+        if model != 'EARTH_WGS84' or orientation != 'ENU':
+            self.messages.append(f'{where}: only surface_model EARTH_WGS84 with '
+                                 f'world_frame_orientation ENU is simulated, found {model} '
+                                 f'{orientation}: navsat sensors have no origin')
+            return
+        world.spherical_coordinates = SphericalCoordinates(
+            _number(spherical, 'latitude_deg', 0.0, where),
+            _number(spherical, 'longitude_deg', 0.0, where),
+            _number(spherical, 'elevation', 0.0, where),
+            _number(spherical, 'heading_deg', 0.0, where))
+
     def _physics(self, element, world):
         physics = element.findall('physics')
         chosen = next((p for p in physics if _bool(p.get('default'))),
@@ -324,6 +349,7 @@ class _Reader:
             if not world.real_time_factor >= 0:
                 raise _Skip(f'<physics><real_time_factor> must be >= 0, found '
                             f'{world.real_time_factor:g}')
+        self._spherical(element, world)
         gravity = _child_text(element, 'gravity')
         if gravity is not None:
             world.gravity = _floats(gravity, 3, '<world><gravity>')

@@ -25,6 +25,7 @@ What RViz's displays of the tutorial show, on a web page served by this node:
   **Imu** arrows (acceleration, angular velocity) of ``imu_topics`` (``['/imu']``);
   **Image** panels of ``image_topics`` (``['/camera/image']``, subscribed only while a page
   is open) and each camera's frustum (:mod:`amr_description.web.displays.image`);
+  **NavSatFix** of ``navsat_topics`` (``['/gps/fix', '/navsat']``) as text;
 - **Odometry** trails of ``odometry_topics`` (``/odom``, ``/ground_truth/odom``), one colour
   each with a legend and a Clear button. A trail whose ``header.frame_id`` is not in TF (the
   simulator's ``world``) is drawn as if that frame were the fixed frame, and the legend says
@@ -61,6 +62,7 @@ from amr_description.web.displays.base import DrawContext
 from amr_description.web.displays.base import FrameManager
 from amr_description.web.displays.image import ImageDisplay
 from amr_description.web.displays.imu import ImuDisplay
+from amr_description.web.displays.navsat import NavSatDisplay
 from amr_description.web.displays.laser_scan import LaserScanDisplay
 from amr_description.web.displays.point_cloud import PointCloudDisplay
 from amr_description.web.displays.robot_model import RobotModelDisplay
@@ -109,6 +111,7 @@ class Viewer(Node):
         self.declare_parameter('point_cloud_topics', ['/scan/points'], string_array)
         self.declare_parameter('imu_topics', ['/imu'], string_array)
         self.declare_parameter('image_topics', ['/camera/image'], string_array)
+        self.declare_parameter('navsat_topics', ['/gps/fix', '/navsat'], string_array)
         update_rate = float(self.get_parameter('update_rate').value)
         if not update_rate > 0.0:
             raise ValueError(f'update_rate must be > 0 Hz, found {update_rate}')
@@ -128,7 +131,8 @@ class Viewer(Node):
                                              value('point_cloud_topics').value)
         self.imu = ImuDisplay(self, server, self.frames, value('imu_topics').value)
         self.image = ImageDisplay(self, server, self.frames, value('image_topics').value)
-        sensors = (self.laser_scan, self.point_cloud, self.imu, self.image)
+        self.navsat = NavSatDisplay(self, server, self.frames, value('navsat_topics').value)
+        sensors = (self.laser_scan, self.point_cloud, self.imu, self.image, self.navsat)
         self.status = StatusDisplay(self, server, self.frames, self.robot_model, self.trails,
                                     *sensors)
         self.teleop_pad = TeleopPadDisplay(
@@ -154,6 +158,7 @@ class Viewer(Node):
                               section_size=1.0)
         self.status.build(gui)
         self.image.build_panel(gui)
+        self.navsat.build(gui)
         with gui.add_folder('Displays'):
             self._fixed_frame = gui.add_text('Fixed Frame',
                                              str(self.get_parameter('fixed_frame').value))

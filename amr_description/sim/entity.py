@@ -108,9 +108,12 @@ def spawn_stages(sim, urdf, name='', pose=None, namespace='', allow_renaming=Fal
                 parameters_file(sim.parameters_file, description))
             entity.controller_manager = cm
         systems = make_systems(entity, sim.world, sim.world.name)
-        entity.sensors = make_sensors(entity, dict(sim.sensor_settings, world=sim.world.name,
-                                                   physics_step=sim.physics_step))
-        for line in description.sensors.messages:  # gz-sim would run it: say it does not
+        skipped = []
+        spherical = getattr(sim.world.description, 'spherical_coordinates', None)
+        entity.sensors = make_sensors(entity, dict(
+            sim.sensor_settings, world=sim.world.name, physics_step=sim.physics_step,
+            spherical_coordinates=spherical, messages=skipped))
+        for line in description.sensors.messages + skipped:  # gz-sim would run it: say so
             sim.logger.warning(f'entity {entity.name!r}: {line}')
         if systems:
             entity.gz_systems = SystemGroup(systems)

@@ -121,3 +121,12 @@ def test_the_frustum_takes_the_vertical_fov_of_k_and_the_sibling_camera_info():
     assert frustum_fov(CameraInfo()) is None
     assert info_topic('/camera/image') == '/camera/camera_info'
     assert info_topic('/r1/front/image_raw') == '/r1/front/camera_info'
+
+
+def test_a_fix_is_one_line_of_degrees_hemispheres_and_metres():
+    from amr_description.web.displays.navsat import fix_text
+    from sensor_msgs.msg import NavSatFix
+    fix = NavSatFix(latitude=47.397742, longitude=-8.545594, altitude=488.4)
+    assert fix_text('/gps/fix', fix) == '`/gps/fix` 47.3977420° N, 8.5455940° W, 488.40 m'
+    fix.status.status = -1
+    assert fix_text('/gps/fix', fix).endswith('(no fix)')

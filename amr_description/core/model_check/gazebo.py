@@ -110,6 +110,8 @@ def _sensor(sensor, where, reference, links):
         camera = block.camera
         kind = {'camera': 'a camera', 'depth': 'a depth camera', 'rgbd': 'an RGB-D camera'}
         what = f'{kind[block.kind]} of {camera.width}x{camera.height} pixels'
+    elif block.kind == 'navsat':
+        what = "a navsat (GPS) receiver, given the world's <spherical_coordinates>,"
     else:
         what = 'an IMU'
     return Finding(INFO, element, f'simulated as {what} at {rate} (docs/sensors.md)')
