@@ -62,8 +62,8 @@ from amr_description.web.displays.base import DrawContext
 from amr_description.web.displays.base import FrameManager
 from amr_description.web.displays.image import ImageDisplay
 from amr_description.web.displays.imu import ImuDisplay
-from amr_description.web.displays.navsat import NavSatDisplay
 from amr_description.web.displays.laser_scan import LaserScanDisplay
+from amr_description.web.displays.navsat import NavSatDisplay
 from amr_description.web.displays.point_cloud import PointCloudDisplay
 from amr_description.web.displays.robot_model import RobotModelDisplay
 from amr_description.web.displays.status import StatusDisplay
