@@ -72,6 +72,7 @@ setup(
         ],
         'amr_description.sensors': [
             'camera = amr_description.sim.sensors.camera:create',
+            'contact = amr_description.sim.sensors.contact:create',
             'ground_truth = amr_description.sim.sensors.ground_truth:create',
             'imu = amr_description.sim.sensors.imu:create',
             'lidar = amr_description.sim.sensors.lidar:create',

@@ -41,14 +41,15 @@ SDF_SENSOR_TYPES = (
 
 KINDS = {'gpu_lidar': 'lidar', 'lidar': 'lidar', 'ray': 'lidar', 'gpu_ray': 'lidar',
          'imu': 'imu', 'camera': 'camera', 'depth_camera': 'depth', 'depth': 'depth',
-         'rgbd_camera': 'rgbd', 'rgbd': 'rgbd', 'navsat': 'navsat'}
+         'rgbd_camera': 'rgbd', 'rgbd': 'rgbd', 'navsat': 'navsat', 'contact': 'contact'}
 """Simulated sensor types -> the simulator's kind: every lidar type is ray-cast."""
 
 CAMERA_KINDS = ('camera', 'depth', 'rgbd')
 """Kinds rendered by a camera (``<camera>`` element)."""
 
 DEFAULT_TOPIC_SUFFIX = {'lidar': 'scan', 'imu': 'imu', 'camera': 'image',
-                        'depth': 'depth_image', 'rgbd': '', 'navsat': 'navsat'}
+                        'depth': 'depth_image', 'rgbd': '', 'navsat': 'navsat',
+                        'contact': 'contact'}
 """Last part of gz-sim's default topic per kind (gz-sim 8 ``RenderUtil.cc``, ``Imu.cc``);
 an RGB-D camera's topics are below its base name (``<base>/image``, ...)."""
 
@@ -252,6 +253,8 @@ class SensorBlock:
     :param imu: :class:`ImuSpec` of an IMU, else None.
     :param camera: :class:`CameraSpec` of a camera, depth or RGB-D camera, else None.
     :param navsat: :class:`NavSatSpec` of a navsat sensor, else None.
+    :param contact_collision: ``<contact><collision>`` of a contact sensor (the SDF name of
+        one collision of the link, :func:`collision_names`), else ''.
     """
 
     name: str
@@ -267,6 +270,7 @@ class SensorBlock:
     imu: ImuSpec = None
     camera: CameraSpec = None
     navsat: NavSatSpec = None
+    contact_collision: str = ''
 
     @property
     def kind(self):
@@ -515,6 +519,14 @@ def read_sensor(sensor, link):
         block.camera = _camera(sensor, where)
     elif block.kind == 'navsat':
         block.navsat = _navsat(sensor, where)
+    elif block.kind == 'contact':
+        block.contact_collision = (_text(sensor, 'contact/collision', '') or '').strip()
+        if not block.contact_collision:
+            raise SensorError(f'{where}<contact><collision>: expected the name of a collision '
+                              'of the link, found none')
+        topic = (_text(sensor, 'contact/topic', '') or '').strip()
+        if topic and topic != '__default_topic__' and not block.topic:
+            block.topic = topic
     else:
         block.imu = _imu(sensor, where)
     return block
@@ -591,3 +603,31 @@ def default_topic(world, model_name, link, block):
     base = f'/world/{world}/model/{model_name}/link/{link}/sensor/{block.name}'
     suffix = DEFAULT_TOPIC_SUFFIX[block.kind]
     return f'{base}/{suffix}' if suffix else base
+
+
+def collision_names(model, tags):
+    """
+    Return the SDF names of a URDF's collisions: dict name -> (URDF link, collision index).
+
+    sdformat 14's URDF reader names a link's collisions ``<link>_collision`` (the first),
+    ``<link>_collision_<i>`` (the i-th after it) unless the URDF names them; a collision of a
+    link lumped into its parent by a fixed joint (:func:`lumped_link`) becomes
+    ``<parent>_fixed_joint_lump__<link>_collision`` (and ``_<i>``). Every form is accepted,
+    as is the URDF ``<collision name>`` itself.
+
+    :param model: the :class:`~amr_description.core.urdf_model.RobotModel`.
+    :param tags: the ``<gazebo reference>`` tags (for the lumping).
+    """
+    names = {}
+    for link_name, link in model.links.items():
+        parent = lumped_link(model, link_name, tags)
+        for index, collision in enumerate(link.collisions):
+            suffix = '' if index == 0 else f'_{index}'
+            forms = [f'{link_name}_collision{suffix}']
+            if parent != link_name:
+                forms.append(f'{parent}_fixed_joint_lump__{link_name}_collision{suffix}')
+            if collision.name:
+                forms.append(collision.name)
+            for form in forms:
+                names.setdefault(form, (link_name, index))
+    return names
