@@ -103,6 +103,9 @@ DISPLAY_ARGUMENTS = [
                           'Flag to enable joint_state_publisher_gui (sliders in the browser)'),
     DeclareLaunchArgument('viewer', 'true', 'Start the viewer (RViz stand-in in the browser)'),
     DeclareLaunchArgument('viewer_port', '8080', 'TCP port of the viewer page'),
+    DeclareLaunchArgument('rviz_config', '',
+                          'RViz config (.rviz) the viewer reads, as rviz2 -d: its Fixed Frame '
+                          'and displays'),
     DeclareLaunchArgument('gui_port', '8081', 'TCP port of the joint_state_publisher_gui page'),
 ] + DESCRIPTION_ARGUMENTS
 
@@ -118,6 +121,9 @@ SIM_ARGUMENTS = [
     DeclareLaunchArgument('yaw', '0.0', 'Spawn heading about z (rad)'),
     DeclareLaunchArgument('viewer', 'true', 'Start the viewer (RViz stand-in in the browser)'),
     DeclareLaunchArgument('viewer_port', '8080', 'TCP port of the viewer page'),
+    DeclareLaunchArgument('rviz_config', '',
+                          'RViz config (.rviz) the viewer reads, as rviz2 -d: its Fixed Frame '
+                          'and displays'),
     DeclareLaunchArgument('controllers', ','.join(CONTROLLERS),
                           'Controllers to spawn, in that order (comma-separated names)'),
     DeclareLaunchArgument('world', 'empty',
@@ -144,7 +150,15 @@ FLEET_ARGUMENTS = [
                           'each if false)'),
     DeclareLaunchArgument('viewer', 'true', 'Start the viewer (RViz stand-in in the browser)'),
     DeclareLaunchArgument('viewer_port', '8080', 'TCP port of the viewer page'),
+    DeclareLaunchArgument('rviz_config', '',
+                          'RViz config (.rviz) the viewer reads, as rviz2 -d: its Fixed Frame '
+                          'and displays'),
 ] + DESCRIPTION_ARGUMENTS
+
+
+def _rviz(args):
+    """Return the viewer's ``rviz_config`` parameter when ``rviz_config:=`` is given."""
+    return {'rviz_config': args['rviz_config']} if args['rviz_config'] else {}
 
 
 def _page(args, name):
@@ -219,7 +233,8 @@ def display(args):
         port, env = _page(args, 'viewer_port')
         actions.append(Node(PACKAGE, 'viewer', output='screen', env=env,
                             parameters=[{'use_sim_time': use_sim_time,
-                                         'fixed_frame': 'base_footprint', **port}]))
+                                         'fixed_frame': 'base_footprint', **port,
+                                         **_rviz(args)}]))
     return actions
 
 
@@ -281,7 +296,8 @@ def sim(args):
     if viewer:
         actions.append(Node(PACKAGE, 'viewer', output='screen', env=viewer_env,
                             parameters=[{'use_sim_time': use_sim_time, 'fixed_frame': 'odom',
-                                         'world': args['world'], **viewer_port}]))
+                                         'world': args['world'], **viewer_port,
+                                         **_rviz(args)}]))
     return actions
 
 
@@ -401,7 +417,7 @@ def fleet(args):
     if viewer:
         actions.append(Node(PACKAGE, 'viewer', output='screen', env=viewer_env, parameters=[{
             'use_sim_time': use_sim_time, 'fixed_frame': 'world', **viewer_port,
-            'world': args['world'],
+            'world': args['world'], **_rviz(args),
             'robot_description_topics': [f'/{ns}/robot_description' for ns in names],
             'odometry_topics': [f'/{ns}/ground_truth/odom' for ns in names],
             'cmd_vel_topic': f'/{names[0]}/diff_drive_controller/cmd_vel',

@@ -53,10 +53,18 @@ parameter then holds the port bound); ``update_rate`` (Hz of scene updates, 30).
 explicitly and in use: one line naming it and the argument that set it, exit code 1. A
 description that does not parse: the error on the page and in the log, the node keeps running.
 Prints ``viewer: open http://HOST:PORT/ in a browser`` once serving.
+
+An RViz configuration (``viewer -d FILE.rviz`` as ``rviz2 -d``, or parameter ``rviz_config``;
+the stacks' ``rviz_config:=``) sets the Fixed Frame and the topics of the displays it enables
+(:mod:`amr_description.core.rviz_config`), replacing the topic parameters' defaults; the
+displays it enables that the viewer does not have are listed in the status. A config that
+cannot be read: one line, exit code 1.
 """
 
+import os
 import sys
 
+from amr_description.core.rviz_config import read_rviz_config
 from amr_description.ros.node import Node
 from amr_description.web.displays.base import DrawContext
 from amr_description.web.displays.base import FrameManager
@@ -78,6 +86,7 @@ from rcl_interfaces.msg import ParameterDescriptor
 from rcl_interfaces.msg import ParameterType
 from rclpy.clock import Clock
 from rclpy.clock import ClockType
+from rclpy.parameter import Parameter
 
 NODE_NAME = 'viewer'
 DEFAULT_PORT = 8080
@@ -112,33 +121,53 @@ class Viewer(Node):
         self.declare_parameter('imu_topics', ['/imu'], string_array)
         self.declare_parameter('image_topics', ['/camera/image'], string_array)
         self.declare_parameter('navsat_topics', ['/gps/fix', '/navsat'], string_array)
+        self.declare_parameter('rviz_config', '')
         update_rate = float(self.get_parameter('update_rate').value)
         if not update_rate > 0.0:
             raise ValueError(f'update_rate must be > 0 Hz, found {update_rate}')
         self._server, self.url = serve_page(self, DEFAULT_PORT)
 
-        value = self.get_parameter
+        rviz = None
+        if self.get_parameter('rviz_config').value:  # ValueError: one line, exit 1
+            rviz = read_rviz_config(str(self.get_parameter('rviz_config').value))
+        settings = {name: self.get_parameter(name).value for name in (
+            'fixed_frame', 'robot_description_topics', 'odometry_topics', 'scan_topics',
+            'point_cloud_topics', 'imu_topics', 'image_topics', 'navsat_topics', 'world',
+            'cmd_vel_topic', 'frame_id', 'speed', 'turn')}
+        if rviz is not None:  # the config's displays replace the defaults, as in RViz
+            settings.update(rviz.topics)
+            if rviz.fixed_frame:
+                settings['fixed_frame'] = rviz.fixed_frame
+            self.set_parameters([Parameter(name, value=settings[name])
+                                 for name in ('fixed_frame', *rviz.topics) if settings[name]])
+        self._fixed_frame_default = str(settings['fixed_frame'])
         server = self._server
         self.frames = FrameManager(self)
-        self.world = WorldDisplay(self, server, self.frames, value('world').value)
+        self.world = WorldDisplay(self, server, self.frames, settings['world'])
         self.robot_model = RobotModelDisplay(self, server, self.frames,
-                                             value('robot_description_topics').value)
+                                             settings['robot_description_topics'])
         self.tf_axes = TfAxesDisplay(self, server, self.frames)
-        self.trails = TrailsDisplay(self, server, self.frames, value('odometry_topics').value)
+        self.tf_axes.enabled = rviz is None or rviz.tf
+        self.trails = TrailsDisplay(self, server, self.frames, settings['odometry_topics'])
         self.laser_scan = LaserScanDisplay(self, server, self.frames,
-                                           value('scan_topics').value)
+                                           settings['scan_topics'])
         self.point_cloud = PointCloudDisplay(self, server, self.frames,
-                                             value('point_cloud_topics').value)
-        self.imu = ImuDisplay(self, server, self.frames, value('imu_topics').value)
-        self.image = ImageDisplay(self, server, self.frames, value('image_topics').value)
-        self.navsat = NavSatDisplay(self, server, self.frames, value('navsat_topics').value)
+                                             settings['point_cloud_topics'])
+        self.imu = ImuDisplay(self, server, self.frames, settings['imu_topics'])
+        self.image = ImageDisplay(self, server, self.frames, settings['image_topics'])
+        self.navsat = NavSatDisplay(self, server, self.frames, settings['navsat_topics'])
         sensors = (self.laser_scan, self.point_cloud, self.imu, self.image, self.navsat)
         self.status = StatusDisplay(self, server, self.frames, self.robot_model, self.trails,
                                     *sensors)
+        if rviz is not None:
+            self.status.notes.append(
+                f'RViz config `{os.path.basename(rviz.path)}`'
+                + (f': not shown: {", ".join(rviz.not_shown)}' if rviz.not_shown
+                   else ': every display shown'))
         self.teleop_pad = TeleopPadDisplay(
-            self, server, self.frames, str(value('cmd_vel_topic').value),
-            str(value('frame_id').value), float(value('speed').value),
-            float(value('turn').value))
+            self, server, self.frames, str(settings['cmd_vel_topic']),
+            str(settings['frame_id']), float(settings['speed']),
+            float(settings['turn']))
         # drawn in this order in every update (the status last: it reports what others saw)
         self.displays = [self.world, self.robot_model, self.tf_axes, self.trails, *sensors,
                          self.teleop_pad, self.status]
@@ -160,8 +189,7 @@ class Viewer(Node):
         self.image.build_panel(gui)
         self.navsat.build(gui)
         with gui.add_folder('Displays'):
-            self._fixed_frame = gui.add_text('Fixed Frame',
-                                             str(self.get_parameter('fixed_frame').value))
+            self._fixed_frame = gui.add_text('Fixed Frame', self._fixed_frame_default)
             self.tf_axes.build(gui)
             self.trails.build(gui)
             self.laser_scan.build(gui)
@@ -208,7 +236,30 @@ def main(args=None):
     :returns: 0 on a clean shutdown, 1 on a port in use or a bad parameter (one line).
     """
     from rclpy.experimental import EventsExecutor
-    return run_web_node(Viewer, NODE_NAME, args, executor_class=EventsExecutor)
+    return run_web_node(Viewer, NODE_NAME, display_config_args(args),
+                        executor_class=EventsExecutor)
+
+
+def display_config_args(args=None):
+    """
+    Return the arguments with rviz2's ``-d FILE`` / ``--display-config FILE`` as a parameter.
+
+    ``viewer -d robot.rviz`` is ``viewer --ros-args -p rviz_config:=robot.rviz``.
+
+    :param args: command-line arguments (default ``sys.argv``).
+    """
+    args = list(sys.argv if args is None else args)
+    result = []
+    i = 0
+    while i < len(args):
+        if args[i] in ('-d', '--display-config') and i + 1 < len(args) and \
+                '--ros-args' not in args[:i]:
+            result += ['--ros-args', '-p', f'rviz_config:={os.path.abspath(args[i + 1])}']
+            i += 2
+            continue
+        result.append(args[i])
+        i += 1
+    return result
 
 
 if __name__ == '__main__':

@@ -76,7 +76,7 @@ def test_resting_on_the_ground_the_forces_add_up_to_the_weight_and_the_normals_p
     while sim.step_count < 500:
         sim.run_cycle()
     msg = sensors['bumper'].measure(sim.world, 0.5)
-    assert (msg.header.frame_id, sensors['bumper'].topic) == ('base_link', '/bumper')
+    assert (msg.header.frame_id, sensors['bumper'].topic) == ('', '/bumper')  # world frame
     (contact,) = msg.contacts
     assert contact.collision1.name == 'probe::base_link::base_link_collision'
     assert contact.collision2.name == 'ground_plane::link::collision'

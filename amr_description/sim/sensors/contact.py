@@ -16,7 +16,9 @@ interfaces/ros_gz_interfaces):
   collision for a world model; ``ground_plane::link::collision`` for the ground) and the
   MuJoCo geom id;
 - ``positions``, ``normals`` (unit, from collision1 towards collision2) and ``depths``
-  (penetration, m, >= 0), one per MuJoCo contact point of the pair, in the world frame;
+  (penetration, m, >= 0), one per MuJoCo contact point of the pair, in the world frame
+  (``header.frame_id`` is empty, as the bridge leaves it: gz-sim's Contact system stamps its
+  message and names no frame);
 - ``wrenches``: one ``JointWrench`` per contact point, ``body_1_wrench.force`` the force on
   collision1 and ``body_2_wrench.force`` the force on collision2 (N, world frame,
   ``mj_contactForce``), torques zero.
@@ -91,8 +93,7 @@ class ContactSensor(Sensor):
             self._id = model.geom(self._geom).id
             self._model = model
         msg = Contacts()
-        set_stamp(msg.header.stamp, t)
-        msg.header.frame_id = self.frame_id
+        set_stamp(msg.header.stamp, t)  # no frame id: gz-sim's Contact system sets none
         pairs = {}
         for index in range(data.ncon):
             contact = data.contact[index]

@@ -47,6 +47,7 @@ class StatusDisplay(Display):
             lambda msg: self._joint_states_rate.tick(time.monotonic()),
             qos_profile_sensor_data, raw=True)
         self.joint_states = subscription.topic_name  # as remapped
+        self.notes = []  # lines shown under the rates (the RViz config's displays not shown)
         self._next = 0.0
 
     def build(self, gui):
@@ -104,4 +105,4 @@ class StatusDisplay(Display):
         else:
             lines.append('No `/clock`: wall time')
         lines.append(' · '.join(f'`{name}` {rate.hz(now):.1f} Hz' for name, rate in self.rates()))
-        return lines
+        return lines + self.notes

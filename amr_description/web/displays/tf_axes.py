@@ -21,13 +21,14 @@ class TfAxesDisplay(Display):
     def __init__(self, node, server, frames):
         """Start with no axes drawn."""
         super().__init__(node, server, frames)
+        self.enabled = True  # the checkbox's first state (an RViz config may say False)
         self._node = None
         self._frames = []  # the frames drawn, in order
         self._last = None  # their poses sent last, shape (N, 4, 4)
 
     def build(self, gui):
         """Add the ``TF axes`` checkbox."""
-        self._show = gui.add_checkbox('TF axes', True)
+        self._show = gui.add_checkbox('TF axes', self.enabled)
 
     def draw(self, context):
         """Draw the axes of every frame that has a pose in the fixed frame."""
