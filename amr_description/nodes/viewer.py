@@ -25,7 +25,8 @@ What RViz's displays of the tutorial show, on a web page served by this node:
   **Imu** arrows (acceleration, angular velocity) of ``imu_topics`` (``['/imu']``);
   **Image** panels of ``image_topics`` (``['/camera/image']``, subscribed only while a page
   is open) and each camera's frustum (:mod:`amr_description.web.displays.image`);
-  **NavSatFix** of ``navsat_topics`` (``['/gps/fix', '/navsat']``) as text;
+  **NavSatFix** of ``navsat_topics`` (``['/gps/fix', '/navsat']``) as text; **Contacts**
+  (ros_gz_interfaces) of ``contact_topics`` (``['/bumper']``) as red markers;
 - **Odometry** trails of ``odometry_topics`` (``/odom``, ``/ground_truth/odom``), one colour
   each with a legend and a Clear button. A trail whose ``header.frame_id`` is not in TF (the
   simulator's ``world``) is drawn as if that frame were the fixed frame, and the legend says
@@ -68,6 +69,7 @@ from amr_description.core.rviz_config import read_rviz_config
 from amr_description.ros.node import Node
 from amr_description.web.displays.base import DrawContext
 from amr_description.web.displays.base import FrameManager
+from amr_description.web.displays.contacts import ContactsDisplay
 from amr_description.web.displays.image import ImageDisplay
 from amr_description.web.displays.imu import ImuDisplay
 from amr_description.web.displays.laser_scan import LaserScanDisplay
@@ -121,6 +123,7 @@ class Viewer(Node):
         self.declare_parameter('imu_topics', ['/imu'], string_array)
         self.declare_parameter('image_topics', ['/camera/image'], string_array)
         self.declare_parameter('navsat_topics', ['/gps/fix', '/navsat'], string_array)
+        self.declare_parameter('contact_topics', ['/bumper'], string_array)
         self.declare_parameter('rviz_config', '')
         update_rate = float(self.get_parameter('update_rate').value)
         if not update_rate > 0.0:
@@ -132,7 +135,8 @@ class Viewer(Node):
             rviz = read_rviz_config(str(self.get_parameter('rviz_config').value))
         settings = {name: self.get_parameter(name).value for name in (
             'fixed_frame', 'robot_description_topics', 'odometry_topics', 'scan_topics',
-            'point_cloud_topics', 'imu_topics', 'image_topics', 'navsat_topics', 'world',
+            'point_cloud_topics', 'imu_topics', 'image_topics', 'navsat_topics',
+            'contact_topics', 'world',
             'cmd_vel_topic', 'frame_id', 'speed', 'turn')}
         if rviz is not None:  # the config's displays replace the defaults, as in RViz
             settings.update(rviz.topics)
@@ -156,7 +160,9 @@ class Viewer(Node):
         self.imu = ImuDisplay(self, server, self.frames, settings['imu_topics'])
         self.image = ImageDisplay(self, server, self.frames, settings['image_topics'])
         self.navsat = NavSatDisplay(self, server, self.frames, settings['navsat_topics'])
-        sensors = (self.laser_scan, self.point_cloud, self.imu, self.image, self.navsat)
+        self.contacts = ContactsDisplay(self, server, self.frames, settings['contact_topics'])
+        sensors = (self.laser_scan, self.point_cloud, self.imu, self.image, self.navsat,
+                   self.contacts)
         self.status = StatusDisplay(self, server, self.frames, self.robot_model, self.trails,
                                     *sensors)
         if rviz is not None:
@@ -196,6 +202,7 @@ class Viewer(Node):
             self.point_cloud.build(gui)
             self.imu.build(gui)
             self.image.build(gui)
+            self.contacts.build(gui)
         self.teleop_pad.build(gui)
 
     def _choose_fixed_frame(self):

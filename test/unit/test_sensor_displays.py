@@ -130,3 +130,18 @@ def test_a_fix_is_one_line_of_degrees_hemispheres_and_metres():
     assert fix_text('/gps/fix', fix) == '`/gps/fix` 47.3977420° N, 8.5455940° W, 488.40 m'
     fix.status.status = -1
     assert fix_text('/gps/fix', fix).endswith('(no fix)')
+
+
+def test_contact_points_are_the_positions_and_normals_of_every_contact():
+    from amr_description.web.displays.contacts import contact_points
+    from geometry_msgs.msg import Vector3
+    from ros_gz_interfaces.msg import Contact
+    from ros_gz_interfaces.msg import Contacts
+    msg = Contacts(contacts=[
+        Contact(positions=[Vector3(x=1.0, y=2.0, z=0.0), Vector3(x=1.5, y=2.0, z=0.0)],
+                normals=[Vector3(z=-1.0), Vector3(z=-1.0)]),
+        Contact(positions=[Vector3(x=0.3, y=0.0, z=0.1)], normals=[Vector3(x=1.0)])])
+    points, normals = contact_points(msg)
+    assert np.allclose(points, [[1, 2, 0], [1.5, 2, 0], [0.3, 0, 0.1]])
+    assert normals.tolist() == [[0, 0, -1], [0, 0, -1], [1, 0, 0]]
+    assert contact_points(Contacts())[0].shape == (0, 3)

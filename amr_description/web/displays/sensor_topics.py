@@ -39,10 +39,13 @@ class SensorTopicsDisplay(Display):
 
     :cvar message_type: the ROS message class.
     :cvar label: the checkbox label (RViz's display name).
+    :cvar default_frame: the frame of messages without ``header.frame_id`` (drawn as the
+        fixed frame when TF does not have it); '' for none.
     """
 
     message_type = None
     label = ''
+    default_frame = ''
 
     def __init__(self, node, server, frames, topics):
         """Subscribe every topic."""
@@ -84,8 +87,10 @@ class SensorTopicsDisplay(Display):
                 item.node.visible = show
             if msg is None or not show or item.drawn is msg:
                 continue
-            frame = msg.header.frame_id.lstrip('/')
+            frame = msg.header.frame_id.lstrip('/') or self.default_frame
             T = context.pose(frame) if frame != context.fixed else np.eye(4)
+            if T is None and frame == self.default_frame:
+                T = np.eye(4)  # the simulator's world, not in TF: drawn as the fixed frame
             if T is None:
                 context.missing.append(frame)
                 continue
