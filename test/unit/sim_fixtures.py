@@ -76,3 +76,25 @@ def tutorial_urdf(plugin='amr_description/MujocoSystem', extra=''):
   </mujoco>{extra}
 </robot>
 """
+
+
+class ListLog:
+    """A logger-like object (``info``, ``warning``, ``error``, ``debug``) keeping its lines."""
+
+    def __init__(self):
+        """Start with no line."""
+        self.lines = []
+
+    def warning(self, text):
+        """Keep one line (every level does)."""
+        self.lines.append(text)
+
+    info = error = debug = warning
+
+
+PROBE_BASE = """<link name="base_link">
+    <collision><geometry><box size="0.2 0.2 0.2"/></geometry></collision>
+    <inertial><mass value="1.0"/>
+      <inertia ixx="0.00667" iyy="0.00667" izz="0.00667" ixy="0" ixz="0" iyz="0"/></inertial>
+  </link>"""
+"""The sensor tests' probe: a 1 kg, 0.2 m box link (its centre 0.1 m up when spawned at 0.1)."""

@@ -25,23 +25,14 @@ from amr_description.core.sdf_world import read_world
 from amr_description.sim.simulation import Simulation
 import numpy as np
 import pytest
+from sim_fixtures import ListLog as _Log  # noqa: I100 - the unit tests' helpers
+from sim_fixtures import PROBE_BASE  # noqa: I100 - the unit tests' helpers
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(os.path.dirname(HERE))
 XACRO = os.path.join(ROOT, 'urdf', 'amr.urdf.xacro')
 TARGETS = os.path.join(ROOT, 'test', 'data', 'worlds', 'camera_targets.sdf')
 HEIGHT = 0.5  # m, the camera above the ground: the probe's base (0.1) + 0.4
-
-
-class _Log:
-
-    def __init__(self):
-        self.lines = []
-
-    def warning(self, text):
-        self.lines.append(text)
-
-    info = error = debug = warning
 
 
 def _camera(kind='rgbd_camera', size=(320, 240), fov=1.047, optical='camera_optical',
@@ -57,11 +48,7 @@ def _camera(kind='rgbd_camera', size=(320, 240), fov=1.047, optical='camera_opti
 
 def _robot(camera_block):
     return f"""<robot name="probe">
-  <link name="base_link">
-    <collision><geometry><box size="0.2 0.2 0.2"/></geometry></collision>
-    <inertial><mass value="1.0"/>
-      <inertia ixx="0.00667" iyy="0.00667" izz="0.00667" ixy="0" ixz="0" iyz="0"/></inertial>
-  </link>
+  {PROBE_BASE}
   <link name="camera_link"/>
   <joint name="camera_joint" type="fixed"><parent link="base_link"/><child link="camera_link"/>
     <origin xyz="0 0 0.4"/></joint>

@@ -17,20 +17,10 @@ from amr_description.core.sdf_world import read_world
 from amr_description.sim.simulation import Simulation
 import numpy as np
 import pytest
+from sim_fixtures import ListLog as _Log  # noqa: I100 - the unit tests' helpers
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 WORLD = os.path.join(os.path.dirname(HERE), 'data', 'worlds', 'contact_box.sdf')
-
-
-class _Log:
-
-    def __init__(self):
-        self.lines = []
-
-    def warning(self, text):
-        self.lines.append(text)
-
-    info = error = debug = warning
 
 
 def _robot(collision='base_link_collision'):

@@ -14,23 +14,14 @@ from amr_description.sim.sensors.noise import NoiseModel
 from amr_description.sim.simulation import Simulation
 import numpy as np
 import pytest
+from sim_fixtures import ListLog as _Log  # noqa: I100 - the unit tests' helpers
+from sim_fixtures import PROBE_BASE  # noqa: I100 - the unit tests' helpers
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(os.path.dirname(HERE))
 XACRO = os.path.join(ROOT, 'urdf', 'amr.urdf.xacro')
 ROOM = os.path.join(ROOT, 'test', 'data', 'worlds', 'box_room.sdf')
 EAST, WEST, NORTH, SOUTH = 3.0, -2.0, 2.5, -1.5  # inner wall faces of box_room.sdf (m)
-
-
-class _Log:
-
-    def __init__(self):
-        self.lines = []
-
-    def warning(self, text):
-        self.lines.append(text)
-
-    info = error = debug = warning
 
 
 def _room_distance(angle, x=0.0, y=0.0):
@@ -51,11 +42,7 @@ def _room_distance(angle, x=0.0, y=0.0):
 def _robot(lidar_block='', imu_block='', extra=''):
     """Return a one-box robot (1 kg, 0.2 m cube, its centre 0.1 m up) with sensor blocks."""
     return f"""<robot name="probe">
-  <link name="base_link">
-    <collision><geometry><box size="0.2 0.2 0.2"/></geometry></collision>
-    <inertial><mass value="1.0"/>
-      <inertia ixx="0.00667" iyy="0.00667" izz="0.00667" ixy="0" ixz="0" iyz="0"/></inertial>
-  </link>
+  {PROBE_BASE}
   <link name="lidar_link"/>
   <joint name="lidar_joint" type="fixed"><parent link="base_link"/><child link="lidar_link"/>
     <origin xyz="0 0 0.2"/></joint>

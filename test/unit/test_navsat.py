@@ -23,6 +23,8 @@ from amr_description.core.sdf_world import read_world
 from amr_description.sim.simulation import Simulation
 import numpy as np
 import pytest
+from sim_fixtures import ListLog as _Log  # noqa: I100 - the unit tests' helpers
+from sim_fixtures import PROBE_BASE  # noqa: I100 - the unit tests' helpers
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 WORLDS = os.path.join(os.path.dirname(HERE), 'data', 'worlds')
@@ -37,24 +39,9 @@ def _radii(latitude_deg):
     return m, n
 
 
-class _Log:
-
-    def __init__(self):
-        self.lines = []
-
-    def warning(self, text):
-        self.lines.append(text)
-
-    info = error = debug = warning
-
-
 def _robot(noise=''):
     return f"""<robot name="probe">
-  <link name="base_link">
-    <collision><geometry><box size="0.2 0.2 0.2"/></geometry></collision>
-    <inertial><mass value="1.0"/>
-      <inertia ixx="0.00667" iyy="0.00667" izz="0.00667" ixy="0" ixz="0" iyz="0"/></inertial>
-  </link>
+  {PROBE_BASE}
   <link name="gps_link"/>
   <joint name="gps_joint" type="fixed"><parent link="base_link"/><child link="gps_link"/>
     <origin xyz="0 0 {MAST}"/></joint>
