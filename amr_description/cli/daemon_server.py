@@ -20,6 +20,41 @@ import time
 import uuid
 
 
+def _service_relay(node):
+    """
+    Return ``call_service(type, name, request, timeout)`` calling a service from ``node``.
+
+    The daemon's node has discovered the graph long ago, so its client is ready at once where
+    a new process's node waits for discovery (up to seconds). ``type`` is
+    ``pkg/srv/Name``, ``request`` and the result are CDR bytes (``xmlrpc.client.Binary``);
+    None when the service is not ready or does not answer within ``timeout`` s (the caller
+    then calls it itself). Clients are kept per service.
+    """
+    import importlib
+    import xmlrpc.client
+
+    from rclpy.serialization import deserialize_message
+    from rclpy.serialization import serialize_message
+    clients = {}
+
+    def call_service(type_name, name, request, timeout):
+        package, _, class_name = type_name.split('/')
+        kind = getattr(importlib.import_module(f'{package}.srv'), class_name)
+        client = clients.get((type_name, name))
+        if client is None:
+            client = clients[(type_name, name)] = node.create_client(kind, name)
+        if not client.service_is_ready():
+            return None
+        done = threading.Event()
+        future = client.call_async(deserialize_message(request.data, kind.Request))
+        future.add_done_callback(lambda _: done.set())
+        if not done.wait(float(timeout)) or future.result() is None:
+            future.cancel()
+            return None
+        return xmlrpc.client.Binary(serialize_message(future.result()))
+    return call_service
+
+
 def _functions(node, stop):
     """Return the XML-RPC functions answering from ``node``; ``stop`` ends the server."""
     from amr_description.cli.daemon import settings
@@ -42,6 +77,7 @@ def _functions(node, stop):
             [name, list(types)] for name, types in node.get_service_names_and_types()],
         'count_publishers': endpoints_count(node.count_publishers),
         'count_subscribers': endpoints_count(node.count_subscribers),
+        'call_service': _service_relay(node),
         'shutdown': stop,
     }
 

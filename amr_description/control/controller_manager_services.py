@@ -109,11 +109,18 @@ def service_caller(node, service_name, service_type, request, service_timeout=0.
         "waiting for service ... to become available..." and every 10 s "Could not contact".
     :param call_timeout: seconds to wait for each response.
     :param max_attempts: calls without an answer before giving up.
-    :returns: the response message.
+    :returns: the response message. A node with a ``service_relay`` attribute (the ``ros2``
+        CLI's, ``amr_description.cli.daemon.service_relay``) has the call made by it first;
+        when it cannot, the node calls itself.
     :raises ServiceNotFoundError: "Could not contact service NAME" after ``service_timeout``.
     :raises RuntimeError: "Could not successfully call service NAME after N attempts.".
     """
     name = resolve_controller_manager(node, service_name)
+    relay = getattr(node, 'service_relay', None)  # the ros2 CLI's daemon, when one runs
+    if relay is not None:
+        response = relay(name, service_type, request, call_timeout)
+        if response is not None:
+            return response
     client = node.create_client(service_type, name)
     try:
         # a new node needs discovery before any service is ready (ros2cli's direct node

@@ -227,3 +227,32 @@ def test_new_verbs(cm_proc, ros_env, procs, exe, tmp_path):
     assert (code, lines) == (0, ['No controllers are currently loaded!'])
     assert _wait_node_list(procs, exe, ros_env, ['/controller_manager']) == \
         ['/controller_manager']
+
+
+def test_with_a_warm_daemon_ros2_control_calls_through_it(cm_proc, ros_env, procs, exe):
+    """The daemon's node, long since discovered, calls the service: no discovery wait."""
+    import rclpy
+    from conftest import run_until
+    started = procs.start([exe('ros2'), 'daemon', 'start'], ros_env)
+    assert started.wait(30.0) == 0, started.output
+    run_until([exe('ros2'), 'service', 'list'], ros_env,
+              lambda r: '/controller_manager/list_controllers' in r.stdout)
+    listing = procs.start([exe('ros2'), 'control', 'list_controllers'], ros_env)
+    assert listing.wait(30.0) == 0, listing.output
+    assert listing.output == 'No controllers are currently loaded!\n', listing.output
+    context = rclpy.Context()
+    rclpy.init(context=context, domain_id=int(ros_env['ROS_DOMAIN_ID']))
+    try:
+        node = rclpy.create_node('_probe', context=context)
+        deadline = time.monotonic() + 30.0
+        clients = []
+        while time.monotonic() < deadline and not clients:
+            for name, namespace in node.get_node_names_and_namespaces():
+                if name.startswith('_ros2cli_daemon_'):
+                    clients = [c for c, _ in node.get_client_names_and_types_by_node(
+                        name, namespace) if c == '/controller_manager/list_controllers']
+            time.sleep(0.1)
+        assert clients, 'the daemon has no list_controllers client: it did not make the call'
+        node.destroy_node()
+    finally:
+        rclpy.shutdown(context=context)

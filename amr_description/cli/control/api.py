@@ -6,6 +6,7 @@
 from amr_description.cli.common import cli_node
 from amr_description.cli.common import default_node_name
 from amr_description.cli.common import fail
+from amr_description.cli.daemon import service_relay
 from amr_description.control import controller_manager_services as cms
 
 
@@ -17,6 +18,7 @@ def run(args, body):
     """Run ``body(node, cm)`` with a CLI node; errors of the service layer: one line, 1."""
     try:
         with cli_node(default_node_name(), node_args(args)) as node:
+            node.service_relay = service_relay()
             cm = cms.resolve_controller_manager(node, args.controller_manager)
             code = body(node, cm)
             return code if isinstance(code, int) else fail(code)
