@@ -145,3 +145,21 @@ def test_contact_points_are_the_positions_and_normals_of_every_contact():
     assert np.allclose(points, [[1, 2, 0], [1.5, 2, 0], [0.3, 0, 0.1]])
     assert normals.tolist() == [[0, 0, -1], [0, 0, -1], [1, 0, 0]]
     assert contact_points(Contacts())[0].shape == (0, 3)
+
+
+def test_a_compressed_topic_decodes_and_its_camera_info_is_the_base_topics_sibling():
+    import io
+
+    from amr_description.web.displays.image import compressed_array
+    from PIL import Image as PilImage
+    from sensor_msgs.msg import CompressedImage
+    buffer = io.BytesIO()
+    PilImage.fromarray(np.full((4, 6, 3), (200, 10, 10), np.uint8)).save(buffer, format='PNG')
+    msg = CompressedImage(format='rgb8; png compressed bgr8',
+                          data=array.array('B', buffer.getvalue()))
+    assert compressed_array(msg).shape == (4, 6, 3)
+    assert compressed_array(msg)[0, 0].tolist() == [200, 10, 10]
+    with pytest.raises(ValueError, match='does not decode'):
+        compressed_array(CompressedImage(format='jpeg', data=array.array('B', b'junk')))
+    assert info_topic('/camera/compressed') == '/camera_info'
+    assert info_topic('/camera/image/compressed') == '/camera/camera_info'

@@ -11,7 +11,9 @@ frame (an optical frame, REP 103: z forward, x right, y down, which is viser's c
 convention), with the vertical field of view and aspect of the sibling ``camera_info``
 (``2 atan(height / (2 fy))``). Encodings shown: ``rgb8``, ``bgr8``, ``rgba8``, ``bgra8``,
 ``mono8``, ``mono16`` and ``32FC1`` / ``16UC1`` depth (grey, white near, black far, as RViz's
-Image display normalises depth); another encoding is one throttled warning.
+Image display normalises depth); another encoding is one throttled warning. A topic ending in
+``/compressed`` is image_transport's compressed transport (``sensor_msgs/CompressedImage``,
+JPEG or PNG), as RViz's displays take it; its camera_info is its base topic's sibling.
 
 The topics are subscribed only while a page is open and the display is checked: a simulated
 camera renders only while someone subscribes, so a closed page costs the simulator nothing.
@@ -28,6 +30,7 @@ from rclpy.qos import qos_profile_sensor_data
 from rclpy.qos import QoSProfile
 from rclpy.qos import ReliabilityPolicy
 from sensor_msgs.msg import CameraInfo
+from sensor_msgs.msg import CompressedImage
 from sensor_msgs.msg import Image
 
 RATE = 10.0
@@ -84,6 +87,28 @@ def image_array(msg):
                      'mono16, 32FC1, 16UC1)')
 
 
+def compressed_array(msg):
+    """
+    Return an (H, W, 3) uint8 RGB picture of a ``sensor_msgs/CompressedImage`` (JPEG or PNG).
+
+    :raises ValueError: when the data is not a picture Pillow reads.
+    """
+    import io
+
+    from PIL import Image as PilImage
+    from PIL import UnidentifiedImageError
+    try:
+        picture = PilImage.open(io.BytesIO(bytes(msg.data)))
+        return np.asarray(picture.convert('RGB'))
+    except (UnidentifiedImageError, OSError) as exc:
+        raise ValueError(f'compressed image ({msg.format!r}) does not decode: {exc}') from None
+
+
+def base_topic(topic):
+    """Return image_transport's base topic: ``/camera/compressed`` -> ``/camera``."""
+    return topic[:-len('/compressed')] if topic.endswith('/compressed') else topic
+
+
 def frustum_fov(info):
     """Return ``(vertical fov rad, aspect)`` of a ``sensor_msgs/CameraInfo``, or None."""
     fy = info.k[4] if len(info.k) == 9 else 0.0
@@ -94,7 +119,7 @@ def frustum_fov(info):
 
 def info_topic(image_topic):
     """Return the ``camera_info`` beside an image topic (image_transport's rule)."""
-    return image_topic.rsplit('/', 1)[0] + '/camera_info'
+    return base_topic(image_topic).rsplit('/', 1)[0] + '/camera_info'
 
 
 class _Camera:
@@ -149,9 +174,10 @@ class ImageDisplay(Display):
         """Create or destroy the subscriptions (executor thread)."""
         for topic, camera in self._cameras.items():
             if on and not camera.subscriptions:
+                kind = CompressedImage if topic.endswith('/compressed') else Image
                 camera.subscriptions = [
                     self.node.create_subscription(
-                        Image, topic, lambda msg, t=topic: self._on_image(t, msg), IMAGE_QOS),
+                        kind, topic, lambda msg, t=topic: self._on_image(t, msg), IMAGE_QOS),
                     self.node.create_subscription(
                         CameraInfo, info_topic(topic), lambda msg, t=topic: self._on_info(t, msg),
                         qos_profile_sensor_data)]
@@ -183,7 +209,8 @@ class ImageDisplay(Display):
                 continue
             camera.shown = image
             try:
-                pixels = image_array(image)
+                pixels = compressed_array(image) if isinstance(image, CompressedImage) \
+                    else image_array(image)
             except ValueError as exc:
                 self.node.get_logger().warning(f'Image {topic}: cannot show: {exc}',
                                                throttle_duration_sec=5.0)
