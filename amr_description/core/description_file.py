@@ -7,7 +7,10 @@ Where a URDF file is accepted (``create -file``, ``check_model``, ``render --urd
 stacks' ``description:=``), a ``.xacro`` file is too: it is expanded with the official xacro
 (ros/xacro from PyPI, what ``Command(['xacro ', path])`` runs in a launch file) with the given
 ``name:=value`` arguments; ``$(find pkg)`` and ``package://`` resolve through the ament index
-(this package and every package on ``AMENT_PREFIX_PATH``).
+(this package and every package on ``AMENT_PREFIX_PATH``). A file of another name that uses
+xacro (declares the ``xmlns:xacro`` namespace or has ``<xacro:`` elements) is expanded too:
+courses name xacro files ``robot.urdf`` and run them through ``xacro`` in their launch files,
+and read raw their includes and macros would silently be lost.
 """
 
 import os
@@ -47,6 +50,11 @@ def resolve_uri(uri):
 def is_xacro(path):
     """Return True when ``path`` names a xacro file (:data:`XACRO_SUFFIXES`)."""
     return str(path).endswith(XACRO_SUFFIXES)
+
+
+def uses_xacro(text):
+    """Return True when a description's text uses xacro (its namespace or an element)."""
+    return 'xmlns:xacro' in text or '<xacro:' in text
 
 
 def parse_xacro_args(text):
@@ -102,8 +110,8 @@ def read_description(path, mappings=None):
     """
     Return the URDF text of a description file: the file itself, or its xacro expansion.
 
-    :param path: a file path, ``package://`` or ``$(find pkg)`` URI; a ``.xacro`` file is
-        expanded (:func:`expand_xacro`).
+    :param path: a file path, ``package://`` or ``$(find pkg)`` URI; a ``.xacro`` file, or one
+        that uses xacro (:func:`uses_xacro`), is expanded (:func:`expand_xacro`).
     :param mappings: xacro arguments (ignored for a plain URDF).
     :raises ValueError: one line naming the file: unreadable, empty, or a xacro error.
     """
@@ -118,6 +126,8 @@ def read_description(path, mappings=None):
                 text = f.read().decode('utf-8', errors='replace')
         except OSError as exc:
             raise ValueError(f'{path}: cannot read: {exc.strerror}') from None
+        if uses_xacro(text):
+            text = expand_xacro(resolved, mappings)
     if not text.strip():
         raise ValueError(f'{path}: empty robot description')
     return text

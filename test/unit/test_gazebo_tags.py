@@ -86,6 +86,22 @@ def test_the_tutorial_xacro_expands_with_find_and_arguments(tmp_path):
     assert 'wheel_front_left' in description.model.links  # from the included file
 
 
+def test_a_xacro_file_named_urdf_is_expanded_as_its_launch_file_would(tmp_path):
+    """Courses name xacro files robot.urdf and run xacro on them; read raw, includes are lost."""
+    gazebo = tmp_path / 'robot.gazebo'
+    gazebo.write_text('<robot><gazebo reference="base_link"><sensor name="imu" type="imu"/>'
+                      '</gazebo></robot>')
+    robot = tmp_path / 'robot.urdf'
+    robot.write_text(
+        '<robot name="course" xmlns:xacro="http://www.ros.org/wiki/xacro">'
+        f'<xacro:include filename="{gazebo}"/>'
+        '<link name="base_link"/></robot>')
+    description = RobotDescription(read_description(str(robot)))
+    assert [b.name for b in description.sensors.sensors] == ['imu']
+    plain = read_description(os.path.join(ROOT, 'urdf', 'amr.urdf'))
+    assert plain.startswith('<?xml') and 'xacro' not in plain  # a plain URDF is read as it is
+
+
 def test_the_tutorial_gazebo_robot_gets_the_drive_defaults():
     description = RobotDescription(read_description(
         os.path.join(DATA, 'robot.urdf.xacro'), {'controllers': '/c.yaml'}))
