@@ -166,6 +166,11 @@ class DaemonNode:
         return [(name, list(types))
                 for name, types in self._proxy.get_service_names_and_types()]
 
+    def node_endpoints(self, name, namespace):
+        """Return the endpoints of a node (:func:`node_endpoints`), from the daemon."""
+        return [(title, [(n, list(t)) for n, t in items])
+                for title, items in self._proxy.node_endpoints(name, namespace)]
+
     def count_publishers(self, topic):
         """Return the number of publishers of ``topic``."""
         return int(self._proxy.count_publishers(topic))
@@ -173,6 +178,29 @@ class DaemonNode:
     def count_subscribers(self, topic):
         """Return the number of subscriptions of ``topic``."""
         return int(self._proxy.count_subscribers(topic))
+
+
+NODE_SECTIONS = ('Subscribers', 'Publishers', 'Service Servers', 'Service Clients',
+                 'Action Servers', 'Action Clients')
+"""The sections of ``ros2 node info``, in upstream's order."""
+
+
+def node_endpoints(node, name, namespace):
+    """
+    Return ``[(section, [(name, [types])])]`` of a node's endpoints, :data:`NODE_SECTIONS`.
+
+    :param node: an rclpy node whose graph is asked (the daemon's or a CLI's own).
+    """
+    from rclpy.action import get_action_client_names_and_types_by_node
+    from rclpy.action import get_action_server_names_and_types_by_node
+    found = (node.get_subscriber_names_and_types_by_node(name, namespace),
+             node.get_publisher_names_and_types_by_node(name, namespace),
+             node.get_service_names_and_types_by_node(name, namespace),
+             node.get_client_names_and_types_by_node(name, namespace),
+             get_action_server_names_and_types_by_node(node, name, namespace),
+             get_action_client_names_and_types_by_node(node, name, namespace))
+    return [(title, [(n, list(t)) for n, t in items])
+            for title, items in zip(NODE_SECTIONS, found)]
 
 
 def usable_daemon(spin_time):

@@ -57,6 +57,7 @@ def _service_relay(node):
 
 def _functions(node, stop):
     """Return the XML-RPC functions answering from ``node``; ``stop`` ends the server."""
+    from amr_description.cli.daemon import node_endpoints
     from amr_description.cli.daemon import settings
     own = settings()
     started = time.monotonic()
@@ -77,6 +78,9 @@ def _functions(node, stop):
             [name, list(types)] for name, types in node.get_service_names_and_types()],
         'count_publishers': endpoints_count(node.count_publishers),
         'count_subscribers': endpoints_count(node.count_subscribers),
+        'node_endpoints': lambda name, namespace: [
+            [title, [[n, t] for n, t in items]]
+            for title, items in node_endpoints(node, name, namespace)],
         'call_service': _service_relay(node),
         'shutdown': stop,
     }

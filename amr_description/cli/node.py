@@ -15,12 +15,12 @@ hidden topics and services are left out unless ``--include-hidden``; a missing n
 import sys
 
 from amr_description.cli.common import add_spin_time_argument
-from amr_description.cli.common import cli_node
 from amr_description.cli.common import CliError
 from amr_description.cli.common import default_node_name
 from amr_description.cli.common import is_hidden_name
 from amr_description.cli.common import wait_for_graph
 from amr_description.cli.daemon import graph_node
+from amr_description.cli.daemon import node_endpoints
 
 
 def fully_qualified(name, namespace):
@@ -71,39 +71,32 @@ def _split_ns(full_name):
 
 
 def _info(args):
-    from rclpy.action import get_action_client_names_and_types_by_node
-    from rclpy.action import get_action_server_names_and_types_by_node
     target = args.node_name if args.node_name.startswith('/') else '/' + args.node_name
-    with cli_node(default_node_name()) as node:
+    with graph_node(args, default_node_name()) as node:
         def matches(n):
             return [fully_qualified(*pair)
                     for pair in n.get_node_names_and_namespaces()].count(target)
-        count = wait_for_graph(node, matches, settle=0.5, minimum=0.0,
-                               maximum=args.spin_time, ready=bool)
+        settled = getattr(node, 'settled', False)  # a warm daemon: the graph is known
+        count = matches(node) if settled else wait_for_graph(
+            node, matches, settle=0.5, minimum=0.0, maximum=args.spin_time, ready=bool)
         if not count:
             raise CliError(f"Unable to find node '{args.node_name}'")
         if count > 1:
             print(f'There are {count} nodes in the graph with the exact name "{target}". '
                   'You are seeing information about only one of them.', file=sys.stderr)
         name, namespace = _split_ns(target)
-        # the node's own endpoints are announced a little after the node itself
-        wait_for_graph(node, lambda n: (
-            n.get_publisher_names_and_types_by_node(name, namespace),
-            n.get_service_names_and_types_by_node(name, namespace)), settle=0.5,
-            minimum=0.0, maximum=args.spin_time)
+        if settled:
+            sections = node.node_endpoints(name, namespace)
+        else:
+            # the node's own endpoints are announced a little after the node itself
+            wait_for_graph(node, lambda n: (
+                n.get_publisher_names_and_types_by_node(name, namespace),
+                n.get_service_names_and_types_by_node(name, namespace)), settle=0.5,
+                minimum=0.0, maximum=args.spin_time)
+            sections = node_endpoints(node, name, namespace)
 
-        def visible(items):
-            return [(n, t) for n, t in items if args.include_hidden or not is_hidden_name(n)]
-        sections = [
-            ('Subscribers', node.get_subscriber_names_and_types_by_node(name, namespace)),
-            ('Publishers', node.get_publisher_names_and_types_by_node(name, namespace)),
-            ('Service Servers', node.get_service_names_and_types_by_node(name, namespace)),
-            ('Service Clients', node.get_client_names_and_types_by_node(name, namespace)),
-            ('Action Servers',
-             get_action_server_names_and_types_by_node(node, name, namespace)),
-            ('Action Clients',
-             get_action_client_names_and_types_by_node(node, name, namespace)),
-        ]
+    def visible(items):
+        return [(n, t) for n, t in items if args.include_hidden or not is_hidden_name(n)]
     print(target)
     for title, items in sections:
         sys.stdout.write(format_section(title, visible(items)))

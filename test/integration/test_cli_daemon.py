@@ -62,6 +62,14 @@ def test_a_graph_verb_starts_the_daemon_and_then_answers_from_it(procs, exe, ros
     assert any(n.startswith('/_ros2cli_daemon_') for n in lines), nodes.stdout
     assert not any(n.startswith('/_ros2cli_daemon_')
                    for n in _ros2(exe, ros_env, 'node', 'list').stdout.split())
+    # node info from the warm daemon: its node_endpoints, printed in upstream's sections
+    proxy = xmlrpc.client.ServerProxy(f'http://127.0.0.1:{11511 + int(ros_env["ROS_DOMAIN_ID"])}/')
+    sections = dict(proxy.node_endpoints('minimal_publisher', '/'))
+    assert ['/topic', ['std_msgs/msg/String']] in sections['Publishers'], sections
+    info = run_until([exe('ros2'), 'node', 'info', '/minimal_publisher', '-s', '0.5'], ros_env,
+                     lambda r: '    /topic: std_msgs/msg/String\n' in r.stdout)
+    assert info.stdout.startswith('/minimal_publisher\n  Subscribers:\n'), info.stdout
+    assert '    /topic: std_msgs/msg/String\n' in info.stdout, info.stdout + info.stderr
     assert _daemon_pid(ros_env) == pid  # the same daemon answered every verb
     # echo takes the type from the warm daemon, then waits until its own node sees the
     # publisher, so that a transient-local (latched) message reaches it
