@@ -56,6 +56,28 @@ class Page:
         png = self.page.screenshot(path=path, timeout=TIMEOUT_MS)
         return np.asarray(Image.open(BytesIO(png)).convert('RGB'))
 
+    def image_pixels(self, path=None):
+        """
+        Return the largest visible ``<img>`` of the page as an (H, W, 3) uint8 array, or None.
+
+        Scrolled into view first, so the panel's layout above it does not matter (a camera
+        panel's picture).
+        """
+        from io import BytesIO
+
+        from PIL import Image
+        images = self.page.locator('img')
+        best, area = None, 0
+        for index in range(images.count()):
+            box = images.nth(index).bounding_box()
+            if box is not None and box['width'] * box['height'] > area:
+                best, area = images.nth(index), box['width'] * box['height']
+        if best is None:
+            return None
+        best.scroll_into_view_if_needed(timeout=TIMEOUT_MS)
+        png = best.screenshot(path=path, timeout=TIMEOUT_MS)
+        return np.asarray(Image.open(BytesIO(png)).convert('RGB'))
+
     def close_notifications(self):
         """Close the page's notifications (e.g. 'Software WebGL rendering detected')."""
         buttons = self.page.locator('.mantine-Notification-closeButton')

@@ -32,9 +32,12 @@ depth as grey (white at the near clip, black at the far clip); ``is_dense`` is f
 depth is not finite. Gaussian ``<noise>`` is added per pixel as gz-sensors'
 ``ImageGaussianNoiseModel`` (colour values in [0, 1], then clamped) and to depth in m.
 
-Rendering is MuJoCo's: the world's lights with shadows (a 1024-pixel shadow map), 4x
-multisampling (SDF's ``<anti_aliasing>`` default), without the mirror reflection MuJoCo's
-viewer gives the floor (Gazebo's cameras show none).
+Rendering is MuJoCo's: the world's lights, 4x multisampling (SDF's ``<anti_aliasing>``
+default), without the mirror reflection MuJoCo's viewer gives the floor (Gazebo's cameras show
+none) and without shadows: MuJoCo's shadow map speckles the ground with dark pixels (shadow
+acne, 47 of 28,800 floor pixels in test/data/worlds/camera_targets.sdf, whatever the map size)
+and cost 50 ms of a 320x240 frame with its 4096-pixel map (22 ms with 1024) against 10 ms
+without, on Mesa's CPU rasterizer (docs/sensors.md).
 
 Rendering does not stall physics: at a due instant the simulation thread copies the state
 (``qpos``, ``mocap_pos``, ``mocap_quat``) into a job for :class:`CameraRenderer`, whose own
@@ -71,10 +74,6 @@ POINT_FIELDS = (('x', 0, PointField.FLOAT32), ('y', 4, PointField.FLOAT32),
 POINT_STEP = 24
 JPEG_QUALITY = 80
 """image_transport's compressed plugin default ``jpeg_quality``."""
-
-SHADOW_SIZE = 1024
-"""Pixels of the shadow map of camera renders (MuJoCo's 4096 default cost 50 ms of a 320x240
-frame on Mesa's CPU rasterizer, 1024 costs 22 ms; docs/sensors.md)."""
 
 BYTES_PER_PIXEL = {'rgb8': 3, 'bgr8': 3, 'mono8': 1, 'mono16': 2, '32FC1': 4}
 
@@ -501,7 +500,6 @@ class CameraRenderer:
         visual = self._copy.vis.global_
         visual.offwidth = max([w for w, _ in sizes] + [1])
         visual.offheight = max([h for _, h in sizes] + [1])
-        self._copy.vis.quality.shadowsize = SHADOW_SIZE
         self._data = mujoco.MjData(self._copy)
         self._model = model
 
@@ -525,7 +523,8 @@ class CameraRenderer:
         if need_rgb:
             clip.znear, clip.zfar = spec.near / extent, spec.far / extent
             renderer.update_scene(self._data, camera=camera)
-            renderer.scene.flags[mujoco.mjtRndFlag.mjRND_REFLECTION] = 0
+            flags = renderer.scene.flags
+            flags[mujoco.mjtRndFlag.mjRND_REFLECTION] = flags[mujoco.mjtRndFlag.mjRND_SHADOW] = 0
             frame.rgb = renderer.render().copy()
         if need_depth:
             # rendered from a tenth of the near clip, so that nearer hits show as -inf
