@@ -258,6 +258,7 @@ def service_relay(spin_time=0.0):
         if answer is None:
             return None
         return deserialize_message(answer.data, service_type.Response)
+    call.graph = DaemonNode(proxy)  # the daemon's graph, for the verbs that also ask it
     return call
 
 

@@ -70,6 +70,14 @@ def test_a_graph_verb_starts_the_daemon_and_then_answers_from_it(procs, exe, ros
                      lambda r: '    /topic: std_msgs/msg/String\n' in r.stdout)
     assert info.stdout.startswith('/minimal_publisher\n  Subscribers:\n'), info.stdout
     assert '    /topic: std_msgs/msg/String\n' in info.stdout, info.stdout + info.stderr
+    # param list: the warm daemon's node lists the nodes and calls list_parameters
+    listed = run_until([exe('ros2'), 'param', 'list', '/minimal_publisher'], ros_env,
+                       lambda r: '  use_sim_time' in r.stdout.splitlines())
+    assert '  use_sim_time' in listed.stdout.splitlines(), listed.stdout + listed.stderr
+    daemon_name, daemon_namespace = proxy.get_name_and_namespace()
+    clients = dict(proxy.node_endpoints(daemon_name, daemon_namespace))['Service Clients']
+    assert ['/minimal_publisher/list_parameters', ['rcl_interfaces/srv/ListParameters']] in \
+        clients, clients
     assert _daemon_pid(ros_env) == pid  # the same daemon answered every verb
     # echo takes the type from the warm daemon, then waits until its own node sees the
     # publisher, so that a transient-local (latched) message reaches it

@@ -11,6 +11,7 @@ else is a string); type names are ``boolean``, ``integer``, ``double``, ``string
 ``not set``; a node that is not in the graph gives ``Node not found``.
 """
 
+import contextlib
 import time
 
 from amr_description.cli.common import CliError
@@ -118,6 +119,28 @@ def parameter_msg(name, value):
         raise CliError(f"Invalid value of parameter '{name}': {exc}") from None
 
 
+@contextlib.contextmanager
+def param_node():
+    """
+    Yield the CLI node of a param verb, with the warm daemon's relay when one runs.
+
+    The daemon (``amr_description.cli.daemon``) then answers the graph questions and makes
+    the parameter service calls, which a new node would make only after its discovery.
+    """
+    from amr_description.cli.common import cli_node
+    from amr_description.cli.common import default_node_name
+    from amr_description.cli.daemon import service_relay
+    with cli_node(default_node_name()) as node:
+        node.service_relay = service_relay()
+        yield node
+
+
+def graph(node):
+    """Return what answers graph questions for ``node``: the daemon's graph, or the node."""
+    relay = getattr(node, 'service_relay', None)
+    return relay.graph if relay is not None else node
+
+
 def wait_for_node(node, name, timeout, include_hidden=False):
     """
     Spin until ``name`` is in the graph, at most ``timeout`` seconds.
@@ -130,6 +153,8 @@ def wait_for_node(node, name, timeout, include_hidden=False):
     """
     def names(n):
         return {f'{ns.rstrip("/")}/{nm}' for nm, ns in n.get_node_names_and_namespaces()}
+    if name in names(graph(node)):
+        return True  # the daemon knows it already
     found = wait_for_graph(node, names, settle=0.0, minimum=0.0, maximum=timeout,
                            ready=lambda value: name in value)
     return name in found
@@ -145,10 +170,11 @@ def node_names(node, spin_time, include_hidden=False):
     :returns: sorted list of names, without the CLI node itself.
     """
     own = node.get_fully_qualified_name()
-    names = wait_for_graph(
-        node, lambda n: sorted({f'{ns.rstrip("/")}/{nm}'
-                                for nm, ns in n.get_node_names_and_namespaces()}),
-        settle=min(1.0, spin_time), minimum=spin_time, maximum=spin_time)
+
+    def names_of(n):
+        return sorted({f'{ns.rstrip("/")}/{nm}' for nm, ns in n.get_node_names_and_namespaces()})
+    names = wait_for_graph(graph(node), names_of, settle=min(1.0, spin_time),
+                           minimum=spin_time, maximum=spin_time)
     return [n for n in names if n != own
             and (include_hidden or not n.rsplit('/', 1)[-1].startswith('_'))]
 
@@ -166,6 +192,11 @@ def call(node, srv_type, service, request, timeout=5.0, service_timeout=None):
     :returns: the response.
     :raises CliError: ``Wait for service timed out`` or the call's exception, on one line.
     """
+    relay = getattr(node, 'service_relay', None)
+    if relay is not None:
+        response = relay(service, srv_type, request, service_timeout or 10.0)
+        if response is not None:
+            return response
     client = node.create_client(srv_type, service)
     try:
         give_up = time.monotonic() + timeout

@@ -15,9 +15,7 @@
 
 import sys
 
-from amr_description.cli.common import cli_node
 from amr_description.cli.common import CliError
-from amr_description.cli.common import default_node_name
 from amr_description.cli.param import api
 import yaml
 
@@ -51,7 +49,7 @@ def _set(args):
     from rcl_interfaces.msg import Parameter
     params = [Parameter(name=n, value=api.parameter_value_from_string(v))
               for n, v in zip(pairs[::2], pairs[1::2])]
-    with cli_node(default_node_name()) as node:
+    with api.param_node() as node:
         name = _reachable(node, args)
         results = api.set_parameters(node, name, params,
                                      service_timeout=args.service_timeout)
@@ -64,7 +62,7 @@ def _delete(args):
     from rcl_interfaces.msg import Parameter
     from rcl_interfaces.msg import ParameterValue
     param = Parameter(name=args.parameter_name, value=ParameterValue(type=0))
-    with cli_node(default_node_name()) as node:
+    with api.param_node() as node:
         name = _reachable(node, args)
         results = api.set_parameters(node, name, [param],
                                      service_timeout=args.service_timeout)
@@ -104,7 +102,7 @@ def parameters_from_file(path, node_name, use_wildcard=False):
 
 
 def _load(args):
-    with cli_node(default_node_name()) as node:
+    with api.param_node() as node:
         name = _reachable(node, args)
         values = parameters_from_file(args.parameter_file, name, args.use_wildcard)
         params = [api.parameter_msg(n, v) for n, v in values.items()]
@@ -137,7 +135,7 @@ def dump_yaml(node_name, names, values):
 
 
 def _dump(args):
-    with cli_node(default_node_name()) as node:
+    with api.param_node() as node:
         name = _reachable(node, args)
         names = api.list_parameters(node, name, service_timeout=args.service_timeout)
         values = api.get_parameters(node, name, names, service_timeout=args.service_timeout)

@@ -17,9 +17,7 @@
 
 import sys
 
-from amr_description.cli.common import cli_node
 from amr_description.cli.common import CliError
-from amr_description.cli.common import default_node_name
 from amr_description.cli.param import api
 
 _GET_LABELS = (None, 'Boolean value is:', 'Integer value is:', 'Double value is:',
@@ -32,14 +30,14 @@ _GET_FIELDS = (None, 'bool_value', 'integer_value', 'double_value', 'string_valu
 
 def _list(args):
     wanted = api.absolute_node_name(args.node_name)
-    with cli_node(default_node_name()) as node:
+    with api.param_node() as node:
         if wanted:
             if not api.wait_for_node(node, wanted, args.timeout, args.include_hidden_nodes):
                 raise CliError('Node not found')
             names = [wanted]
         else:
             names = api.node_names(node, args.spin_time, args.include_hidden_nodes)
-        services = {name for name, _ in node.get_service_names_and_types()}
+        services = {name for name, _ in api.graph(node).get_service_names_and_types()}
         code = 0
         for name in sorted(names):
             if f'{name}/list_parameters' not in services and not wanted:
@@ -65,7 +63,7 @@ def _list(args):
 
 def _get(args):
     name = api.absolute_node_name(args.node_name)
-    with cli_node(default_node_name()) as node:
+    with api.param_node() as node:
         if not api.wait_for_node(node, name, args.timeout, args.include_hidden_nodes):
             raise CliError('Node not found')
         values = api.get_parameters(node, name, [args.parameter_name])
@@ -112,7 +110,7 @@ def format_descriptor(descriptor):
 
 def _describe(args):
     name = api.absolute_node_name(args.node_name)
-    with cli_node(default_node_name()) as node:
+    with api.param_node() as node:
         if not api.wait_for_node(node, name, args.timeout, args.include_hidden_nodes):
             raise CliError('Node not found')
         descriptors = api.describe_parameters(node, name, args.parameter_names)
