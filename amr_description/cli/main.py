@@ -16,8 +16,8 @@ import importlib
 import os
 import sys
 
-COMMANDS = ('bag', 'control', 'daemon', 'doctor', 'interface', 'launch', 'node', 'param', 'pkg',
-            'run', 'service', 'topic')
+COMMANDS = ('action', 'bag', 'control', 'daemon', 'doctor', 'interface', 'launch', 'node',
+            'param', 'pkg', 'run', 'service', 'topic')
 
 
 def build_parser():

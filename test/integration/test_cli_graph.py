@@ -128,3 +128,30 @@ def test_doctor_checks_and_report(ros_env, exe):
     result = _ros2(exe, ros_env, 'doctor', '--report')
     assert '\n   RMW MIDDLEWARE\nmiddleware name    : rmw_fastrtps_cpp\n' in result.stdout
     assert f'\nROS_DOMAIN_ID                    : {ros_env["ROS_DOMAIN_ID"]}\n' in result.stdout
+
+
+ACTION_SERVER = """
+import rclpy
+from rclpy.action import ActionServer
+from tf2_msgs.action import LookupTransform
+rclpy.init()
+node = rclpy.create_node('lookup_server')
+server = ActionServer(node, LookupTransform, 'lookup', lambda goal: LookupTransform.Result())
+print('serving', flush=True)
+try:
+    rclpy.spin(node)
+except (KeyboardInterrupt, rclpy.executors.ExternalShutdownException):
+    pass
+"""
+
+
+def test_action_list_shows_an_action_server(ros_env, procs, exe):
+    import sys
+    from conftest import run_until
+    server = procs.start([sys.executable, '-c', ACTION_SERVER], ros_env)
+    assert server.wait_for_output('serving', 60.0), server.output
+    result = run_until([exe('ros2'), 'action', 'list', '-t'], ros_env,
+                       lambda r: '/lookup [tf2_msgs/action/LookupTransform]' in r.stdout)
+    assert result.stdout == '/lookup [tf2_msgs/action/LookupTransform]\n', result.stdout
+    assert _ros2(exe, ros_env, 'action', 'list').stdout == '/lookup\n'
+    assert _ros2(exe, ros_env, 'action', 'list', '-c').stdout == '1\n'

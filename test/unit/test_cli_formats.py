@@ -107,3 +107,15 @@ def test_dump_nests_dotted_names_and_sorts():
     assert dump_yaml('/ddc', names, values) == (
         '/ddc:\n  ros__parameters:\n    linear:\n      x:\n        max_velocity: 1.0\n'
         '    use_sim_time: false\n    wheel_names:\n    - l\n    - r\n\n')
+
+
+def test_actions_are_read_from_their_send_goal_services():
+    from amr_description.cli.action import action_names_and_types
+    services = [
+        ('/fibonacci/_action/send_goal', ['example_interfaces/action/Fibonacci_SendGoal']),
+        ('/fibonacci/_action/get_result', ['example_interfaces/action/Fibonacci_GetResult']),
+        ('/a/navigate/_action/send_goal', ['nav2_msgs/action/NavigateToPose_SendGoal']),
+        ('/talker/list_parameters', ['rcl_interfaces/srv/ListParameters'])]
+    assert action_names_and_types(services) == [
+        ('/a/navigate', ['nav2_msgs/action/NavigateToPose']),
+        ('/fibonacci', ['example_interfaces/action/Fibonacci'])]
