@@ -54,6 +54,10 @@ def test_a_graph_verb_starts_the_daemon_and_then_answers_from_it(procs, exe, ros
     assert '/topic [std_msgs/msg/String]' in found.stdout, found.stdout + found.stderr
     typed = _ros2(exe, ros_env, 'topic', 'type', '/topic')
     assert typed.stdout == 'std_msgs/msg/String\n', typed.stdout + typed.stderr
+    # hz takes the topic's type from the warm daemon (unit test: without asking its node)
+    hz = procs.start([exe('ros2'), 'topic', 'hz', '/topic'], ros_env)
+    assert hz.wait_for_output('average rate: ', timeout=90.0), hz.output
+    assert hz.interrupt() is not None, 'ros2 topic hz ignored Ctrl-C'
     nodes = run_until([exe('ros2'), 'node', 'list', '-a'], ros_env,
                       lambda r: '/minimal_publisher' in r.stdout)
     lines = nodes.stdout.split()

@@ -119,3 +119,23 @@ def test_actions_are_read_from_their_send_goal_services():
     assert action_names_and_types(services) == [
         ('/a/navigate', ['nav2_msgs/action/NavigateToPose']),
         ('/fibonacci', ['example_interfaces/action/Fibonacci'])]
+
+
+def test_rates_take_the_type_from_a_warm_daemon_without_asking_their_node(monkeypatch):
+    import argparse
+
+    from amr_description.cli.topic import rates
+
+    class GraphlessNode:
+
+        def get_topic_names_and_types(self):
+            raise AssertionError('the verb asked its own node although the daemon knew')
+
+    monkeypatch.setattr(rates, 'daemon_topic_type',
+                        lambda topic, no_daemon: (None, 0) if no_daemon else
+                        ('std_msgs/msg/String', 1))
+    from std_msgs.msg import String
+    args = argparse.Namespace(no_daemon=False)
+    assert rates._wait_for_type(GraphlessNode(), '/chatter', args) is String
+    with pytest.raises(AssertionError):
+        rates._wait_for_type(GraphlessNode(), '/chatter', argparse.Namespace(no_daemon=True))

@@ -39,6 +39,41 @@ def topic_types(node, topic):
     return []
 
 
+DAEMON_AGE = 3.0
+"""Seconds a daemon must have followed the graph before a verb takes a topic's type from it."""
+
+
+def daemon_topic_type(topic_name, no_daemon=False):
+    """
+    Return ``(type, publishers)`` of a topic as a warm daemon knows it, else ``(None, 0)``.
+
+    Only when the daemon (:mod:`amr_description.cli.daemon`) has followed the graph for
+    :data:`DAEMON_AGE` seconds and knows exactly one type; no wait for discovery, no daemon
+    started (the verb's own node looks the type up then).
+
+    :param topic_name: the topic name as typed (relative names get a leading ``/``).
+    :param no_daemon: ``--no-daemon``: never ask.
+    :returns: ``('pkg/msg/Type', publisher count)`` or ``(None, 0)``.
+    """
+    if no_daemon:
+        return None, 0
+    import xmlrpc.client
+
+    from amr_description.cli.daemon import DaemonNode
+    from amr_description.cli.daemon import usable_daemon
+    proxy = usable_daemon(DAEMON_AGE)
+    if proxy is None:
+        return None, 0
+    try:
+        daemon = DaemonNode(proxy)
+        topic = expand(daemon, topic_name)
+        types = topic_types(daemon, topic)
+        publishers = daemon.count_publishers(topic)
+    except (OSError, xmlrpc.client.Error):
+        return None, 0
+    return (types[0], publishers) if len(types) == 1 else (None, 0)
+
+
 def message_class(type_name):
     """
     Import a message class by name.

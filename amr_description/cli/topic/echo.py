@@ -21,6 +21,7 @@ from amr_description.cli.common import fail
 from amr_description.cli.common import spin_once
 from amr_description.cli.common import wait_for_graph
 from amr_description.cli.topic.api import add_qos_arguments
+from amr_description.cli.topic.api import daemon_topic_type
 from amr_description.cli.topic.api import expand
 from amr_description.cli.topic.api import message_class
 from amr_description.cli.topic.api import qos_from_args
@@ -72,8 +73,6 @@ def format_value(value, *, csv=False, truncate_length=None, no_arr=False, no_str
                            no_str=no_str, flow_style=flow_style) + '---\n'
 
 
-DAEMON_AGE = 3.0
-"""Seconds a daemon must have followed the graph before echo takes a topic's type from it."""
 KNOWN_PUBLISHERS_WAIT = 10.0
 """Seconds echo waits for its node to discover the publishers a daemon reported."""
 WARN_SETTLE = 1.0
@@ -82,36 +81,13 @@ WARN_LATEST = 5.0
 """Seconds after which that warning is printed anyway."""
 
 
-def _daemon_type(args):
-    """
-    Return ``(type, publishers)`` of the topic as a warm daemon knows it, else ``(None, 0)``.
-
-    Only when the daemon knows exactly one type; no wait for discovery.
-    """
-    if args.no_daemon:
-        return None, 0
-    from amr_description.cli.daemon import usable_daemon
-    from amr_description.cli.daemon import DaemonNode
-    import xmlrpc.client
-    proxy = usable_daemon(DAEMON_AGE)
-    if proxy is None:
-        return None, 0
-    try:
-        daemon = DaemonNode(proxy)
-        topic = expand(daemon, args.topic_name)
-        types = topic_types(daemon, topic)
-        publishers = daemon.count_publishers(topic)
-    except (OSError, xmlrpc.client.Error):
-        return None, 0
-    return (types[0], publishers) if len(types) == 1 else (None, 0)
-
-
 def _echo(args):
     fields = [f for f in args.field.split('.') if f] if args.field else []
     truncate = None if args.full_length else args.truncate_length
     deadline = time.monotonic() + args.timeout if args.timeout else None
     msg_class = message_class(args.message_type) if args.message_type else None
-    type_name, known = (args.message_type, 0) if args.message_type else _daemon_type(args)
+    type_name, known = (args.message_type, 0) if args.message_type else \
+        daemon_topic_type(args.topic_name, args.no_daemon)
     if type_name is not None and msg_class is None:
         msg_class = message_class(type_name)
     with cli_node(default_node_name()) as node:

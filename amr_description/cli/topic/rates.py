@@ -18,10 +18,12 @@ r"""
 import math
 import time
 
+from amr_description.cli.common import add_no_daemon_argument
 from amr_description.cli.common import cli_node
 from amr_description.cli.common import CliError
 from amr_description.cli.common import default_node_name
 from amr_description.cli.common import spin_once
+from amr_description.cli.topic.api import daemon_topic_type
 from amr_description.cli.topic.api import expand
 from amr_description.cli.topic.api import message_class
 from amr_description.cli.topic.api import topic_types
@@ -62,11 +64,7 @@ def format_rate(deltas):
 def _hz(args):
     with cli_node(default_node_name()) as node:
         topic = expand(node, args.topic_name)
-        types = topic_types(node, topic)
-        while not types:
-            spin_once(node, timeout_sec=0.1)
-            types = topic_types(node, topic)
-        msg_class = message_class(types[0])
+        msg_class = _wait_for_type(node, topic, args)
         from rclpy.qos import qos_profile_sensor_data
         arrivals = []
         received = [0]
@@ -139,7 +137,11 @@ def format_delay(delays):
             f'window: {n}')
 
 
-def _wait_for_type(node, topic):
+def _wait_for_type(node, topic, args):
+    """Return the topic's message class: from a warm daemon, else once the node sees it."""
+    type_name, _ = daemon_topic_type(topic, args.no_daemon)
+    if type_name is not None:
+        return message_class(type_name)
     types = topic_types(node, topic)
     while not types:
         spin_once(node, timeout_sec=0.1)
@@ -155,7 +157,7 @@ def _bw(args):
     from rclpy.qos import qos_profile_sensor_data
     with cli_node(default_node_name(), args=_node_args(args)) as node:
         topic = expand(node, args.topic_name)
-        msg_class = _wait_for_type(node, topic)
+        msg_class = _wait_for_type(node, topic, args)
         window = []  # (time s, size bytes)
 
         def now():
@@ -190,7 +192,7 @@ def _delay(args):
     from rclpy.time import Time
     with cli_node(default_node_name(), args=_node_args(args)) as node:
         topic = expand(node, args.topic_name)
-        msg_class = _wait_for_type(node, topic)
+        msg_class = _wait_for_type(node, topic, args)
         if 'header' not in msg_class.get_fields_and_field_types():
             raise CliError(f"The type of '{topic}' has no header: no delay to compute")
         delays = []
@@ -230,6 +232,7 @@ def add_verbs(verbs):
     p.add_argument('topic_name', help="Name of the ROS topic to listen to (e.g. '/chatter')")
     p.add_argument('--window', '-w', type=int, default=10000,
                    help='window size, in # of messages, for calculating rate (default: 10000)')
+    add_no_daemon_argument(p)
     p.set_defaults(main=_hz)
 
     p = verbs.add_parser('bw', help='Display bandwidth used by topic')
@@ -240,6 +243,7 @@ def add_verbs(verbs):
                         f'(default: {DEFAULT_BW_WINDOW})')
     p.add_argument('-s', '--use-sim-time', action='store_true',
                    help='Enable ROS simulation time')
+    add_no_daemon_argument(p)
     p.set_defaults(main=_bw)
 
     p = verbs.add_parser('delay', help='Display delay of topic from timestamp in header')
@@ -250,6 +254,7 @@ def add_verbs(verbs):
                         f'(default: {DEFAULT_DELAY_WINDOW})')
     p.add_argument('-s', '--use-sim-time', action='store_true',
                    help='Enable ROS simulation time')
+    add_no_daemon_argument(p)
     p.set_defaults(main=_delay)
 
 
