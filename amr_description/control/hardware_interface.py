@@ -122,6 +122,19 @@ class SystemInterface:
         """Release the hardware; returns True."""
         return True
 
+    def perform_command_mode_switch(self, start_interfaces, stop_interfaces):
+        """
+        Learn which command interfaces a controller just claimed or released.
+
+        As ros2_control's ``perform_command_mode_switch``: called by the resource manager
+        with the component's own interfaces only.
+
+        :param start_interfaces: full names (``joint/interface``) now claimed, list of str.
+        :param stop_interfaces: full names now released, list of str.
+        :returns: True.
+        """
+        return True
+
     def export_state_interfaces(self):
         """Return the state handles, list of :class:`Handle`, in ``<ros2_control>`` order."""
         return list(self.state_handles.values())

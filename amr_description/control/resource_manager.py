@@ -187,14 +187,26 @@ class ResourceManager:
             if owner is not None and owner != controller:
                 raise ValueError(
                     f'command interface {name!r} is already claimed by {owner!r}')
+        started = [name for name in names if name not in self.claimed]
         for name in names:
             self.claimed[name] = controller
+        self._switch(started, [])
         return {name: self.command_interfaces[name] for name in names}
 
     def release(self, controller):
         """Release every command interface claimed by ``controller``."""
-        for name in [n for n, owner in self.claimed.items() if owner == controller]:
+        stopped = [n for n, owner in self.claimed.items() if owner == controller]
+        for name in stopped:
             del self.claimed[name]
+        self._switch([], stopped)
+
+    def _switch(self, started, stopped):
+        """Tell each component which of its command interfaces were claimed or released."""
+        for component in self.components:
+            start = [n for n in started if n in component.command_handles]
+            stop = [n for n in stopped if n in component.command_handles]
+            if start or stop:
+                component.perform_command_mode_switch(start, stop)
 
     def claimed_by(self, controller):
         """Return the command interfaces claimed by ``controller``, a sorted list of str."""

@@ -22,6 +22,10 @@ SIMULATOR_SYSTEMS = ('amr_description/MujocoSystem', 'gz_ros2_control/GazeboSimS
                      'ign_ros2_control/IgnitionSystem')
 """``<hardware><plugin>`` names that select the simulator's hardware component."""
 
+GAZEBO_SYSTEMS = SIMULATOR_SYSTEMS[1:]
+"""gz_ros2_control's hardware plugin names: the component then commands its joints as
+gz_ros2_control does (:mod:`amr_description.sim.mujoco_system`)."""
+
 CONTROL_PLUGIN_FILES = ('gz_ros2_control-system', 'libgz_ros2_control-system.so',
                         'libign_ros2_control-system.so', 'ign_ros2_control-system')
 """``<gazebo><plugin filename>`` values of gz_ros2_control's system plugin."""
@@ -131,18 +135,94 @@ KEPT_JOINT_TAGS = ('preserveFixedJoint', 'disableFixedJointLumping')
 keeps its own body and frame (no fixed-joint lumping), so a sensor or a TF frame on a link
 merged away in Gazebo is still there."""
 
-VISUAL_TAGS = ('material', 'visual')
-"""``<gazebo reference>`` tags of Gazebo's renderer: the simulator's visual geoms and the
-viewer take the URDF ``<material>`` colour instead."""
+VISUAL_TAGS = ('visual',)
+"""``<gazebo reference>`` blobs of Gazebo's renderer that the simulator does not read."""
+
+GAZEBO_MATERIALS = {
+    'Gazebo/Grey': (0.7, 0.7, 0.7, 1.0), 'Gazebo/Gray': (0.7, 0.7, 0.7, 1.0),
+    'Gazebo/DarkGrey': (0.175, 0.175, 0.175, 1.0), 'Gazebo/DarkGray': (0.175, 0.175, 0.175, 1.0),
+    'Gazebo/White': (1.0, 1.0, 1.0, 1.0), 'Gazebo/WhiteGlow': (1.0, 1.0, 1.0, 1.0),
+    'Gazebo/FlatBlack': (0.1, 0.1, 0.1, 1.0), 'Gazebo/Black': (0.0, 0.0, 0.0, 1.0),
+    'Gazebo/Red': (1.0, 0.0, 0.0, 1.0), 'Gazebo/RedGlow': (1.0, 0.0, 0.0, 1.0),
+    'Gazebo/RedBright': (0.87, 0.26, 0.07, 1.0),
+    'Gazebo/Green': (0.0, 1.0, 0.0, 1.0), 'Gazebo/GreenGlow': (0.0, 1.0, 0.0, 1.0),
+    'Gazebo/Blue': (0.0, 0.0, 1.0, 1.0), 'Gazebo/BlueGlow': (0.0, 0.0, 1.0, 1.0),
+    'Gazebo/SkyBlue': (0.0, 0.0, 1.0, 1.0),
+    'Gazebo/Yellow': (1.0, 1.0, 0.0, 1.0), 'Gazebo/YellowGlow': (1.0, 1.0, 0.0, 1.0),
+    'Gazebo/ZincYellow': (0.9725, 0.9529, 0.2078, 1.0), 'Gazebo/DarkYellow': (0.7, 0.7, 0.0, 1.0),
+    'Gazebo/Purple': (1.0, 0.0, 1.0, 1.0), 'Gazebo/PurpleGlow': (1.0, 0.0, 1.0, 1.0),
+    'Gazebo/Turquoise': (0.0, 1.0, 1.0, 1.0), 'Gazebo/TurquoiseGlow': (0.0, 1.0, 1.0, 1.0),
+    'Gazebo/Orange': (1.0, 0.5088, 0.0468, 1.0), 'Gazebo/Indigo': (0.33, 0.0, 0.5, 1.0),
+    'Gazebo/Gold': (0.8, 0.64869, 0.120759, 1.0),
+    'Gazebo/RedTransparent': (1.0, 0.0, 0.0, 0.5), 'Gazebo/GreenTransparent': (0.0, 1.0, 0.0, 0.5),
+    'Gazebo/BlueTransparent': (0.0, 0.0, 1.0, 0.5), 'Gazebo/GreyTransparent': (0.5, 0.5, 0.5, 0.5),
+    'Gazebo/BlackTransparent': (0.0, 0.0, 0.0, 0.5),
+    'Gazebo/YellowTransparent': (1.0, 1.0, 0.0, 0.5),
+    'Gazebo/DarkMagentaTransparent': (0.6, 0.0, 0.6, 0.5),
+    'Gazebo/OrangeTransparent': (1.0, 0.44, 0.0, 0.6),
+}
+"""Diffuse colours (rgba) of the solid ``Gazebo/*`` script materials, as gz-sim 8 gives a
+visual from its built-in ``gazebo.material`` (``src/rendering/MaterialParser``; glow variants
+take their base colour; a transparent one its overlay alpha). Textured ones (``Gazebo/Wood``,
+...) are not listed."""
+
+
+def gazebo_material(tags, where):
+    """
+    Return the colour a link's ``<gazebo reference><material>`` gives its visuals, or None.
+
+    As sdformat 14 (the tag becomes each visual's ``material/script/name``, overriding the
+    URDF ``<material>``) and gz-sim 8 (:data:`GAZEBO_MATERIALS`).
+
+    :param tags: dict tag -> value of one ``<gazebo reference>`` link.
+    :param where: what messages name (``<gazebo reference="base_link">``).
+    :returns: ``(rgba, None)``, ``(None, None)`` without the tag, or ``(None, line)`` for a
+        material the simulator does not know (the URDF colour stays; the line says so).
+    """
+    name = tags.get('material')
+    if not name:
+        return None, None
+    if name in GAZEBO_MATERIALS:
+        return GAZEBO_MATERIALS[name], None
+    return None, f'{where}<material>: {name!r} is not a solid Gazebo material: the URDF ' \
+        'colour is used'
+
+
+GRAVITY_TAGS = ('gravity', 'turnGravityOff')
+"""``<gazebo reference="link">`` tags that switch gravity off for the link."""
+
+
+def link_gravity(tags, where):
+    """
+    Return False when a link's ``<gazebo reference>`` turns gravity off, else True.
+
+    sdformat 14: ``<turnGravityOff>true`` becomes the link's ``<gravity>false``; a
+    ``<gravity>`` tag is copied as is. The simulator cancels gravity on such a link's body
+    (MuJoCo ``gravcomp`` 1).
+
+    :raises ValueError: one line naming the tag when its value is not a boolean.
+    """
+    gravity = True
+    for tag, off_when in zip(GRAVITY_TAGS, (False, True)):
+        if tag not in tags:
+            continue
+        text = tags[tag].strip().lower()
+        if text not in ('true', '1', 'yes', 'false', '0', 'no'):
+            raise ValueError(f'{where}<{tag}>: expected true or false, found {tags[tag]!r}')
+        if (text in ('true', '1', 'yes')) == off_when:
+            gravity = False
+    return gravity
+
 
 FRICTION_TAGS = ('mu1', 'mu2')
 """``<gazebo reference>`` tags the simulator maps to contact friction."""
 
 IGNORED_AS_HARMONIC = ('fdir1', 'kp', 'kd', 'minDepth', 'maxVel', 'maxContacts', 'laserRetro',
                        'stopCfm', 'stopErp', 'provideFeedback', 'implicitSpringDamper',
-                       'cfmDamping', 'fudgeFactor')
+                       'cfmDamping', 'fudgeFactor', 'dampingFactor')
 """``<gazebo reference>`` tags read and ignored: Harmonic's default engine (DART) ignores them
-too (gz-physics 7 ``dartsim/src/SDFFeatures.cc``); ``fdir1`` is ignored as MuJoCo's contact
+too (gz-physics 7 ``dartsim/src/SDFFeatures.cc``; ``dampingFactor``, sdformat's link
+``velocity_decay``: gz-physics#635, open); ``fdir1`` is ignored as MuJoCo's contact
 friction is isotropic."""
 
 

@@ -64,22 +64,26 @@ DEFAULT_EFFORT = 20.0
 """N m (or N) a drive may exert when the URDF joint gives no ``<limit effort>``."""
 
 
-def add_drive_defaults(config, model, hardware, simulator_systems):
+def add_drive_defaults(config, model, hardware, simulator_systems, gazebo=()):
     """
     Give a description without a ``<mujoco>`` block the settings Gazebo users expect.
 
     Gazebo describes no contact shape or servo gains: its velocity command is a servo solved
     with the contacts, bounded by the joint's URDF ``<limit effort>``
     (docs/gazebo.md). For every joint with a velocity command interface in a
-    ``<ros2_control>`` block of the simulator (``simulator_systems``): the drive becomes
+    ``<ros2_control>`` block of the simulator (``simulator_systems``), and every joint with a
+    position command interface in a gz_ros2_control block (``gazebo``): the drive becomes
     :data:`DRIVE_DEFAULTS` with ``forcerange`` +-effort (:data:`DEFAULT_EFFORT` without
-    one), and its child link, when its collision is a cylinder (a wheel), touches the ground
-    as :data:`WHEEL_CONTACT_DEFAULTS`. A description with a block is left as it is.
+    one), and the child link of a velocity joint, when its collision is a cylinder (a wheel),
+    touches the ground as :data:`WHEEL_CONTACT_DEFAULTS`. A description with a block is
+    left as it is.
 
     :param config: the :class:`MujocoConfig` to complete (changed in place).
     :param model: the :class:`~amr_description.core.urdf_model.RobotModel`.
     :param hardware: the ``<ros2_control>`` blocks (``HardwareInfo`` list).
     :param simulator_systems: hardware plugin names of the simulator.
+    :param gazebo: those of gz_ros2_control, whose position commands are velocity targets
+        too: their joints get the same drive.
     """
     if config.present:
         return
@@ -88,7 +92,9 @@ def add_drive_defaults(config, model, hardware, simulator_systems):
             continue
         for component in info.joints:
             joint = model.joints.get(component.name)
-            if joint is None or 'velocity' not in component.command_interface_names():
+            names = component.command_interface_names()
+            servo = 'velocity' in names or ('position' in names and info.plugin in gazebo)
+            if joint is None or not servo:
                 continue
             effort = joint.limit.effort if joint.limit is not None and joint.limit.effort \
                 else 0.0
@@ -96,7 +102,7 @@ def add_drive_defaults(config, model, hardware, simulator_systems):
             drive = dict(DRIVE_DEFAULTS, forcerange=(-effort, effort))
             config.joint_actuator.setdefault(component.name, drive)
             link = model.links.get(joint.child)
-            if link is not None and link.collisions and \
+            if 'velocity' in names and link is not None and link.collisions and \
                     link.collisions[0].geometry.cylinder is not None:
                 config.link_contact.setdefault(joint.child, dict(WHEEL_CONTACT_DEFAULTS))
 

@@ -11,6 +11,9 @@ one spawn is one XML parse (test/unit/test_robot_description.py counts them).
 from amr_description.core.gazebo_sensors import parse_sensors
 from amr_description.core.gazebo_systems import parse_gazebo_systems
 from amr_description.core.gazebo_tags import apply_surface_tags
+from amr_description.core.gazebo_tags import gazebo_material
+from amr_description.core.gazebo_tags import GAZEBO_SYSTEMS
+from amr_description.core.gazebo_tags import link_gravity
 from amr_description.core.gazebo_tags import parse_control_plugin
 from amr_description.core.gazebo_tags import parse_reference_tags
 from amr_description.core.gazebo_tags import SIMULATOR_SYSTEMS
@@ -43,6 +46,11 @@ class RobotDescription:
     :ivar sensors: the ``<gazebo reference><sensor>`` blocks, a
         :class:`~amr_description.core.gazebo_sensors.SensorBlocks` (its ``messages`` name the
         sensors left out).
+    :ivar link_colours: dict link -> rgba (4 floats) of its ``<gazebo reference><material>``
+        (``Gazebo/*``, :data:`~amr_description.core.gazebo_tags.GAZEBO_MATERIALS`): the
+        colour of all its visuals in the simulator, as gz-sim.
+    :ivar weightless_links: links whose ``<gazebo reference>`` turns gravity off (a set).
+    :ivar messages: lines about Gazebo tags read but not applied (an unknown material).
     :ivar system_hardware: the joints those systems command, as ``HardwareInfo`` blocks of
         the simulator's system (their actuators are made as for ``<ros2_control>``).
     :raises ValueError: one line naming ``source`` (URDF), ``ros2_control`` or ``<mujoco>``
@@ -62,10 +70,22 @@ class RobotDescription:
         self.system_hardware = self.gz_systems.hardware()
         _check_one_command_source(self.hardware, self.system_hardware)
         add_drive_defaults(self.mujoco, self.model, self.hardware + self.system_hardware,
-                           SIMULATOR_SYSTEMS)
+                           SIMULATOR_SYSTEMS, GAZEBO_SYSTEMS)
         self.gazebo_tags = parse_reference_tags(self.root)
         apply_surface_tags(self.mujoco, self.gazebo_tags, self.model)
         self.sensors = parse_sensors(self.root, self.model.links)
+        self.link_colours, self.weightless_links, self.messages = {}, set(), []
+        for reference, tags in self.gazebo_tags.items():
+            if reference not in self.model.links:
+                continue
+            where = f'<gazebo reference="{reference}">'
+            rgba, line = gazebo_material(tags, where)
+            if rgba is not None:
+                self.link_colours[reference] = rgba
+            elif line:
+                self.messages.append(line)
+            if not link_gravity(tags, where):
+                self.weightless_links.add(reference)
 
     def parameters_files(self):
         """
@@ -98,6 +118,29 @@ class RobotDescription:
                     links.add(reference)
         return links
 
+    def initial_joint_states(self):
+        """
+        Return the joints the simulator starts away from 0, as gz_ros2_control does.
+
+        ``<param name="initial_value">`` of a ``position`` or ``velocity`` state interface of
+        a ``<ros2_control>`` block of the simulator's hardware component.
+
+        :returns: list of ``(joint, position or None, velocity or None)``.
+        """
+        states = []
+        for info in self.hardware:
+            if info.plugin not in SIMULATOR_SYSTEMS:
+                continue
+            for joint in info.joints:
+                urdf_joint = self.model.joints.get(joint.name)
+                if urdf_joint is None or urdf_joint.type not in MOVING_TYPES:
+                    continue  # gz_ros2_control skips fixed joints
+                values = {iface.name: iface.initial_value for iface in joint.state_interfaces}
+                position, velocity = values.get('position'), values.get('velocity')
+                if position is not None or velocity is not None:
+                    states.append((joint.name, position, velocity))
+        return states
+
     def joint_names(self, moving_only=False):
         """
         Return the URDF joint names in document order.
@@ -106,6 +149,9 @@ class RobotDescription:
         """
         return [joint.get('name') for joint in self.root.findall('joint')
                 if not moving_only or joint.get('type') not in ('fixed', None)]
+
+
+MOVING_TYPES = ('revolute', 'continuous', 'prismatic')
 
 
 def _check_one_command_source(hardware, system_hardware):

@@ -11,6 +11,8 @@ import os
 
 from amr_description.control.resource_manager import default_hardware_factory
 from amr_description.core.description_file import resolve_uri
+from amr_description.core.gazebo_tags import ControlPlugin
+from amr_description.core.gazebo_tags import GAZEBO_SYSTEMS
 from amr_description.core.gazebo_tags import SIMULATOR_SYSTEMS
 from amr_description.core.robot_description import RobotDescription
 from amr_description.core.ros_names import normalize_namespace
@@ -113,7 +115,8 @@ def spawn_stages(sim, urdf, name='', pose=None, namespace='', allow_renaming=Fal
         entity.sensors = make_sensors(entity, dict(
             sim.sensor_settings, world=sim.world.name, physics_step=sim.physics_step,
             spherical_coordinates=spherical, messages=skipped))
-        for line in description.sensors.messages + skipped:  # gz-sim would run it: say so
+        # gz-sim would run it, or use it: say so
+        for line in description.sensors.messages + description.messages + skipped:
             sim.logger.warning(f'entity {entity.name!r}: {line}')
         if systems:
             entity.gz_systems = SystemGroup(systems)
@@ -143,8 +146,11 @@ def hardware_factory(world, entity):
 
     def factory(info):
         if info.plugin in SIMULATOR_SYSTEMS:
+            gazebo = None
+            if info.plugin in GAZEBO_SYSTEMS:
+                gazebo = entity.description.control_plugin or ControlPlugin()
             system = MujocoSystem(world.model, world.data,
-                                  prefix=entity.robot.prefix)
+                                  prefix=entity.robot.prefix, gazebo=gazebo)
             entity.systems.append(system)
             return system
         return default_hardware_factory(info)

@@ -19,6 +19,18 @@ torque ``ki (act - q)``); the joint's actuator force range limits their sum. Ant
 in a motor drive: at every write the activation is kept where the total torque it asks for
 stays inside that range (``lo <= kv (command - qdot) + ki (act - q) <= hi``), so a blocked
 or overloaded wheel does not store up a run-away.
+
+As gz_ros2_control's ``GazeboSimSystem`` (``gazebo`` given: the robot's
+:class:`~amr_description.core.gazebo_tags.ControlPlugin`; gz_ros2_control ``gz_system.cpp``
+``write``), a joint's command is what a controller claims now (learnt through
+:meth:`perform_command_mode_switch`): a claimed ``velocity`` is the velocity servo's target; a
+claimed ``position`` is a velocity target too, ``position_proportional_gain * (command - q) /
+period`` (gz: the gain times the error times the update rate; its actuator is a velocity
+servo, built so by :func:`amr_description.sim.urdf_to_mjcf.urdf_to_spec`); a claimed
+``effort`` is the motor's force. With nothing claimed the joint is held at velocity 0
+(``hold_joints``, default) or left free. The actuators a joint does not use at the moment
+are switched off (MuJoCo actuator group :data:`IDLE_GROUP`, disabled through
+``opt.disableactuator``), so they exert no force at all.
 """
 
 import math
@@ -26,6 +38,8 @@ import math
 from amr_description.control.hardware_interface import SystemInterface
 
 _STATE_KINDS = ('position', 'velocity', 'effort')
+IDLE_GROUP = 30
+"""MuJoCo actuator group of the actuators a gz_ros2_control joint does not use now."""
 _COMMAND_KINDS = ('position', 'velocity', 'effort')
 
 
@@ -37,9 +51,13 @@ class MujocoSystem(SystemInterface):
     :param data: its ``mujoco.MjData``.
     :param prefix: name prefix of the robot's joints and actuators in the model
         (``'<entity name>/'`` when spawned by :class:`amr_description.sim.world.World`).
+    :param gazebo: gz_ros2_control's plugin settings
+        (:class:`~amr_description.core.gazebo_tags.ControlPlugin`: ``hold_joints``,
+        ``position_proportional_gain``) for a ``gz_ros2_control/GazeboSimSystem`` component,
+        None for ``amr_description/MujocoSystem`` (NaN command = hold).
     """
 
-    def __init__(self, model=None, data=None, prefix=''):
+    def __init__(self, model=None, data=None, prefix='', gazebo=None):
         """Keep the model and data; addresses are resolved by :meth:`on_init`."""
         super().__init__()
         self.model = model
@@ -50,6 +68,9 @@ class MujocoSystem(SystemInterface):
         # PI velocity servos: (handle, integral actuator id, its act address, command lo,
         # hi, qpos address, dof address, kv, ki, joint force lo, hi)
         self._integrals = []
+        self.gazebo = gazebo
+        self.active = set()  # claimed command interfaces (full names)
+        self._gz_joints = []  # gazebo: per joint, its commands by kind (see _resolve)
 
     def on_init(self, info):
         """
@@ -138,6 +159,48 @@ class MujocoSystem(SystemInterface):
         self._integrals = integrals
         self._ctrl = self.data.ctrl
         self._qpos = self.data.qpos
+        if self.gazebo is not None:
+            self._resolve_gazebo(commands)
+
+    def _resolve_gazebo(self, commands):
+        """Group the commands per joint for gz_ros2_control's write; switch off idle ones."""
+        model = self.model
+        joints = {}
+        for handle, actuator, lo, hi, kind, qadr in commands:
+            jid = int(model.actuator_trnid[actuator, 0])
+            ids = [actuator]
+            integral = None
+            try:
+                extra = model.actuator(model.actuator(actuator).name + '/integral')
+                ids.append(int(extra.id))
+                flo, fhi = (float(v) for v in model.jnt_actfrcrange[jid])
+                if not model.jnt_actfrclimited[jid]:
+                    flo, fhi = -math.inf, math.inf
+                integral = (int(extra.id), int(extra.actadr[0]),
+                            float(model.actuator_gainprm[actuator, 0]),
+                            float(extra.gainprm[0]), flo, fhi)
+            except KeyError:
+                pass
+            joint = joints.setdefault(jid, {'qadr': qadr, 'dadr': int(model.jnt_dofadr[jid]),
+                                            'actuators': []})
+            joint[kind] = (handle, actuator, lo, hi, integral)
+            joint['actuators'] += ids
+        self._gz_joints = list(joints.values())
+        model.opt.disableactuator |= 1 << IDLE_GROUP
+        for joint in self._gz_joints:
+            for actuator in joint['actuators']:
+                model.actuator_group[actuator] = IDLE_GROUP
+
+    def perform_command_mode_switch(self, start_interfaces, stop_interfaces):
+        """
+        Record the command interfaces controllers claim and release (gz_ros2_control's).
+
+        :param start_interfaces: full names now claimed.
+        :param stop_interfaces: full names now released.
+        :returns: True.
+        """
+        self.active = (self.active - set(stop_interfaces)) | set(start_interfaces)
+        return True
 
     def read(self, time, period):
         """
@@ -159,6 +222,9 @@ class MujocoSystem(SystemInterface):
         :param period: s since the last write (unused).
         :returns: True.
         """
+        if self.gazebo is not None:
+            self._write_gazebo(period)
+            return True
         ctrl = self._ctrl
         qpos = self._qpos
         for handle, actuator, lo, hi, kind, qadr in self._commands:
@@ -178,6 +244,49 @@ class MujocoSystem(SystemInterface):
                 act[actadr] = min(max(act[actadr], position + (flo - proportional) / ki),
                                   position + (fhi - proportional) / ki)
         return True
+
+    def _write_gazebo(self, period):
+        """gz_ros2_control's write: the claimed command of each joint, else hold or free."""
+        model, data = self.model, self.data
+        ctrl, qpos, qvel = data.ctrl, data.qpos, data.qvel
+        groups = model.actuator_group
+        gain = self.gazebo.position_proportional_gain
+        for joint in self._gz_joints:
+            kind = next((k for k in ('velocity', 'position', 'effort')
+                         if k in joint and joint[k][0].name in self.active), None)
+            target = 0.0
+            if kind is None:
+                kind = next((k for k in ('velocity', 'position') if k in joint), None) \
+                    if self.gazebo.hold_joints else None
+            elif kind == 'velocity':
+                value = joint[kind][0].value
+                target = 0.0 if value != value else min(max(value, joint[kind][2]),
+                                                        joint[kind][3])
+            else:
+                value = joint[kind][0].value
+                if value != value:
+                    target = 0.0
+                elif kind == 'position':
+                    value = min(max(value, joint[kind][2]), joint[kind][3])
+                    target = gain * (value - qpos[joint['qadr']]) / period if period > 0 else 0.0
+                else:
+                    target = min(max(value, joint[kind][2]), joint[kind][3])
+            used = ()
+            if kind is not None:
+                handle, actuator, lo, hi, integral = joint[kind]
+                ctrl[actuator] = target
+                used = (actuator,)
+                if integral is not None:
+                    index, actadr, kv, ki, flo, fhi = integral
+                    ctrl[index] = target
+                    used = (actuator, index)
+                    proportional = kv * (target - qvel[joint['dadr']])
+                    position = qpos[joint['qadr']]
+                    data.act[actadr] = min(max(data.act[actadr],
+                                               position + (flo - proportional) / ki),
+                                           position + (fhi - proportional) / ki)
+            for actuator in joint['actuators']:
+                groups[actuator] = 0 if actuator in used else IDLE_GROUP
 
     def on_deactivate(self):
         """

@@ -282,6 +282,8 @@ class Simulation:
         except ValueError as exc:
             raise SpawnError(str(exc).splitlines()[0], 'RESOURCE_PARSE_ERROR') from None
         robot = self.world.spawn(spec, name, description.xml, self_collide=self_collide)
+        for joint, position, velocity in description.initial_joint_states():
+            self.world.set_initial_joint_state(robot.prefix + joint, position, velocity)
         overlapping = self.world.overlapping_models(name)
         if overlapping:  # spawned all the same, as gz-sim does
             self.logger.warning(f'robot {name!r} is spawned overlapping world model'

@@ -54,6 +54,7 @@ import math
 import os
 
 from amr_description.core.description_file import resolve_uri
+from amr_description.core.gazebo_tags import GAZEBO_SYSTEMS
 from amr_description.core.mujoco_block import DEFAULT_CONTACT
 from amr_description.core.robot_description import RobotDescription
 from amr_description.sim.sensors.mount import add_mounts
@@ -262,10 +263,12 @@ def _add_actuators(spec, joint_types, hardware, config):
                 actuator = spec.add_actuator(
                     name=f'{joint.name}/{iface.name}', target=joint.name,
                     trntype=mujoco.mjtTrn.mjTRN_JOINT)
-                if iface.name == 'velocity' and params.get('ki', 0.0) > 0.0:
+                servo = iface.name == 'velocity' or \
+                    (iface.name == 'position' and info.plugin in GAZEBO_SYSTEMS)
+                if servo and params.get('ki', 0.0) > 0.0:
                     _add_integral_velocity(spec, joint, iface, actuator, params)
                     continue
-                if iface.name == 'velocity':
+                if servo:  # gz_ros2_control: a position command is a velocity target
                     actuator.set_to_velocity(kv=params['kv'])
                 elif iface.name == 'position':
                     actuator.set_to_position(kp=params['kp'], kv=0.0)
@@ -305,6 +308,33 @@ def _add_integral_velocity(spec, joint, iface, actuator, params):
     mj_joint = spec.joint(joint.name)
     mj_joint.actfrclimited = mujoco.mjtLimited.mjLIMITED_TRUE
     mj_joint.actfrcrange = list(params['forcerange'])
+
+
+def _add_mimic_constraints(spec, joints):
+    """
+    Tie every URDF ``<mimic>`` joint to its leader: ``q = offset + multiplier * q_leader``.
+
+    A MuJoCo joint equality (``polycoef`` offset, multiplier) named ``<joint>/mimic``, solved
+    with the contacts. gz_ros2_control drives a mimic joint with a velocity command
+    ``-(q - multiplier * q_leader) * update_rate`` (``gz_system.cpp``), which ignores the
+    offset; the URDF's meaning (and robot_state_publisher's) keeps it.
+
+    :raises ValueError: one line when a mimic joint or its leader is not a moving joint.
+    """
+    types = {joint.name: joint.type for joint in joints}
+    for joint in joints:
+        mimic = joint.mimic
+        if mimic is None:
+            continue
+        for name in (joint.name, mimic.joint):
+            if types.get(name) not in ('revolute', 'continuous', 'prismatic'):
+                raise ValueError(f'joint {joint.name!r} <mimic joint="{mimic.joint}">: '
+                                 f'{name!r} is not a revolute, continuous or prismatic joint')
+        multiplier = 1.0 if mimic.multiplier is None else float(mimic.multiplier)
+        offset = 0.0 if mimic.offset is None else float(mimic.offset)
+        spec.add_equality(name=f'{joint.name}/mimic', type=mujoco.mjtEq.mjEQ_JOINT,
+                          name1=joint.name, name2=mimic.joint,
+                          data=[offset, multiplier] + [0.0] * 10)
 
 
 def _root_link(robot):
@@ -389,6 +419,8 @@ def urdf_to_spec(urdf_xml, name='amr', pose=(0.0, 0.0, 0.0, 0.0, 0.0, 0.0), free
             _set_frame(body, joint.origin)
             _add_joint(body, joint)
         _set_inertial(body, link.inertial)
+        if link_name in description.weightless_links:
+            body.gravcomp = 1.0  # <gazebo reference><gravity>false / <turnGravityOff>
         contact = dict(config.contact)
         contact.update(config.link_contact.get(link_name, {}))
         for index, collision in enumerate(link.collisions):
@@ -421,11 +453,13 @@ def urdf_to_spec(urdf_xml, name='amr', pose=(0.0, 0.0, 0.0, 0.0, 0.0, 0.0), free
             geom.group = VISUAL_GROUP
             geom.contype = 0
             geom.conaffinity = 0
-            geom.rgba = list(_rgba(visual, materials))
+            geom.rgba = list(description.link_colours.get(link_name) or
+                             _rgba(visual, materials))
         for child_joint in children.get(link_name, []):
             add_link(body, child_joint.child, child_joint)
 
     add_link(spec.worldbody, root_name, None)
+    _add_mimic_constraints(spec, robot.joints)
     add_mounts(spec, description.sensors.sensors)
     _add_actuators(spec, {j.name: j.type for j in robot.joints}, hardware, config)
     return spec

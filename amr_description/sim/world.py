@@ -118,6 +118,7 @@ class World:
                 from None
         self.data = mujoco.MjData(self.model)
         self.robots = {}
+        self._initial_joints = {}  # joint (prefixed) -> (position or None, velocity or None)
         mujoco.mj_forward(self.model, self.data)
         self._poses_current = True  # poses match the state until the next step
 
@@ -175,7 +176,22 @@ class World:
             raise ValueError(f'cannot compile robot {name!r}: {exc}'.splitlines()[0]) from None
         robot = Robot(name=name, prefix=prefix, root=root_name, urdf_xml=urdf_xml)
         self.robots[name] = robot
+        self._place_mimic_joints(prefix)
         return robot
+
+    def _place_mimic_joints(self, prefix=''):
+        """Put each joint tied by a joint equality (a mimic joint) where its leader puts it."""
+        model, data = self.model, self.data
+        for index in range(model.neq):
+            if int(model.eq_type[index]) != mujoco.mjtEq.mjEQ_JOINT or \
+                    not model.eq(index).name.startswith(prefix) or model.eq_obj2id[index] < 0:
+                continue
+            follower = model.jnt_qposadr[model.eq_obj1id[index]]
+            leader = model.jnt_qposadr[model.eq_obj2id[index]]
+            x = data.qpos[leader] - model.qpos0[leader]
+            data.qpos[follower] = model.qpos0[follower] + sum(
+                float(model.eq_data[index, k]) * x ** k for k in range(5))
+        mujoco.mj_forward(model, data)
 
     def _add_ground_pairs(self, prefix):
         """
@@ -295,7 +311,43 @@ class World:
         """
         robot = self.robots.pop(name)
         self._delete_robot_elements(robot.prefix, self.spec.body(robot.prefix + robot.root))
+        self._initial_joints = {joint: state for joint, state in self._initial_joints.items()
+                                if not joint.startswith(robot.prefix)}
         self._recompile()
+
+    def set_initial_joint_state(self, joint, position=None, velocity=None):
+        """
+        Start a joint at ``position`` (rad or m) and ``velocity`` (rad/s or m/s), now and on reset.
+
+        gz_ros2_control's ``initial_value`` of a position or velocity state interface
+        (``JointPositionReset`` / ``JointVelocityReset`` at start-up); :meth:`reset`
+        returns to it.
+
+        :param joint: the joint's name in the world (``'<entity>/<joint>'``).
+        :param position: float or None (unchanged).
+        :param velocity: float or None (unchanged).
+        :raises ValueError: when the joint is not in the world or is not a hinge or slide.
+        """
+        try:
+            found = self.model.joint(joint)
+        except KeyError:
+            raise ValueError(f'joint {joint!r} is not in the simulated world') from None
+        if int(found.type[0]) not in (mujoco.mjtJoint.mjJNT_HINGE, mujoco.mjtJoint.mjJNT_SLIDE):
+            raise ValueError(f'joint {joint!r}: an initial value needs a revolute, continuous '
+                             'or prismatic joint')
+        self._initial_joints[joint] = (position, velocity)
+        self._apply_initial_joint_states([joint])
+        self._place_mimic_joints(joint.split('/')[0] + '/' if '/' in joint else '')
+
+    def _apply_initial_joint_states(self, joints):
+        # not through qpos0: MuJoCo's joint equalities (mimic joints) are relative to it
+        for joint in joints:
+            position, velocity = self._initial_joints[joint]
+            found = self.model.joint(joint)
+            if position is not None:
+                self.data.qpos[found.qposadr[0]] = position
+            if velocity is not None:
+                self.data.qvel[found.dofadr[0]] = velocity
 
     def _recompile(self):
         """Recompile the spec keeping the state; refresh ``model`` and ``data``."""
@@ -304,8 +356,10 @@ class World:
         self._poses_current = True
 
     def reset(self):
-        """Reset every robot to its spawn pose at rest, controls to zero, time to 0 s."""
+        """Reset every robot to its spawn pose, controls to zero, time to 0 s."""
         mujoco.mj_resetData(self.model, self.data)
+        self._apply_initial_joint_states(self._initial_joints)
+        self._place_mimic_joints()
         mujoco.mj_forward(self.model, self.data)
         self._poses_current = True
 

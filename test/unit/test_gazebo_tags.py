@@ -162,19 +162,30 @@ def test_check_model_reads_the_dialect(tmp_path, capsys):
     text = read_description(os.path.join(DATA, 'robot.urdf.xacro'),
                             {'controllers': os.path.join(DATA, 'controllers.yaml')})
     text = text.replace('</robot>', '<gazebo reference="front_left_wheel"><mu1>0.8</mu1>'
-                        '<kp>1e6</kp><selfCollide>true</selfCollide></gazebo><gazebo>'
+                        '<kp>1e6</kp><selfCollide>true</selfCollide>'
+                        '<material>Gazebo/Orange</material><turnGravityOff>1</turnGravityOff>'
+                        '</gazebo><gazebo reference="base_link"><material>Gazebo/Wood'
+                        '</material><gravity>nope</gravity></gazebo><gazebo>'
                         '<plugin filename="gz-sim-sensors-system" '
                         'name="gz::sim::systems::Sensors"/><plugin '
                         'filename="gz-sim-pose-publisher-system" '
                         'name="gz::sim::systems::PosePublisher"/></gazebo></robot>')
     urdf.write_text(text)
-    assert check_model.main([str(urdf)]) == 0
+    assert check_model.main([str(urdf)]) == 1
     out = capsys.readouterr().out
     assert 'OK      <gazebo><plugin gz_ros2_control::GazeboSimROS2ControlPlugin>: ' \
         'gz_ros2_control: starts the controller manager' in out
     assert 'OK      <gazebo reference="front_left_wheel"><mu1>: contact friction 0.8' in out
     assert 'OK      <gazebo reference="front_left_wheel"><kp>: ignored' in out
-    assert 'WARNING <gazebo reference="front_left_wheel"><selfCollide>: not read' in out
+    assert 'OK      <gazebo reference="front_left_wheel"><selfCollide>: collides with the ' \
+        "robot's other links" in out
+    assert 'OK      <gazebo reference="front_left_wheel"><material>: the link\'s visuals are ' \
+        'drawn 1 0.5088 0.0468 1 (rgba)' in out
+    assert 'OK      <gazebo reference="front_left_wheel"><turnGravityOff>: no gravity' in out
+    assert "WARNING <gazebo reference=\"base_link\"><material>: 'Gazebo/Wood' is not a solid " \
+        'Gazebo material' in out
+    assert 'ERROR   <gazebo reference="base_link"><gravity>: expected true or false, found ' \
+        "'nope'" in out
     assert 'WARNING <gazebo><plugin gz::sim::systems::PosePublisher>: system plugin not ' \
         'simulated' in out
     assert 'OK      <gazebo><plugin gz::sim::systems::Sensors>: not needed' in out

@@ -17,11 +17,15 @@ from amr_description.core.gazebo_systems import is_sensor_system
 from amr_description.core.gazebo_systems import parse_gazebo_systems
 from amr_description.core.gazebo_systems import system_class
 from amr_description.core.gazebo_tags import FRICTION_TAGS
+from amr_description.core.gazebo_tags import gazebo_material
+from amr_description.core.gazebo_tags import GRAVITY_TAGS
 from amr_description.core.gazebo_tags import IGNORED_AS_HARMONIC
 from amr_description.core.gazebo_tags import is_control_plugin
 from amr_description.core.gazebo_tags import KEPT_JOINT_TAGS
+from amr_description.core.gazebo_tags import link_gravity
 from amr_description.core.gazebo_tags import parse_control_plugin
 from amr_description.core.gazebo_tags import surface_friction
+from amr_description.core.gazebo_tags import tag_bool
 from amr_description.core.gazebo_tags import tag_text
 from amr_description.core.gazebo_tags import VISUAL_TAGS
 from amr_description.core.model_check.findings import ERROR
@@ -71,15 +75,49 @@ def check_gazebo(root):
             elif child.tag in KEPT_JOINT_TAGS:
                 findings.append(Finding(INFO, f'{where}<{child.tag}>', 'every link keeps its '
                                         'own body and frame here (no fixed-joint lumping)'))
+            elif reference in links and child.tag == 'material' and len(child) == 0:
+                findings.append(_material(child, where))
+            elif reference in links and child.tag in GRAVITY_TAGS:
+                findings.append(_gravity(child, where))
+            elif reference in links and child.tag == 'selfCollide':
+                findings.append(_self_collide(child, where))
             elif child.tag in VISUAL_TAGS:
                 findings.append(Finding(INFO, f'{where}<{child.tag}>', 'not used: visuals take '
-                                        'the URDF <material> colour'))
+                                        'the URDF <material> colour or a Gazebo/* material'))
             elif child.tag in IGNORED_AS_HARMONIC:
                 findings.append(Finding(INFO, f'{where}<{child.tag}>', 'ignored, as Gazebo '
                                         "Harmonic's default physics engine (DART) does"))
             else:
                 findings.append(Finding(WARNING, f'{where}<{child.tag}>', NOT_YET))
     return findings
+
+
+def _material(element, where):
+    rgba, problem = gazebo_material({'material': tag_text(element)}, where)
+    if rgba is None:
+        return Finding(WARNING, f'{where}<material>', problem.split(': ', 1)[1])
+    colour = ' '.join(f'{v:g}' for v in rgba)
+    return Finding(INFO, f'{where}<material>', f"the link's visuals are drawn {colour} (rgba) "
+                   'by the simulator and its cameras, as gz-sim; the viewer keeps the URDF '
+                   'colour, as RViz')
+
+
+def _gravity(element, where):
+    try:
+        on = link_gravity({element.tag: tag_text(element)}, where)
+    except ValueError as exc:
+        return Finding(ERROR, f'{where}<{element.tag}>', str(exc).split(': ', 1)[1])
+    return Finding(INFO, f'{where}<{element.tag}>', 'gravity acts on this link' if on else
+                   'no gravity on this link (its weight is cancelled)')
+
+
+def _self_collide(element, where):
+    try:
+        on = tag_bool(element, f'{where}<selfCollide>')
+    except ValueError as exc:
+        return Finding(ERROR, f'{where}<selfCollide>', str(exc).split(': ', 1)[1])
+    return Finding(INFO, f'{where}<selfCollide>', "collides with the robot's other links"
+                   if on else "does not collide with the robot's other links (SDF default)")
 
 
 def _system(plugin, where, reference, systems):
