@@ -8,10 +8,11 @@ Flags as upstream ``ros_gz_sim create``: one source of ``-topic TOPIC`` (a std_m
 published transient-local, e.g. ``robot_description``), ``-file PATH`` (also
 ``package://``), ``-string XML`` or ``-param NAME`` (a string parameter of this node);
 ``-name NAME``, ``-allow_renaming``, pose ``-x -y -z`` (m) and ``-R -P -Y`` (rad),
-``-world`` (accepted, ignored: mujoco_sim has one world); ``-robot_namespace NS`` (as
-gazebo_ros ``spawn_entity.py``): the entity's ROS namespace, sent as the request's
-``entity_namespace``, so the simulator creates the robot's controller manager as
-``/NS/controller_manager``. Extra: ``-service`` (default ``/mujoco_sim/spawn_entity``) and
+``-world NAME`` (the simulator's loaded world must have that name, SDF ``<world name>``:
+else one error line, as no ``/world/NAME/create`` service would answer in Gazebo);
+``-robot_namespace NS`` (as gazebo_ros ``spawn_entity.py``): the entity's ROS namespace,
+sent as the request's ``entity_namespace``, so the simulator creates the robot's controller
+manager as ``/NS/controller_manager``. Extra: ``-service`` (default ``/mujoco_sim/spawn_entity``) and
 ``-timeout`` (s to wait for the topic and the service; default 0: as long as it takes, as
 upstream, which waits until interrupted). Exits 0 when the entity was created, 1 with a
 one-line error otherwise.
@@ -48,7 +49,8 @@ def build_parser():
     parser.add_argument('-name', default='', help='entity name (default: URDF robot name)')
     parser.add_argument('-allow_renaming', action='store_true',
                         help='rename the entity when the name is taken')
-    parser.add_argument('-world', default='', help='world name (ignored: a single world)')
+    parser.add_argument('-world', default='',
+                        help='world name: the simulator must run the world of this name')
     parser.add_argument('-robot_namespace', default='',
                         help="ROS namespace of the entity's nodes (e.g. r1)")
     for flag, meaning in (('x', 'x (m)'), ('y', 'y (m)'), ('z', 'z (m)'),
@@ -90,7 +92,8 @@ class Create(Node):
         from simulation_interfaces.srv import SpawnEntity
         self._srv_type = SpawnEntity
         self._simulation = SimulationServices(
-            self, lambda until: shutdown.spin(self, until=until), spawn_service=opts.service)
+            self, lambda until: shutdown.spin(self, until=until),
+            sim_node=opts.service.rpartition('/')[0] or '/', spawn_service=opts.service)
 
     def description(self):
         """
@@ -138,6 +141,12 @@ class Create(Node):
         if not self._simulation.wait_for_spawn_service(opts.timeout if opts.timeout > 0 else None):
             return False, (f'service {opts.service} not available after {opts.timeout:g} s: '
                            'is mujoco_sim running?')
+        if opts.world:
+            timeout = opts.timeout if opts.timeout > 0 else 30.0
+            loaded = self._simulation.current_world(timeout)
+            if loaded != opts.world:
+                return False, (f'world [{opts.world}] is not loaded: '
+                               f'{self._simulation.sim_node} runs world [{loaded}]')
         request = self._srv_type.Request()
         request.name = opts.name
         request.allow_renaming = opts.allow_renaming

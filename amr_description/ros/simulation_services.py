@@ -1,7 +1,7 @@
 # Copyright 2026 The amr_description Authors
 # Licensed under the Apache License, Version 2.0
 """
-One client of a simulator's simulation_interfaces services: spawn, pause/play, step, time.
+One client of a simulator's simulation_interfaces services: spawn, pause, step, time, world.
 
 Used by ``create`` (spawn) and ``drive_square`` (lock-step: pause, the paused time, step).
 Every wait spins the caller's node through ``spin_until(predicate)``, so the caller keeps its
@@ -146,6 +146,21 @@ class SimulationServices:
             return values[1] * 1e-9
         raise RuntimeError(f'/clock did not hold still within {timeout:g} s of pausing '
                            f'{self.sim_node}')
+
+    def current_world(self, timeout=30.0):
+        """
+        Return the name of the world the simulator runs (``~/get_current_world``).
+
+        :raises RuntimeError: one line when the service does not answer or refuses.
+        """
+        kind = self._srv.GetCurrentWorld
+        name = f'{self.sim_node}/get_current_world'
+        answer = self.call(self._client(kind, name), kind.Request(), timeout)
+        if answer is None:
+            raise RuntimeError(f'{name} did not answer within {timeout:g} s')
+        if answer.result.result != self._msg.Result.RESULT_OK:
+            raise RuntimeError(f'{name}: {answer.result.error_message}')
+        return answer.world.name
 
     # ------------------------------------------------------------------ spawn
     def wait_for_spawn_service(self, timeout):

@@ -412,6 +412,36 @@ class World:
         joint = self.model.joint(robot.prefix + robot.root)
         return int(joint.qposadr[0]), int(joint.dofadr[0])
 
+    def world_free_bodies(self):
+        """
+        Return the names of the world's moving bodies (links of non-static SDF models).
+
+        :returns: list of ``'<model>::<link>'`` (gz-sim's scoped names), in model order;
+            robots' bodies are not included.
+        """
+        model = self.model
+        prefixes = tuple(robot.prefix for robot in self.robots.values())
+        names = []
+        for joint in range(model.njnt):
+            if int(model.jnt_type[joint]) != mujoco.mjtJoint.mjJNT_FREE:
+                continue
+            name = model.body(int(model.jnt_bodyid[joint])).name
+            if '::' in name and not name.startswith(prefixes):
+                names.append(name)
+        return names
+
+    def body_pose(self, name):
+        """
+        Return the pose of a body in the world frame.
+
+        :param name: the body's name in the world.
+        :returns: ``(position (3,) m, quaternion (x, y, z, w))`` (ROS order).
+        :raises KeyError: when no such body exists.
+        """
+        body = self.model.body(name).id
+        w, x, y, z = self.data.xquat[body]
+        return self.data.xpos[body].copy(), (float(x), float(y), float(z), float(w))
+
     def ground_truth(self, name):
         """
         Return the pose and twist of a robot's root link (for ``nav_msgs/Odometry``).

@@ -4,7 +4,8 @@
 SDF worlds in the simulator: ``mujoco_sim -p world:=...`` as a user starts it.
 
 The caster robot of test/data/gz_diff_drive (gz-sim's DiffDrive on ``/cmd_vel``) is spawned
-with ``create -file`` in the shipped warehouse, facing a shelf, and driven into it at 1 m/s:
+with ``create -world warehouse -file`` in the shipped warehouse (``-world arena`` is
+refused), facing a shelf, and driven into it at 1 m/s:
 its ground truth stops at the shelf's face. A world file that cannot be read stops the
 simulator at start with exit code 1 and one line.
 """
@@ -12,6 +13,7 @@ simulator at start with exit code 1 and one line.
 import math
 import os
 
+from conftest import run_until
 from test_gz_systems import gz_peer  # noqa: F401 - the gz-sim systems' DDS peer fixture
 from test_gz_systems import XACRO
 
@@ -37,9 +39,19 @@ def test_a_robot_driven_into_a_shelf_of_the_warehouse_stops_at_it(
     assert peer.spin_until(lambda: peer.now is not None, 60), sim.output
     assert "world 'warehouse': 17 models from " in sim.output
     assert "world 'warehouse' (" in sim.output and 'not simulated: light' in sim.output
+    # the loose boxes' poses, as gz-sim's SceneBroadcaster (the viewer draws them there)
+    poses = run_until([exe('ros2'), 'topic', 'echo', '--once', '--timeout', '30',
+                       '/world/warehouse/dynamic_pose/info'], ros_env,
+                      lambda r: 'child_frame_id: box_0/link' in r.stdout)
+    assert 'frame_id: world\n' in poses.stdout, poses.stdout + poses.stderr
+    assert poses.stdout.count('child_frame_id: box_') == 3, poses.stdout
+    # -world names the loaded world, or nothing is spawned (one line, exit 1)
+    wrong = procs.start([exe('create'), '-file', XACRO, '-world', 'arena'], ros_env)
+    assert wrong.wait(60) == 1, wrong.output
+    assert 'world [arena] is not loaded: /mujoco_sim runs world [warehouse]' in wrong.output
     # facing +y at the origin; shelf_0_0 (x -2.5 .. 0.5, y 0.75 .. 1.25) is in front
-    create = procs.start([exe('create'), '-file', XACRO, '-Y', repr(math.pi / 2),
-                          '-z', '0.02'], ros_env)
+    create = procs.start([exe('create'), '-world', 'warehouse', '-file', XACRO,
+                          '-Y', repr(math.pi / 2), '-z', '0.02'], ros_env)
     assert create.wait(60) == 0, create.output + sim.output
     assert peer.set_state(peer.msg.SimulationState.STATE_PAUSED).result == \
         peer.msg.Result.RESULT_OK

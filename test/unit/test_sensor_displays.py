@@ -163,3 +163,81 @@ def test_a_compressed_topic_decodes_and_its_camera_info_is_the_base_topics_sibli
         compressed_array(CompressedImage(format='jpeg', data=array.array('B', b'junk')))
     assert info_topic('/camera/compressed') == '/camera_info'
     assert info_topic('/camera/image/compressed') == '/camera/camera_info'
+
+
+class _FakeLogger:
+
+    def __init__(self):
+        self.lines = []
+
+    def info(self, text):
+        self.lines.append(text)
+
+    warning = error = info
+
+
+class _FakeNode:
+
+    def __init__(self):
+        self.logger = _FakeLogger()
+        self.subscriptions = {}
+
+    def get_logger(self):
+        return self.logger
+
+    def create_subscription(self, kind, topic, callback, qos):
+        self.subscriptions[topic] = callback
+
+
+class _FakeSceneNode:
+
+    def __init__(self):
+        self.wxyz, self.position = None, None
+
+
+class _FakeScene:
+
+    def __init__(self):
+        self.nodes = {}
+
+    def add_mesh_trimesh(self, name, mesh):
+        self.nodes[name] = _FakeSceneNode()
+        return self.nodes[name]
+
+
+class _FakeServer:
+
+    def __init__(self):
+        self.scene = _FakeScene()
+
+
+class _FixedFrameIsWorld:
+
+    def pose(self, frame):
+        return None  # no TF: the world is drawn in the fixed frame
+
+
+def test_the_world_display_moves_a_pushed_box_to_its_published_pose():
+    from amr_description.web.displays.world import WorldDisplay
+    from geometry_msgs.msg import TransformStamped
+    from tf2_msgs.msg import TFMessage
+    node, server = _FakeNode(), _FakeServer()
+    display = WorldDisplay(node, server, None, 'warehouse')
+    assert display.topic == '/world/warehouse/dynamic_pose/info'
+    assert '/world' in server.scene.nodes  # the shelves and walls, one node
+    boxes = [n for name, n in server.scene.nodes.items() if name.startswith('/world_moving/')]
+    assert len(boxes) == 3
+    display.draw(_FixedFrameIsWorld())
+    assert list(boxes[0].position) == pytest.approx([1.0, -1.2, 0.2])  # warehouse.sdf box_0
+    box_1 = list(boxes[1].position)
+    moved_box = TransformStamped(child_frame_id='box_0/link')
+    moved_box.transform.translation.x, moved_box.transform.translation.y = 1.0, -1.9
+    moved_box.transform.rotation.z, moved_box.transform.rotation.w = math.sin(0.25), \
+        math.cos(0.25)
+    garbage = TransformStamped(child_frame_id='box_1/link')
+    garbage.transform.translation.x = math.nan
+    node.subscriptions[display.topic](TFMessage(transforms=[moved_box, garbage]))
+    display.draw(_FixedFrameIsWorld())
+    assert list(boxes[0].position) == pytest.approx([1.0, -1.9, 0.0])
+    assert list(boxes[0].wxyz) == pytest.approx([math.cos(0.25), 0, 0, math.sin(0.25)])
+    assert list(boxes[1].position) == box_1  # a non-finite pose is ignored

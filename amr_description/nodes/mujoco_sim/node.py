@@ -21,6 +21,7 @@ from amr_description.ros.node import Node
 from amr_description.ros.sim_time import SimTime
 from amr_description.ros.sim_time import SimTimeExecutor
 from amr_description.ros.stamps import has_subscribers
+from amr_description.sim.sensors.world_poses import WorldPoses
 from amr_description.sim.simulation import Simulation
 from rclpy.time import Time
 from rosgraph_msgs.msg import Clock
@@ -135,6 +136,7 @@ class MujocoSim(Node):
             self._clock_guard = ClockGuard(self, self._refuse)
         self._viewer = None
         self._simulation_services = SimulationServices(self, self.sim, executor, self._on_spawned)
+        self._publish_world_poses()
         if not self.headless:
             self._viewer = PassiveViewer(self.sim.world, self.get_logger())
             self.sim.after_cycle.append(self._viewer.sync)
@@ -220,6 +222,16 @@ class MujocoSim(Node):
         for topic, message_type, callback in inputs:
             self.create_subscription(message_type, topic,
                                      _guarded(callback, topic, self.get_logger()), 10)
+
+    def _publish_world_poses(self):
+        """Publish the poses of the world's moving models, when it has any (gz-sim's)."""
+        sensor = WorldPoses(self.sim.world)
+        if not sensor.bodies:
+            return
+        for sensor, topic in bridged_outputs([sensor], self._bridge):
+            self._published = self._published + [_Published(
+                sensor, self.create_publisher(sensor.message_type, topic, 10),
+                sensor.period_steps(self.physics_step))]
 
     def _on_spawned(self, entity):
         """Publish the new entity's sensors from the next cycle on (executor thread)."""

@@ -1,7 +1,7 @@
 # Copyright 2026 The amr_description Authors
 # Licensed under the Apache License, Version 2.0
 """
-The simulator's simulation_interfaces services (``~/spawn_entity`` and the state services).
+The simulator's simulation_interfaces services: spawn, state, step and current world.
 
 Callbacks run on the node's executor thread; every change of the world is run by the
 simulation thread (:meth:`~amr_description.sim.simulation.Simulation.submit`), and a spawn is
@@ -57,7 +57,7 @@ class SimulationServices:
     """
 
     def __init__(self, node, sim, executor, on_spawned):
-        """Create the four services on ``node``."""
+        """Create the five services on ``node``."""
         self._node = node
         self._sim = sim
         self._executor = executor
@@ -66,6 +66,16 @@ class SimulationServices:
         node.create_service(srv.ResetSimulation, '~/reset_simulation', self._on_reset)
         node.create_service(srv.SetSimulationState, '~/set_simulation_state', self._on_state)
         node.create_service(srv.StepSimulation, '~/step_simulation', self._on_step)
+        node.create_service(srv.GetCurrentWorld, '~/get_current_world', self._on_world)
+
+    def _on_world(self, request, response):
+        """GetCurrentWorld: the loaded world's name (SDF ``<world name>``) and source."""
+        world = self._sim.world
+        response.world.name = world.name
+        description = world.description
+        response.world.uri = description.source if description is not None else ''
+        response.result.result = response.result.RESULT_OK
+        return response
 
     # ---------------------------------------------------------------- spawn
     def _in_sim(self, function):
