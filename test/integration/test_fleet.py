@@ -153,9 +153,10 @@ def test_two_namespaced_robots_drive_independently(procs, exe, ros_env, fleet_pe
     assert peer.odom_of['r2'][-1].child_frame_id == 'r2/base_footprint'
 
 
-def test_fleet_stack_comes_up(procs, exe, ros_env, tmp_path):
+def test_fleet_stack_comes_up_in_the_arena(procs, exe, ros_env, tmp_path):
     # four robots (all 10 processes started at once, as a launch file does: the robot state
-    # publishers composed in one container) in real time;
+    # publishers composed in one container) in real time, in the shipped arena world (its
+    # pillars and walls keep clear of the fleet grid: no robot overlaps a model);
     # every robot's two controllers active (both spawners' log lines), each robot's
     # odometry and ground truth heard at its grid position; deadlines generous for a
     # loaded machine (the fleet benchmark measures the start-up time)
@@ -163,7 +164,7 @@ def test_fleet_stack_comes_up(procs, exe, ros_env, tmp_path):
     peer = FleetPeer(int(ros_env['ROS_DOMAIN_ID']), STACK_ROBOTS)
     try:
         proc = procs.start([exe('bringup'), 'fleet', f'robots:={len(STACK_ROBOTS)}',
-                            'viewer:=false'], ros_env)
+                            'world:=arena', 'viewer:=false'], ros_env)
 
         def activated():
             return proc.output.count('Configured and activated') == 2 * len(STACK_ROBOTS)
@@ -174,6 +175,8 @@ def test_fleet_stack_comes_up(procs, exe, ros_env, tmp_path):
             assert _pose(peer.truth_of[ns][-1])[:2] == pytest.approx((x, y), abs=0.05)
         assert peer.spin_until(lambda: ('r4/base_footprint', 'r4/base_link') in peer.edges,
                                30), peer.edges
+        assert "world 'arena'" in proc.output, proc.output[-3000:]
+        assert 'overlapping world model' not in proc.output, proc.output[-3000:]
         assert proc.interrupt(timeout=30) == 0, proc.output[-3000:]
     finally:
         peer.close()
