@@ -12,10 +12,10 @@ published transient-local, e.g. ``robot_description``), ``-file PATH`` (also
 else one error line, as no ``/world/NAME/create`` service would answer in Gazebo);
 ``-robot_namespace NS`` (as gazebo_ros ``spawn_entity.py``): the entity's ROS namespace,
 sent as the request's ``entity_namespace``, so the simulator creates the robot's controller
-manager as ``/NS/controller_manager``. Extra: ``-service`` (default ``/mujoco_sim/spawn_entity``) and
-``-timeout`` (s to wait for the topic and the service; default 0: as long as it takes, as
-upstream, which waits until interrupted). Exits 0 when the entity was created, 1 with a
-one-line error otherwise.
+manager as ``/NS/controller_manager``. Extra: ``-service`` (default
+``/mujoco_sim/spawn_entity``) and ``-timeout`` (s to wait for the topic and the service;
+default 0: as long as it takes, as upstream, which waits until interrupted). Exits 0 when
+the entity was created, 1 with a one-line error otherwise.
 """
 
 import argparse

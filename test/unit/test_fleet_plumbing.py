@@ -206,6 +206,20 @@ def test_benchmark_report_keeps_text_outside_the_markers(tmp_path):
     assert 'first' not in text and text.count('second') == 1 and 'kept' in text
 
 
+def test_world_cost_rows_and_targets_in_the_report():
+    from amr_description.tools.benchmark import world_cost
+    text, ok = world_cost.format_rows([('empty', 0.003, 40000.0, 1.0),
+                                       ('warehouse', 0.03, 35000.0, 0.875)])
+    assert not ok and text.splitlines()[3] == '| warehouse | 0.0300 | 35,000 | 0.875 |'
+    assert text.endswith('step rate >= 90% of empty: FAIL')
+    assert world_cost.format_rows([('empty', 0.003, 40000.0, 1.0),
+                                   ('arena', 0.01, 37000.0, 0.925)])[1]
+    row = {'robots': 1, 'startup': 1.0, 'rtf': 1.0, 'cpu_sim': 0.1, 'cpu_stack': 0.2,
+           'fast': 50.0, 'cost_rel': None, 'raw': 60.0, 'load': (1.0, 1.0)}
+    page = report.report([row], 10.0, ['--robots', '1'], text)
+    assert '## World cost' in page and '| warehouse | 0.0300 | 35,000 | 0.875 |' in page
+
+
 def test_benchmark_failure_is_not_a_figure(tmp_path, monkeypatch, capsys):
     doc = tmp_path / 'benchmark.md'
     doc.write_text('untouched\n')

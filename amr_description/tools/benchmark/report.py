@@ -9,6 +9,7 @@ import os
 import sys
 
 from amr_description.tools import benchmark
+from amr_description.tools.benchmark import world_cost
 from amr_description.tools.benchmark.common import BenchmarkError
 from amr_description.tools.benchmark.common import DEFAULT_ROBOTS
 from amr_description.tools.benchmark.common import repo_root
@@ -63,7 +64,7 @@ def targets(rows):
     return out
 
 
-def report(rows, duration, argv):
+def report(rows, duration, argv, worlds=''):
     """Return the Markdown page of the :func:`format_table` rows and the targets (str)."""
     load = ', '.join(f'N={r["robots"]}: {r["load"][0]:.1f} -> {r["load"][1]:.1f}' for r in rows)
     lines = [
@@ -84,6 +85,10 @@ def report(rows, duration, argv):
         '| target | measured | |', '|---|---|---|',
     ]
     lines += [f'| {d} | {m} | {"PASS" if ok else "FAIL"} |' for d, m, ok in targets(rows)]
+    if worlds:
+        lines += ['', '## World cost', '', 'Loading each shipped world and the physics rate of '
+                  'one robot turning in it, side by side in the benchmark process '
+                  '(`amr_description/tools/benchmark/world_cost.py`):', '', worlds]
     lines += ['', 'A loaded machine (other work running) lowers every figure; re-run '
               '`scripts/benchmark_sim` on a quiet machine for reference values. A stage '
               'that fails stops the benchmark with the captured error and leaves this page '
@@ -145,6 +150,8 @@ def main(args=None):
                         help='ROS domain of the stacks (default $ROS_DOMAIN_ID or 0)')
     parser.add_argument('--no-viewer', action='store_true',
                         help='leave out part (d), the viewer with a headless browser')
+    parser.add_argument('--no-worlds', action='store_true',
+                        help='leave out the world cost (shipped worlds, one robot, no ROS)')
     parser.add_argument('--output', default=os.path.join(repo_root(), 'docs', 'benchmark.md'),
                         help='Markdown report to write ("" = none)')
     opts = parser.parse_args(argv)
@@ -160,12 +167,18 @@ def main(args=None):
               (f'{opts.output} left unchanged' if opts.output else 'no report written'),
               file=sys.stderr, flush=True)
         return 1
+    worlds = ''
+    if not opts.no_worlds:
+        log('world cost: empty, arena, warehouse, one robot, 5 interleaved repeats')
+        worlds, _ = world_cost.format_rows(world_cost.run(['empty', 'arena', 'warehouse']))
     print()
     print(format_table(rows))
     for description, measured, ok in targets(rows):
         print(f'{description}: {measured} {"PASS" if ok else "FAIL"}')
+    if worlds:
+        print(worlds)
     if opts.output:
-        write_report(opts.output, report(rows, opts.duration, argv))
+        write_report(opts.output, report(rows, opts.duration, argv, worlds))
         print(f'written {opts.output}')
     return 0
 

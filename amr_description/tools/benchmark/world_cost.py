@@ -61,34 +61,50 @@ def measure(world_name, urdf, steps):
     return loaded, steps / (time.perf_counter() - start)
 
 
-def main(args=None):
-    """Measure and print the table; return 0 when every target holds, else 1."""
+def run(names, steps=5000, repeats=5):
+    """
+    Measure every world side by side, interleaved ``repeats`` times (module docstring).
+
+    :param names: world names or files; the first is the reference (``empty``).
+    :returns: list of ``(name, load s, mj_step/s, ratio to the first)``.
+    """
     from amr_description.core.description_file import read_description
     from amr_description.tools.benchmark.common import repo_root
+    urdf = read_description(os.path.join(repo_root(), 'urdf', 'amr.urdf'))
+    loads = {n: [] for n in names}
+    rates = {n: [] for n in names}
+    for _ in range(repeats):
+        for name in names:
+            loaded, rate = measure(name, urdf, steps)
+            loads[name].append(loaded)
+            rates[name].append(rate)
+    base = max(rates[names[0]])
+    return [(n, min(loads[n]), max(rates[n]), max(rates[n]) / base) for n in names]
+
+
+def format_rows(rows):
+    """Return the Markdown table of :func:`run` rows and its targets line, and whether met."""
+    lines = [f'| world | load (s) | mj_step/s, one robot | vs {rows[0][0]} |',
+             '| --- | --- | --- | --- |']
+    ok = True
+    for name, load, rate, ratio in rows:
+        ok = ok and load < LOAD_TARGET and ratio >= RATE_TARGET
+        lines.append(f'| {name} | {load:.4f} | {rate:,.0f} | {ratio:.3f} |')
+    lines.append(f'targets: load < {LOAD_TARGET:g} s, step rate >= {RATE_TARGET:.0%} of '
+                 f'{rows[0][0]}: {"PASS" if ok else "FAIL"}')
+    return '\n'.join(lines), ok
+
+
+def main(args=None):
+    """Measure and print the table; return 0 when every target holds, else 1."""
     parser = argparse.ArgumentParser(prog='world_cost', description=__doc__.split('\n')[1])
     parser.add_argument('--worlds', default='empty,arena,warehouse')
     parser.add_argument('--steps', type=int, default=5000)
     parser.add_argument('--repeats', type=int, default=5)
     opts = parser.parse_args(args)
-    names = [n for n in opts.worlds.split(',') if n]
-    urdf = read_description(os.path.join(repo_root(), 'urdf', 'amr.urdf'))
-    loads = {n: [] for n in names}
-    rates = {n: [] for n in names}
-    for _ in range(opts.repeats):
-        for name in names:
-            loaded, rate = measure(name, urdf, opts.steps)
-            loads[name].append(loaded)
-            rates[name].append(rate)
-    base = max(rates[names[0]])
-    print(f'| world | load (s) | mj_step/s, one robot | vs {names[0]} |')
-    print('| --- | --- | --- | --- |')
-    ok = True
-    for name in names:
-        ratio = max(rates[name]) / base
-        ok = ok and min(loads[name]) < LOAD_TARGET and ratio >= RATE_TARGET
-        print(f'| {name} | {min(loads[name]):.4f} | {max(rates[name]):,.0f} | {ratio:.3f} |')
-    print(f'targets: load < {LOAD_TARGET:g} s, step rate >= {RATE_TARGET:.0%} of '
-          f'{names[0]}: {"PASS" if ok else "FAIL"}')
+    text, ok = format_rows(run([n for n in opts.worlds.split(',') if n], opts.steps,
+                               opts.repeats))
+    print(text)
     return 0 if ok else 1
 
 
