@@ -99,6 +99,8 @@ class Link:
     :param mass: kg (SDF default 1).
     :param inertia: (ixx, iyy, izz, ixy, ixz, iyz) kg m^2 (SDF default 1, 1, 1, 0, 0, 0).
     :param inertial_pose: centre of mass frame in the link frame, shape (4, 4).
+    :param missing_visuals: visuals left out (a mesh not found): with none left, the link's
+        collisions are drawn instead.
     """
 
     name: str
@@ -108,6 +110,7 @@ class Link:
     inertial_pose: np.ndarray = field(default_factory=lambda: np.eye(4))
     collisions: list = field(default_factory=list)
     visuals: list = field(default_factory=list)
+    missing_visuals: int = 0
 
 
 @dataclass
@@ -204,6 +207,18 @@ def pose_matrix(element, where):
         T[:3, :3] = rpy_to_matrix((roll, pitch, yaw))
     T[:3, 3] = (x, y, z)
     return T
+
+
+def collapse_repeats(lines):
+    """
+    Return ``lines`` with each repeated line once, followed by ``(N times)`` (first order kept).
+
+    A world that uses one missing mesh in sixteen models says so in one line.
+    """
+    counts = {}
+    for line in lines:
+        counts[line] = counts.get(line, 0) + 1
+    return [line if n == 1 else f'{line} ({n} times)' for line, n in counts.items()]
 
 
 def _version(root, source, messages):
@@ -482,6 +497,7 @@ class _Reader:
                                             f'{shape_name!r}', tag)
                     except _Skip as exc:
                         self.messages.append(f'{exc}: skipped')
+                        link.missing_visuals += tag == 'visual'
                         continue
                     if shape is not None:
                         shape.name = shape_name

@@ -95,8 +95,11 @@ def main(args=None):
         parse_urdf(urdf_xml, source=options.urdf or '/robot_description')
         world = None
         if options.world:
+            from amr_description.core.sdf_world import collapse_repeats
             from amr_description.core.sdf_world import load_world
             world = load_world(options.world)  # WorldError (a ValueError): one line
+            for line in collapse_repeats(world.messages):
+                print(f'render: {line}', file=sys.stderr)
         image = render_urdf(urdf_xml, options.width, options.height, options.frames, world)
         save_png(image, options.output)
     except KeyboardInterrupt:

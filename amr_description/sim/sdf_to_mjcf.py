@@ -207,6 +207,10 @@ def add_world(spec, world):
                     geom.contype = geom.conaffinity = 0
                     geom.mass = 0.0
                     geom.rgba = shape.rgba or DEFAULT_RGBA
+            if link.missing_visuals and not link.visuals:
+                for geoms in drawn.values():  # its visual meshes are missing: show what it is
+                    for geom in geoms:
+                        geom.group = VISUAL_GROUP
     if not ground_done and ground is not None:
         spec.delete(ground)  # a world without a ground: robots fall, as in Gazebo
     return messages

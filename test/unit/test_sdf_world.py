@@ -246,3 +246,23 @@ def test_a_robot_spawned_into_a_pillar_is_one_warning_naming_it(caplog):
     lines = [r.getMessage() for r in caplog.records if 'overlapping' in r.getMessage()]
     assert lines == ["robot 'caster_bot' is spawned overlapping world model 'pillar_6'"]
     assert 'caster_bot' in sim.entities
+
+
+def test_a_link_whose_visual_meshes_are_missing_shows_its_collision(tmp_path, models_path):
+    from amr_description.core.sdf_world import collapse_repeats
+    from amr_description.sim.urdf_to_mjcf import COLLISION_GROUP
+    from amr_description.sim.urdf_to_mjcf import VISUAL_GROUP
+    from amr_description.sim.world import World
+    visual = ('<visual name="v"><geometry><mesh><uri>model://brick/meshes/b.dae</uri></mesh>'
+              '</geometry></visual>')
+    body = (_box_model('wall_a', extra='').replace('</collision>', '</collision>' + visual) +
+            _box_model('wall_b').replace('</collision>', '</collision>' + visual) +
+            _box_model('hidden'))  # a collision alone stays invisible, as in Gazebo
+    description = read_world(_write(tmp_path, 'w.sdf', _world(body)))
+    assert collapse_repeats(description.messages) == [
+        'model://brick/meshes/b.dae not found in GZ_SIM_RESOURCE_PATH '
+        f'({os.path.join(DATA, "models")}): skipped (2 times)']
+    model = World(description.physics_step, description).model
+    assert model.geom('wall_a::l::c').group == VISUAL_GROUP  # drawn, and still collides
+    assert model.geom('wall_a::l::c').contype == 1
+    assert model.geom('hidden::l::c').group == COLLISION_GROUP

@@ -9,6 +9,7 @@ Parameters, topics, services and threads: see :mod:`amr_description.nodes.mujoco
 import threading
 
 from amr_description.core.bridge_config import read_bridge_config
+from amr_description.core.sdf_world import collapse_repeats
 from amr_description.core.sdf_world import load_world
 from amr_description.nodes.mujoco_sim.bridge import bridged_inputs
 from amr_description.nodes.mujoco_sim.bridge import bridged_outputs
@@ -151,7 +152,7 @@ class MujocoSim(Node):
     def _report_world(self, world):
         """Log what the world file gave (one line each) and what is not simulated."""
         log = self.get_logger()
-        for message in world.messages + self.sim.world.messages:
+        for message in collapse_repeats(world.messages + self.sim.world.messages):
             log.warning(message)
         if world.not_simulated:
             log.info(f'world {world.name!r} ({world.source}): not simulated: '
