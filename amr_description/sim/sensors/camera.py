@@ -429,12 +429,20 @@ class CameraRenderer:
             return self._lock.wait_for(lambda: not self._queue and not self._busy, timeout)
 
     def close(self):
-        """Stop the render thread after its current job and free its renderers."""
+        """
+        Stop the render thread after its current job and free its renderers.
+
+        Without a render thread the renderers were made by :meth:`render_now` on the caller's
+        thread, which holds their OpenGL context: they are freed here, on that thread (freed
+        later by the garbage collector on another thread, EGL refuses: EGL_BAD_ACCESS).
+        """
         with self._lock:
             self._closed = True
             self._queue.clear()
             self._lock.notify_all()
-        if self._thread is not None and self._thread is not threading.current_thread():
+        if self._thread is None:
+            self._free()
+        elif self._thread is not threading.current_thread():
             self._thread.join(timeout=10.0)
 
     def _run(self):
