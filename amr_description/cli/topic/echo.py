@@ -124,8 +124,10 @@ def _echo(args):
         # let discovery settle so the QoS can match every publisher (ros2cli choose_qos); with
         # the type from the daemon, until this node sees the publishers the daemon knows (a
         # transient-local publisher's messages reach only a subscription that matches it)
+        # (with the daemon's count, seeing them all is enough: no settling time)
         wait_for_graph(node, lambda n: len(n.get_publishers_info_by_topic(topic)),
-                       settle=0.2, minimum=0.1, maximum=KNOWN_PUBLISHERS_WAIT if known else 1.0,
+                       settle=0.0 if known else 0.2, minimum=0.0 if known else 0.1,
+                       maximum=KNOWN_PUBLISHERS_WAIT if known else 1.0,
                        ready=lambda count: count >= known)
         qos = qos_from_args(args, 'sensor_data', node, topic)
         received = []
