@@ -178,12 +178,22 @@ def create(factory, *args, **kwargs):
     :raises SystemExit: code 1 after one error line when the constructor raises rclpy's
         ``ParameterException`` family (wrong type, out of range, not declared...) or a
         ``ValueError`` (a parameter value the node refuses).
+    :raises KeyboardInterrupt: when a signal came during the construction, whatever the
+        constructor then raised: a library that catches the ``KeyboardInterrupt`` raised in
+        the middle of its import fails later with an unrelated error (trimesh, interrupted
+        while importing its optional parts: ``TypeError: unsupported operand type(s) for |``).
     """
     try:
         return factory(*args, **kwargs)
     except (InvalidParameterTypeException, InvalidParameterValueException,
             ParameterException, ValueError) as exc:
+        if _interrupted.is_set():
+            raise KeyboardInterrupt from None
         fail(_program(None), exc)
+    except Exception:  # noqa: B902 - see above
+        if _interrupted.is_set():
+            raise KeyboardInterrupt from None
+        raise
 
 
 def spin(target, until=None, period=SPIN_PERIOD):

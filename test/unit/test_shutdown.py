@@ -63,6 +63,28 @@ def test_signal_outside_spin_raises_at_once(pattern):
     pattern.shutdown()
 
 
+def test_an_error_after_a_signal_during_construction_is_the_interrupt(pattern):
+    # trimesh catches a KeyboardInterrupt raised in the middle of its import and fails later
+    # with a TypeError: the node's main must stop quietly, not print that traceback
+    pattern.init(['test_shutdown'])
+
+    def interrupted_import():
+        try:
+            os.kill(os.getpid(), signal.SIGINT)
+            for _ in range(10 ** 7):  # the handler raises between these bytecodes
+                pass
+        except BaseException:  # noqa: B902 - as the library does
+            pass
+        raise TypeError("unsupported operand type(s) for |: 'ExceptionWrapper' and 'NoneType'")
+
+    with pytest.raises(KeyboardInterrupt):
+        pattern.create(interrupted_import)
+    pattern._interrupted.clear()
+    with pytest.raises(TypeError):  # without a signal, a bug stays a bug
+        pattern.create(lambda: 1 / '2')
+    pattern.shutdown()
+
+
 def test_whole_number_for_a_float_parameter(pattern):
     pattern.init(['test_shutdown', '--ros-args', '-p', 'rate:=0', '-p', 'count:=2',
                   '-p', 'ratio:=3'])
