@@ -72,12 +72,22 @@ def tag_bool(element, where):
 
     :raises ValueError: one line naming ``where`` for any other value.
     """
-    text = tag_text(element).lower()
-    if text in ('true', '1', 'yes'):
+    return text_bool(tag_text(element), where)
+
+
+def text_bool(text, where):
+    """
+    Return the boolean a tag's value means, as sdformat reads it (``true``/``1``/``yes``).
+
+    :raises ValueError: one line naming ``where`` for anything but those and ``false``/``0``/
+        ``no``.
+    """
+    value = text.strip().lower()
+    if value in ('true', '1', 'yes'):
         return True
-    if text in ('false', '0', 'no'):
+    if value in ('false', '0', 'no'):
         return False
-    raise ValueError(f'{where}: expected true or false, found {tag_text(element)!r}')
+    raise ValueError(f'{where}: expected true or false, found {text!r}')
 
 
 def is_control_plugin(plugin):
@@ -204,12 +214,7 @@ def link_gravity(tags, where):
     """
     gravity = True
     for tag, off_when in zip(GRAVITY_TAGS, (False, True)):
-        if tag not in tags:
-            continue
-        text = tags[tag].strip().lower()
-        if text not in ('true', '1', 'yes', 'false', '0', 'no'):
-            raise ValueError(f'{where}<{tag}>: expected true or false, found {tags[tag]!r}')
-        if (text in ('true', '1', 'yes')) == off_when:
+        if tag in tags and text_bool(tags[tag], f'{where}<{tag}>') == off_when:
             gravity = False
     return gravity
 

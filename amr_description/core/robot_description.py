@@ -17,6 +17,7 @@ from amr_description.core.gazebo_tags import link_gravity
 from amr_description.core.gazebo_tags import parse_control_plugin
 from amr_description.core.gazebo_tags import parse_reference_tags
 from amr_description.core.gazebo_tags import SIMULATOR_SYSTEMS
+from amr_description.core.gazebo_tags import text_bool
 from amr_description.core.mujoco_block import add_drive_defaults
 from amr_description.core.mujoco_block import parse_mujoco_block
 from amr_description.core.ros2_control_info import parse_ros2_control
@@ -109,13 +110,9 @@ class RobotDescription:
         """
         links = set()
         for reference, tags in self.gazebo_tags.items():
-            if 'selfCollide' in tags:
-                text = tags['selfCollide'].strip().lower()
-                if text not in ('true', '1', 'yes', 'false', '0', 'no'):
-                    raise ValueError(f'<gazebo reference="{reference}"><selfCollide>: expected '
-                                     f'true or false, found {tags["selfCollide"]!r}')
-                if text in ('true', '1', 'yes'):
-                    links.add(reference)
+            if 'selfCollide' in tags and text_bool(
+                    tags['selfCollide'], f'<gazebo reference="{reference}"><selfCollide>'):
+                links.add(reference)
         return links
 
     def initial_joint_states(self):

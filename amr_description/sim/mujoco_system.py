@@ -65,11 +65,11 @@ class MujocoSystem(SystemInterface):
         self.prefix = prefix
         self._states = []    # (handle, array, index): array is a view into self.data
         self._commands = []  # (handle, actuator id, lo, hi, kind, qpos address)
-        # PI velocity servos: (handle, integral actuator id, its act address, command lo,
-        # hi, qpos address, dof address, kv, ki, joint force lo, hi)
+        # PI velocity servos: (handle, command lo, hi, qpos address) + _integral_of(actuator)
         self._integrals = []
         self.gazebo = gazebo
         self.active = set()  # claimed command interfaces (full names)
+        self._active_handles = set()  # their handles (the control update compares these)
         self._gz_joints = []  # gazebo: per joint, its commands by kind (see _resolve)
 
     def on_init(self, info):
@@ -141,50 +141,55 @@ class MujocoSystem(SystemInterface):
         self._commands = commands
         integrals = []
         for handle, actuator, lo, hi, kind, qadr in commands:
-            if kind != 'velocity':
-                continue
-            try:
-                integral = self.model.actuator(
-                    self.model.actuator(actuator).name + '/integral')
-            except KeyError:
-                continue
-            jid = int(self.model.actuator_trnid[actuator, 0])
-            flo, fhi = (float(v) for v in self.model.jnt_actfrcrange[jid])
-            if not self.model.jnt_actfrclimited[jid]:
-                flo, fhi = -math.inf, math.inf
-            integrals.append((handle, int(integral.id), int(integral.actadr[0]), lo, hi, qadr,
-                              int(self.model.jnt_dofadr[jid]),
-                              float(self.model.actuator_gainprm[actuator, 0]),
-                              float(integral.gainprm[0]), flo, fhi))
+            integral = self._integral_of(actuator) if kind == 'velocity' else None
+            if integral is not None:
+                integrals.append((handle, lo, hi, qadr) + integral)
         self._integrals = integrals
         self._ctrl = self.data.ctrl
         self._qpos = self.data.qpos
         if self.gazebo is not None:
             self._resolve_gazebo(commands)
 
+    def _integral_of(self, actuator):
+        """
+        Return the I part of the PI velocity servo whose P part is ``actuator``, or None.
+
+        :returns: ``(integral actuator id, its act address, dof address, kv, ki, joint force
+            lo, hi)``.
+        """
+        model = self.model
+        try:
+            integral = model.actuator(model.actuator(actuator).name + '/integral')
+        except KeyError:
+            return None
+        jid = int(model.actuator_trnid[actuator, 0])
+        flo, fhi = (float(v) for v in model.jnt_actfrcrange[jid])
+        if not model.jnt_actfrclimited[jid]:
+            flo, fhi = -math.inf, math.inf
+        return (int(integral.id), int(integral.actadr[0]), int(model.jnt_dofadr[jid]),
+                float(model.actuator_gainprm[actuator, 0]), float(integral.gainprm[0]),
+                flo, fhi)
+
+    def _drive_integral(self, target, qadr, integral):
+        """Give the I part ``target`` and keep its torque inside the joint's force range."""
+        index, actadr, dadr, kv, ki, flo, fhi = integral
+        self._ctrl[index] = target
+        proportional = kv * (target - self.data.qvel[dadr])
+        position = self._qpos[qadr]
+        act = self.data.act
+        act[actadr] = min(max(act[actadr], position + (flo - proportional) / ki),
+                          position + (fhi - proportional) / ki)
+
     def _resolve_gazebo(self, commands):
         """Group the commands per joint for gz_ros2_control's write; switch off idle ones."""
         model = self.model
         joints = {}
         for handle, actuator, lo, hi, kind, qadr in commands:
-            jid = int(model.actuator_trnid[actuator, 0])
-            ids = [actuator]
-            integral = None
-            try:
-                extra = model.actuator(model.actuator(actuator).name + '/integral')
-                ids.append(int(extra.id))
-                flo, fhi = (float(v) for v in model.jnt_actfrcrange[jid])
-                if not model.jnt_actfrclimited[jid]:
-                    flo, fhi = -math.inf, math.inf
-                integral = (int(extra.id), int(extra.actadr[0]),
-                            float(model.actuator_gainprm[actuator, 0]),
-                            float(extra.gainprm[0]), flo, fhi)
-            except KeyError:
-                pass
-            joint = joints.setdefault(jid, {'qadr': qadr, 'dadr': int(model.jnt_dofadr[jid]),
-                                            'actuators': []})
+            integral = self._integral_of(actuator)
+            joint = joints.setdefault(int(model.actuator_trnid[actuator, 0]),
+                                      {'qadr': qadr, 'actuators': []})
             joint[kind] = (handle, actuator, lo, hi, integral)
-            joint['actuators'] += ids
+            joint['actuators'] += [actuator] + ([integral[0]] if integral else [])
         self._gz_joints = list(joints.values())
         model.opt.disableactuator |= 1 << IDLE_GROUP
         for joint in self._gz_joints:
@@ -200,6 +205,7 @@ class MujocoSystem(SystemInterface):
         :returns: True.
         """
         self.active = (self.active - set(stop_interfaces)) | set(start_interfaces)
+        self._active_handles = {self.command_handles[name] for name in self.active}
         return True
 
     def read(self, time, period):
@@ -232,59 +238,39 @@ class MujocoSystem(SystemInterface):
             if value != value:  # NaN: no command
                 value = qpos[qadr] if kind == 'position' else 0.0
             ctrl[actuator] = min(max(value, lo), hi)
-        if self._integrals:
-            act, qvel = self.data.act, self.data.qvel
-            for handle, integral, actadr, lo, hi, qadr, dadr, kv, ki, flo, fhi in \
-                    self._integrals:
-                value = handle.value
-                value = 0.0 if value != value else min(max(value, lo), hi)
-                ctrl[integral] = value
-                proportional = kv * (value - qvel[dadr])
-                position = qpos[qadr]
-                act[actadr] = min(max(act[actadr], position + (flo - proportional) / ki),
-                                  position + (fhi - proportional) / ki)
+        for handle, lo, hi, qadr, *integral in self._integrals:
+            value = handle.value
+            self._drive_integral(0.0 if value != value else min(max(value, lo), hi), qadr,
+                                 integral)
         return True
 
     def _write_gazebo(self, period):
         """gz_ros2_control's write: the claimed command of each joint, else hold or free."""
-        model, data = self.model, self.data
-        ctrl, qpos, qvel = data.ctrl, data.qpos, data.qvel
-        groups = model.actuator_group
+        ctrl, qpos = self._ctrl, self._qpos
+        groups = self.model.actuator_group
         gain = self.gazebo.position_proportional_gain
+        active = self._active_handles
         for joint in self._gz_joints:
             kind = next((k for k in ('velocity', 'position', 'effort')
-                         if k in joint and joint[k][0].name in self.active), None)
-            target = 0.0
+                         if k in joint and joint[k][0] in active), None)
+            target = 0.0  # unclaimed, held: velocity 0; a NaN command: the same
             if kind is None:
                 kind = next((k for k in ('velocity', 'position') if k in joint), None) \
                     if self.gazebo.hold_joints else None
-            elif kind == 'velocity':
-                value = joint[kind][0].value
-                target = 0.0 if value != value else min(max(value, joint[kind][2]),
-                                                        joint[kind][3])
-            else:
-                value = joint[kind][0].value
-                if value != value:
-                    target = 0.0
-                elif kind == 'position':
-                    value = min(max(value, joint[kind][2]), joint[kind][3])
-                    target = gain * (value - qpos[joint['qadr']]) / period if period > 0 else 0.0
-                else:
-                    target = min(max(value, joint[kind][2]), joint[kind][3])
+            elif joint[kind][0].value == joint[kind][0].value:
+                handle, _, lo, hi, _ = joint[kind]
+                target = min(max(handle.value, lo), hi)
+                if kind == 'position':
+                    target = gain * (target - qpos[joint['qadr']]) / period if period > 0 \
+                        else 0.0
             used = ()
             if kind is not None:
-                handle, actuator, lo, hi, integral = joint[kind]
+                _, actuator, _, _, integral = joint[kind]
                 ctrl[actuator] = target
                 used = (actuator,)
                 if integral is not None:
-                    index, actadr, kv, ki, flo, fhi = integral
-                    ctrl[index] = target
-                    used = (actuator, index)
-                    proportional = kv * (target - qvel[joint['dadr']])
-                    position = qpos[joint['qadr']]
-                    data.act[actadr] = min(max(data.act[actadr],
-                                               position + (flo - proportional) / ki),
-                                           position + (fhi - proportional) / ki)
+                    used = (actuator, integral[0])
+                    self._drive_integral(target, joint['qadr'], integral)
             for actuator in joint['actuators']:
                 groups[actuator] = 0 if actuator in used else IDLE_GROUP
 
@@ -297,5 +283,5 @@ class MujocoSystem(SystemInterface):
         for handle, actuator, lo, hi, kind, qadr in self._commands:
             self.data.ctrl[actuator] = self.data.qpos[qadr] if kind == 'position' else 0.0
         for entry in self._integrals:
-            self.data.ctrl[entry[1]] = 0.0
+            self.data.ctrl[entry[4]] = 0.0
         return True

@@ -56,6 +56,7 @@ import os
 from amr_description.core.description_file import resolve_uri
 from amr_description.core.gazebo_tags import GAZEBO_SYSTEMS
 from amr_description.core.mujoco_block import DEFAULT_CONTACT
+from amr_description.core.robot_description import MOVING_TYPES
 from amr_description.core.robot_description import RobotDescription
 from amr_description.sim.sensors.mount import add_mounts
 import mujoco
@@ -327,7 +328,7 @@ def _add_mimic_constraints(spec, joints):
         if mimic is None:
             continue
         for name in (joint.name, mimic.joint):
-            if types.get(name) not in ('revolute', 'continuous', 'prismatic'):
+            if types.get(name) not in MOVING_TYPES:
                 raise ValueError(f'joint {joint.name!r} <mimic joint="{mimic.joint}">: '
                                  f'{name!r} is not a revolute, continuous or prismatic joint')
         multiplier = 1.0 if mimic.multiplier is None else float(mimic.multiplier)

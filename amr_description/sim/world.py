@@ -176,11 +176,18 @@ class World:
             raise ValueError(f'cannot compile robot {name!r}: {exc}'.splitlines()[0]) from None
         robot = Robot(name=name, prefix=prefix, root=root_name, urdf_xml=urdf_xml)
         self.robots[name] = robot
-        self._place_mimic_joints(prefix)
+        if self._place_mimic_joints(prefix):
+            mujoco.mj_forward(self.model, self.data)
         return robot
 
     def _place_mimic_joints(self, prefix=''):
-        """Put each joint tied by a joint equality (a mimic joint) where its leader puts it."""
+        """
+        Put each joint tied by a joint equality (a mimic joint) where its leader puts it.
+
+        :param prefix: only the equalities of names starting so (a robot's ``'<name>/'``).
+        :returns: True when a joint was placed (the caller then runs ``mj_forward``).
+        """
+        placed = False
         model, data = self.model, self.data
         for index in range(model.neq):
             if int(model.eq_type[index]) != mujoco.mjtEq.mjEQ_JOINT or \
@@ -191,7 +198,8 @@ class World:
             x = data.qpos[leader] - model.qpos0[leader]
             data.qpos[follower] = model.qpos0[follower] + sum(
                 float(model.eq_data[index, k]) * x ** k for k in range(5))
-        mujoco.mj_forward(model, data)
+            placed = True
+        return placed
 
     def _add_ground_pairs(self, prefix):
         """
@@ -338,6 +346,7 @@ class World:
         self._initial_joints[joint] = (position, velocity)
         self._apply_initial_joint_states([joint])
         self._place_mimic_joints(joint.split('/')[0] + '/' if '/' in joint else '')
+        mujoco.mj_forward(self.model, self.data)
 
     def _apply_initial_joint_states(self, joints):
         # not through qpos0: MuJoCo's joint equalities (mimic joints) are relative to it
