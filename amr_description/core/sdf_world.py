@@ -91,6 +91,38 @@ class Shape:
     friction: float = None
 
 
+def shape_bounds(shape, T):
+    """
+    Return the axis-aligned bounds of a primitive shape posed at ``T @ shape.pose``.
+
+    The shape's own bounding box (box: its half sizes; cylinder ``(r, r, l/2)``; capsule
+    ``(r, r, l/2 + r)``; sphere ``(r, r, r)``; ellipsoid its radii) has its 8 corners moved
+    by the pose; their smallest and largest coordinates are the bounds.
+
+    :param shape: a :class:`Shape`.
+    :param T: the pose of the shape's link in the world frame, shape (4, 4).
+    :returns: ``(low, high)``, two arrays of shape (3,) in metres in the world frame, or
+        None for a plane (infinite) or a mesh (its size is known once the file is read).
+    """
+    size = np.asarray(shape.size, dtype=float)
+    if shape.kind == 'box':
+        half = size / 2.0
+    elif shape.kind == 'cylinder':
+        half = np.array([size[0], size[0], size[1] / 2.0])
+    elif shape.kind == 'capsule':
+        half = np.array([size[0], size[0], size[1] / 2.0 + size[0]])
+    elif shape.kind == 'sphere':
+        half = np.full(3, size[0])
+    elif shape.kind == 'ellipsoid':
+        half = size[:3]
+    else:
+        return None
+    pose = np.asarray(T, dtype=float) @ np.asarray(shape.pose, dtype=float)
+    signs = np.array([[x, y, z] for x in (-1, 1) for y in (-1, 1) for z in (-1, 1)])
+    corners = (signs * half) @ pose[:3, :3].T + pose[:3, 3]
+    return corners.min(axis=0), corners.max(axis=0)
+
+
 @dataclass
 class Link:
     """

@@ -30,6 +30,7 @@ its own hull of at most :data:`MAX_HULL_VERTICES` vertices (docs/worlds.md).
 
 import logging
 
+from amr_description.core.sdf_world import shape_bounds
 from amr_description.sim.urdf_to_mjcf import add_mesh_asset
 from amr_description.sim.urdf_to_mjcf import mesh_triangles
 import mujoco
@@ -56,6 +57,12 @@ SEPARATOR = '::'
 """Scope separator of world body and geom names (``model::link::collision``)."""
 
 DEFAULT_RGBA = (0.7, 0.7, 0.7, 1.0)
+
+LARGE_SHARE = 0.5
+"""A static link longer than this share of the static world gets its own body."""
+
+GROUND_BODY = 'ground_plane'
+"""The static body of the ground plane geom (a body of its own: see sim/world.py)."""
 
 
 def _quat(rotation):
@@ -157,13 +164,17 @@ def add_world(spec, world):
     messages = []
     ground_done = False
     ground = spec.geom('ground_plane')
+    large = large_static_links(world)
     for model in world.models:
         for link in model.links:
             name = f'{model.name}{SEPARATOR}{link.name}'
             T = np.asarray(model.pose, dtype=float) @ np.asarray(link.pose, dtype=float)
             # a static link's geoms go to the world body: MuJoCo then never tests them
-            # against each other nor keeps a body per link (measured: docs/worlds.md)
+            # against each other nor keeps a body per link (measured: docs/worlds.md);
+            # a large one gets a static body of its own (see large_static_links)
             body, frame = spec.worldbody, T
+            if name in large:
+                body = spec.worldbody.add_body(name=name)
             if not model.static:
                 body, frame = spec.worldbody.add_body(name=name), np.eye(4)
                 _place(body, T)
@@ -212,8 +223,41 @@ def add_world(spec, world):
                     for geom in geoms:
                         geom.group = VISUAL_GROUP
     if not ground_done and ground is not None:
-        spec.delete(ground)  # a world without a ground: robots fall, as in Gazebo
+        # a world without a ground: robots fall, as in Gazebo
+        spec.delete(spec.body(GROUND_BODY) or ground)
     return messages
+
+
+def large_static_links(world):
+    """
+    Return the static links with a collision shape spanning over half the static world.
+
+    MuJoCo tests every moving body against the world body's geoms through one bounding
+    volume tree; a shape that long (the walls around a hall) makes the tree's boxes cover
+    most of the world, so every robot link descends deep into it every step. In a static
+    body of its own, the link is passed over by MuJoCo's sweep-and-prune broadphase unless
+    a moving body is near it (measured in warehouse.sdf: docs/worlds.md).
+
+    :param world: a :class:`~amr_description.core.sdf_world.World`.
+    :returns: set of ``'<model>::<link>'`` names; spans are compared along x and y, over the
+        primitive collision shapes of static models (planes and meshes are not measured).
+    """
+    spans = {}
+    for model in world.models:
+        if not model.static:
+            continue
+        for link in model.links:
+            T = np.asarray(model.pose, dtype=float) @ np.asarray(link.pose, dtype=float)
+            for shape in link.collisions:
+                bounds = shape_bounds(shape, T)
+                if bounds is not None:
+                    spans.setdefault(f'{model.name}{SEPARATOR}{link.name}', []).append(bounds)
+    if not spans:
+        return set()
+    every = [b for bounds in spans.values() for b in bounds]
+    extent = np.max([b[1] for b in every], axis=0) - np.min([b[0] for b in every], axis=0)
+    return {name for name, bounds in spans.items()
+            if any(np.any((high - low)[:2] > LARGE_SHARE * extent[:2]) for low, high in bounds)}
 
 
 def _key(shape):

@@ -15,6 +15,7 @@ from dataclasses import dataclass
 import math
 
 from amr_description.sim.sdf_to_mjcf import add_world
+from amr_description.sim.sdf_to_mjcf import GROUND_BODY
 from amr_description.sim.sdf_to_mjcf import GROUND_FRICTION
 from amr_description.sim.sdf_to_mjcf import SEPARATOR
 from amr_description.sim.urdf_to_mjcf import GROUND_CONTACT_PREFIX
@@ -46,6 +47,8 @@ def make_world_spec(physics_step=0.001, gravity=(0.0, 0.0, -9.81)):
     """
     Return the spec of the empty world: ground plane, light, sky.
 
+    The ground plane is the geom ``ground_plane`` in a static body of the same name.
+
     :param physics_step: physics time step in seconds (> 0).
     :param gravity: m/s^2 in the world frame (3 floats).
     :returns: a ``mujoco.MjSpec`` (integrator ``implicitfast``, elliptic friction cones).
@@ -76,9 +79,12 @@ def make_world_spec(physics_step=0.001, gravity=(0.0, 0.0, -9.81)):
                      rgb1=[0.35, 0.35, 0.38], rgb2=[0.45, 0.45, 0.48], width=256, height=256)
     grid = spec.add_material(name='grid', texrepeat=[2, 2], reflectance=0.1)
     grid.textures[mujoco.mjtTextureRole.mjTEXROLE_RGB] = 'grid'
-    spec.worldbody.add_geom(name='ground_plane', type=mujoco.mjtGeom.mjGEOM_PLANE,
-                            size=[0, 0, 0.05], friction=list(GROUND_FRICTION),
-                            material='grid', group=0)
+    # the ground plane in a static body of its own: a robot link with an explicit ground
+    # contact pair (its friction reference) excludes its dynamic contact with this body
+    # only, and still collides with the world body's walls and shelves
+    spec.worldbody.add_body(name=GROUND_BODY).add_geom(
+        name='ground_plane', type=mujoco.mjtGeom.mjGEOM_PLANE, size=[0, 0, 0.05],
+        friction=list(GROUND_FRICTION), material='grid', group=0)
     spec.worldbody.add_light(name='sun', pos=[0, 0, 10], dir=[0.3, 0.2, -1],
                              type=mujoco.mjtLightType.mjLIGHT_DIRECTIONAL,
                              diffuse=[0.8, 0.8, 0.8], castshadow=True)
@@ -212,8 +218,9 @@ class World:
         gets a pair with the ground plane carrying the values the dynamic contact would have
         (friction: the element-wise maximum of both geoms; solref, solimp, condim: the
         robot geom's, the ground using MuJoCo's defaults) plus the friction reference, and the
-        dynamic ground contact of its body is excluded (MuJoCo's ``<exclude>`` leaves
-        explicit pairs alone).
+        dynamic contact of its body with the ground's body is excluded (MuJoCo's
+        ``<exclude>`` leaves explicit pairs alone); the link still collides with every other
+        world geom (walls, shelves, boxes), as in Gazebo.
 
         :param prefix: the robot's name prefix (``'<name>/'``).
         """
@@ -240,7 +247,7 @@ class World:
             if body not in excluded:
                 excluded.add(body)
                 self.spec.add_exclude(name=f'{prefix}ground_exclude/{body[len(prefix):]}',
-                                      bodyname1='world', bodyname2=body)
+                                      bodyname1=GROUND_BODY, bodyname2=body)
 
     def _exclude_self_collisions(self, prefix, root, self_collide):
         """

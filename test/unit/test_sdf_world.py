@@ -266,3 +266,63 @@ def test_a_link_whose_visual_meshes_are_missing_shows_its_collision(tmp_path, mo
     assert model.geom('wall_a::l::c').group == VISUAL_GROUP  # drawn, and still collides
     assert model.geom('wall_a::l::c').contype == 1
     assert model.geom('hidden::l::c').group == COLLISION_GROUP
+
+
+def test_shape_bounds_are_the_posed_corners_of_the_primitive():
+    from amr_description.core.sdf_world import Shape
+    from amr_description.core.sdf_world import shape_bounds
+    turn = np.eye(4)
+    turn[:3, :3] = [[0, -1, 0], [1, 0, 0], [0, 0, 1]]  # 90 deg about z
+    turn[:3, 3] = [1.0, 2.0, 0.5]
+    box = Shape('b', 'box', (4.0, 0.2, 1.0), np.eye(4))
+    low, high = shape_bounds(box, turn)  # the 4 m side now lies along y
+    np.testing.assert_allclose(low, [0.9, 0.0, 0.0], atol=1e-12)
+    np.testing.assert_allclose(high, [1.1, 4.0, 1.0], atol=1e-12)
+    lying = np.eye(4)
+    lying[:3, :3] = [[1, 0, 0], [0, 0, -1], [0, 1, 0]]  # axis z onto y
+    capsule = Shape('c', 'capsule', (0.1, 1.0), lying)
+    low, high = shape_bounds(capsule, np.eye(4))
+    np.testing.assert_allclose(high - low, [0.2, 1.2, 0.2], atol=1e-12)
+    low, high = shape_bounds(Shape('s', 'sphere', (0.3,), np.eye(4)), turn)
+    np.testing.assert_allclose(low, [0.7, 1.7, 0.2])
+    assert shape_bounds(Shape('p', 'plane', (0, 0, 1, 10, 10), np.eye(4)), np.eye(4)) is None
+    assert shape_bounds(Shape('m', 'mesh', (1, 1, 1), np.eye(4), 'x.stl'), np.eye(4)) is None
+
+
+def test_the_walls_around_a_world_get_static_bodies_of_their_own():
+    from amr_description.sim.sdf_to_mjcf import large_static_links
+    from amr_description.sim.world import World
+    walls = {f'walls::{side}' for side in ('north', 'south', 'east', 'west')}
+    assert large_static_links(load_world('warehouse')) == walls  # 12.4 and 10 m of 12.4 x 10.2
+    assert large_static_links(load_world('arena')) == walls  # 4.6 and 4.4 m of 4.6 x 4.6
+    model = World(0.001, load_world('warehouse')).model
+    north = model.geom('walls::north::collision_box')
+    assert model.body(north.bodyid[0]).name == 'walls::north'
+    assert model.body_weldid[north.bodyid[0]] == 0  # static: welded to the world
+    shelf = model.geom('shelf_0_0::link::collision_plinth')
+    assert shelf.bodyid[0] == 0 and model.geom('ground_plane').bodyid[0] == \
+        model.body('ground_plane').id
+
+
+def test_a_robot_with_a_ground_contact_pair_meets_a_shelf_with_its_wheels():
+    """urdf/amr.urdf's wheels (explicit ground pairs) reach 0.3 m ahead, its base 0.25 m."""
+    from amr_description.core.description_file import read_description
+    from amr_description.sim.urdf_to_mjcf import urdf_to_spec
+    from amr_description.sim.world import World
+    world = World(0.001, load_world('warehouse'))
+    urdf = read_description(os.path.join(ROOT, 'urdf', 'amr.urdf'))
+    # facing +y at the origin: shelf_0_0's plinth (0.15 m high) has its face at y = 0.75
+    world.spawn(urdf_to_spec(urdf, name='amr', pose=(0, 0, 0.0, 0, 0, math.pi / 2)), 'amr')
+    model, data = world.model, world.data
+    data.ctrl[:] = 5.0  # every wheel's PI velocity servo (both actuators) at 5 rad/s: 0.5 m/s
+    touching = set()
+    while not touching and world.time < 3.0:
+        world.step(1)
+        for contact in data.contact[:data.ncon]:
+            names = {model.geom(contact.geom1).name, model.geom(contact.geom2).name}
+            if 'shelf_0_0::link::collision_plinth' in names:
+                touching |= {n.split('/')[1] for n in names if n.startswith('amr/')}
+    y = world.ground_truth('amr')[0][1]
+    print(f'first touch of the plinth with its centre at y = {y:.4f} m: {sorted(touching)}')
+    assert touching == {'wheel_front_left', 'wheel_front_right'}
+    assert y == pytest.approx(0.75 - 0.3, abs=0.005)

@@ -72,7 +72,7 @@ def test_spawn_keeps_state_and_prefixes_names():
     with pytest.raises(ValueError, match='already exists'):
         _spawn(world, 'a')
     world.remove('b')
-    assert world.model.nu == 4 and world.model.nbody == 7
+    assert world.model.nu == 4 and world.model.nbody == 8  # world, ground_plane, 6 links
     np.testing.assert_array_equal(world.data.qpos, qpos)
 
 
