@@ -289,7 +289,7 @@ def test_shape_bounds_are_the_posed_corners_of_the_primitive():
     assert shape_bounds(Shape('m', 'mesh', (1, 1, 1), np.eye(4), 'x.stl'), np.eye(4)) is None
 
 
-def test_the_walls_around_a_world_get_static_bodies_of_their_own():
+def test_the_walls_around_a_world_get_static_bodies_of_their_own(tmp_path):
     from amr_description.sim.sdf_to_mjcf import large_static_links
     from amr_description.sim.world import World
     walls = {f'walls::{side}' for side in ('north', 'south', 'east', 'west')}
@@ -302,6 +302,13 @@ def test_the_walls_around_a_world_get_static_bodies_of_their_own():
     shelf = model.geom('shelf_0_0::link::collision_plinth')
     assert shelf.bodyid[0] == 0 and model.geom('ground_plane').bodyid[0] == \
         model.body('ground_plane').id
+    # a world without a ground has neither the ground's geom nor its body
+    bare = World(0.001, read_world(_write(tmp_path, 'bare.sdf', _world(_box_model('b'))))).model
+    with pytest.raises(KeyError):
+        bare.body('ground_plane')
+    with pytest.raises(KeyError):
+        bare.geom('ground_plane')
+    assert [bare.body(b).name for b in range(bare.nbody)] == ['world', 'b::l']  # all of it
 
 
 def test_a_robot_with_a_ground_contact_pair_meets_a_shelf_with_its_wheels():
