@@ -104,9 +104,11 @@ def test_pub_use_sim_time_stamps_with_clock(ros_env, procs, exe):
                         'geometry_msgs/msg/TwistStamped', '--field', 'header.stamp',
                         '--qos-reliability', 'reliable', '--qos-durability', 'transient_local'],
                        ros_env)
+    # --spin-time: how long pub waits for the first /clock (a loaded machine may take seconds
+    # to discover the clock's publisher; stamped before it, the header would be 0)
     pub = subprocess.run(
-        [exe('ros2'), 'topic', 'pub', '-1', '-s', '--keep-alive', '5', '/cmd',
-         'geometry_msgs/msg/TwistStamped', '{header: auto}'],
+        [exe('ros2'), 'topic', 'pub', '-1', '-s', '--spin-time', '60', '--keep-alive', '5',
+         '/cmd', 'geometry_msgs/msg/TwistStamped', '{header: auto}'],
         env=ros_env, capture_output=True, text=True, timeout=60)
     assert pub.returncode == 0, pub.stderr
     assert echo.wait(30.0) == 0, echo.output

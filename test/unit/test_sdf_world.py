@@ -294,7 +294,7 @@ def test_the_walls_around_a_world_get_static_bodies_of_their_own(tmp_path):
     from amr_description.sim.world import World
     walls = {f'walls::{side}' for side in ('north', 'south', 'east', 'west')}
     assert large_static_links(load_world('warehouse')) == walls  # 12.4 and 10 m of 12.4 x 10.2
-    assert large_static_links(load_world('arena')) == walls  # 4.6 and 4.4 m of 4.6 x 4.6
+    assert large_static_links(load_world('arena')) == walls  # 4.6 and 4.9 m of 4.6 x 5.1
     model = World(0.001, load_world('warehouse')).model
     north = model.geom('walls::north::collision_box')
     assert model.body(north.bodyid[0]).name == 'walls::north'
@@ -333,3 +333,17 @@ def test_a_robot_with_a_ground_contact_pair_meets_a_shelf_with_its_wheels():
     print(f'first touch of the plinth with its centre at y = {y:.4f} m: {sorted(touching)}')
     assert touching == {'wheel_front_left', 'wheel_front_right'}
     assert y == pytest.approx(0.75 - 0.3, abs=0.005)
+
+
+@pytest.mark.parametrize('name, robots', [('arena', 4), ('warehouse', 16)])
+def test_the_fleet_grid_keeps_clear_of_every_world_model_wheels_included(name, robots):
+    from amr_description.core.description_file import read_description
+    from amr_description.launch.stacks import fleet_grid
+    from amr_description.sim.urdf_to_mjcf import urdf_to_spec
+    from amr_description.sim.world import World
+    world = World(0.001, load_world(name))
+    urdf = read_description(os.path.join(ROOT, 'urdf', 'amr.urdf'))
+    for index, (x, y) in enumerate(fleet_grid(robots, 2.0)):  # the fleet stack's grid
+        world.spawn(urdf_to_spec(urdf, name=f'r{index}', pose=(x, y, 0.0, 0, 0, 0)), f'r{index}')
+    assert {r: world.overlapping_models(r) for r in world.robots} == \
+        {r: [] for r in world.robots}
