@@ -185,14 +185,12 @@ def create(factory, *args, **kwargs):
     """
     try:
         return factory(*args, **kwargs)
-    except (InvalidParameterTypeException, InvalidParameterValueException,
-            ParameterException, ValueError) as exc:
+    except Exception as exc:  # noqa: B902 - see above
         if _interrupted.is_set():
             raise KeyboardInterrupt from None
-        fail(_program(None), exc)
-    except Exception:  # noqa: B902 - see above
-        if _interrupted.is_set():
-            raise KeyboardInterrupt from None
+        if isinstance(exc, (InvalidParameterTypeException, InvalidParameterValueException,
+                            ParameterException, ValueError)):
+            fail(_program(None), exc)
         raise
 
 

@@ -65,7 +65,7 @@ class MujocoSystem(SystemInterface):
         self.prefix = prefix
         self._states = []    # (handle, array, index): array is a view into self.data
         self._commands = []  # (handle, actuator id, lo, hi, kind, qpos address)
-        # PI velocity servos: (handle, command lo, hi, qpos address) + _integral_of(actuator)
+        # PI velocity servos: (handle, command lo, hi, qpos address, _integral_of(actuator))
         self._integrals = []
         self.gazebo = gazebo
         self.active = set()  # claimed command interfaces (full names)
@@ -143,7 +143,7 @@ class MujocoSystem(SystemInterface):
         for handle, actuator, lo, hi, kind, qadr in commands:
             integral = self._integral_of(actuator) if kind == 'velocity' else None
             if integral is not None:
-                integrals.append((handle, lo, hi, qadr) + integral)
+                integrals.append((handle, lo, hi, qadr, integral))
         self._integrals = integrals
         self._ctrl = self.data.ctrl
         self._qpos = self.data.qpos
@@ -238,7 +238,7 @@ class MujocoSystem(SystemInterface):
             if value != value:  # NaN: no command
                 value = qpos[qadr] if kind == 'position' else 0.0
             ctrl[actuator] = min(max(value, lo), hi)
-        for handle, lo, hi, qadr, *integral in self._integrals:
+        for handle, lo, hi, qadr, integral in self._integrals:
             value = handle.value
             self._drive_integral(0.0 if value != value else min(max(value, lo), hi), qadr,
                                  integral)
@@ -282,6 +282,6 @@ class MujocoSystem(SystemInterface):
         """
         for handle, actuator, lo, hi, kind, qadr in self._commands:
             self.data.ctrl[actuator] = self.data.qpos[qadr] if kind == 'position' else 0.0
-        for entry in self._integrals:
-            self.data.ctrl[entry[4]] = 0.0
+        for *_, integral in self._integrals:
+            self.data.ctrl[integral[0]] = 0.0
         return True

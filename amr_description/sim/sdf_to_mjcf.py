@@ -224,7 +224,7 @@ def add_world(spec, world):
                         geom.group = VISUAL_GROUP
     if not ground_done and ground is not None:
         # a world without a ground: robots fall, as in Gazebo
-        spec.delete(spec.body(GROUND_BODY) or ground)
+        spec.delete(spec.body(GROUND_BODY))
     return messages
 
 
