@@ -20,6 +20,7 @@ from amr_description.core.gazebo_tags import SIMULATOR_SYSTEMS
 from amr_description.core.gazebo_tags import text_bool
 from amr_description.core.mujoco_block import add_drive_defaults
 from amr_description.core.mujoco_block import parse_mujoco_block
+from amr_description.core.ros2_control_info import driven_joints
 from amr_description.core.ros2_control_info import parse_ros2_control
 from amr_description.core.urdf_model import model_from_element
 from amr_description.core.urdf_model import parse_xml
@@ -51,7 +52,8 @@ class RobotDescription:
         (``Gazebo/*``, :data:`~amr_description.core.gazebo_tags.GAZEBO_MATERIALS`): the
         colour of all its visuals in the simulator, as gz-sim.
     :ivar weightless_links: links whose ``<gazebo reference>`` turns gravity off (a set).
-    :ivar messages: lines about Gazebo tags read but not applied (an unknown material).
+    :ivar messages: lines about Gazebo tags read but not applied (an unknown material) and
+        driven wheels without ``<collision>`` (spawned anyway, as Gazebo does).
     :ivar system_hardware: the joints those systems command, as ``HardwareInfo`` blocks of
         the simulator's system (their actuators are made as for ``<ros2_control>``).
     :raises ValueError: one line naming ``source`` (URDF), ``ros2_control`` or ``<mujoco>``
@@ -76,6 +78,11 @@ class RobotDescription:
         apply_surface_tags(self.mujoco, self.gazebo_tags, self.model)
         self.sensors = parse_sensors(self.root, self.model.links)
         self.link_colours, self.weightless_links, self.messages = {}, set(), []
+        for joint, why in driven_joints(self.model, self.hardware + self.system_hardware).items():
+            link = self.model.joints[joint].child
+            if not self.model.links[link].collisions:  # spawned anyway, as Gazebo does
+                self.messages.append(f'link {link!r}: no <collision> on the wheel driven by '
+                                     f'joint {joint!r} ({why}): it cannot touch the ground')
         for reference, tags in self.gazebo_tags.items():
             if reference not in self.model.links:
                 continue

@@ -212,3 +212,29 @@ def parse_ros2_control(urdf_xml):
     if root.tag != 'robot':
         raise ValueError(f'ros2_control: root element must be <robot>, found <{root.tag}>')
     return [_hardware(element) for element in root.findall('ros2_control')]
+
+
+def driven_joints(model, infos, wheel_names=()):
+    """
+    Return the joints that drive the robot: the wheels that must touch the ground.
+
+    :param model: :class:`~amr_description.core.urdf_model.RobotModel`.
+    :param infos: the ``<ros2_control>`` blocks
+        (:func:`~amr_description.core.ros2_control_info.parse_ros2_control`).
+    :param wheel_names: wheel joint names the controllers YAML gives
+        (``left_wheel_names``/``right_wheel_names`` of a diff_drive_controller).
+    :returns: dict joint name -> why it is driven (``'velocity command interface'``,
+        ``'effort command interface'`` or ``'a wheel in the controllers YAML'``), URDF
+        joints only, in the order found.
+    """
+    driven = {}
+    for info in infos:
+        for joint in info.joints:
+            commands = joint.command_interface_names()
+            for kind in ('velocity', 'effort'):
+                if kind in commands and joint.name in model.joints:
+                    driven.setdefault(joint.name, f'{kind} command interface')
+    for name in wheel_names:
+        if name in model.joints:
+            driven.setdefault(name, 'a wheel in the controllers YAML')
+    return driven

@@ -194,7 +194,7 @@ def _with_defaults(declared, args):
     """Return ``args`` completed with the default values of the ``declared`` arguments."""
     values = _Arguments((d.name, d.default_value) for d in declared)
     values.update(args)
-    values.given = frozenset(args)
+    values.given = args.given if isinstance(args, _Arguments) else frozenset(args)
     return values
 
 
@@ -462,11 +462,14 @@ def resolve(name, argv=()):
 
     :param name: stack name (see :func:`stack_name`).
     :param argv: list of ``'name:=value'``.
-    :returns: dict of argument values with defaults filled in.
+    :returns: dict of argument values with defaults filled in; its ``given`` attribute holds
+        the names set in ``argv`` (a port left at its default may move to the next free one).
     :raises LaunchError: on an unknown stack or a bad argument.
     """
     _, declared, _ = STACKS[stack_name(name)]
-    return parse_launch_arguments(declared, list(argv))
+    values = _Arguments(parse_launch_arguments(declared, list(argv)))
+    values.given = frozenset(arg.partition(':=')[0] for arg in argv)
+    return values
 
 
 def describe(name, argv=()):

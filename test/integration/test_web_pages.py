@@ -298,6 +298,7 @@ def test_port_in_use_and_stopping_closes_the_port(ros_env, procs, exe):
 
 def test_a_page_without_a_port_takes_the_next_free_one_and_a_launch_names_its_argument(
         ros_env, procs, exe):
+    """A second stack at once takes the next free port; a port the user chose is exact."""
     import socket
     holder = socket.socket()
     try:  # 8080 taken (by us, or already by something else)
@@ -320,6 +321,24 @@ def test_a_page_without_a_port_takes_the_next_free_one_and_a_launch_names_its_ar
                                     env=ros_env, capture_output=True, text=True,
                                     timeout=60).stdout
         assert f'Integer value is: {port}' in answer, answer
+        # a second stack at once (its own domain) with viewer_port left at its default, as
+        # a second ./scripts/main: its viewer takes the next free port and stays up
+        from conftest import next_domain_id
+        from conftest import release_domain_id
+        other_env = dict(ros_env, ROS_DOMAIN_ID=str(next_domain_id()))
+        try:
+            second = procs.start([exe('bringup'), 'display', 'gui:=false'], other_env)
+            assert second.wait_for_output('in a browser', 90.0), second.output
+            found = re.search(r'viewer: open http://127\.0\.0\.1:(\d+)/ in a browser',
+                              second.output)
+            assert found, second.output
+            second_port = int(found.group(1))
+            assert second_port not in (8080, port) and port_open(second_port), second.output
+            assert second.interrupt(timeout=60.0) == 0, second.output
+            assert 'already in use' not in second.output, second.output
+            assert 'process has died' not in second.output, second.output
+        finally:
+            release_domain_id(int(other_env['ROS_DOMAIN_ID']))
         # a port given to a stack and taken: the error names the launch argument
         stack = procs.start([exe('bringup'), 'display', 'gui:=false',
                              f'viewer_port:={port}'], ros_env)

@@ -150,12 +150,29 @@ def test_display_stack_layout(monkeypatch):
     assert (rsp.executable, jsp.executable) == ('robot_state_publisher', 'joint_state_publisher')
     assert rsp.parameters == [{'robot_description': '<robot name="amr"/>',
                                'use_sim_time': False}]
+    # ports left at their defaults: each page takes 8081 / 8080 or the next free port
     rsp, gui, viewer = stacks.display(stacks.resolve('display'))
     assert gui.executable == 'joint_state_publisher_gui'
-    assert gui.parameters == [{'use_sim_time': False, 'port': 8081}]
+    assert gui.parameters == [{'use_sim_time': False}]
     assert viewer.executable == 'viewer'
-    assert viewer.parameters == [{'use_sim_time': False, 'fixed_frame': 'base_footprint',
-                                  'port': 8080}]
+    assert viewer.parameters == [{'use_sim_time': False, 'fixed_frame': 'base_footprint'}]
+    # given, even with the default's value: exactly that port
+    rsp, gui, viewer = stacks.display(stacks.resolve('display', ['gui_port:=8081',
+                                                                 'viewer_port:=8080']))
+    assert gui.parameters == [{'use_sim_time': False, 'port': 8081}]
+    assert viewer.parameters[0]['port'] == 8080
+
+
+@pytest.mark.parametrize('name', sorted(stacks.STACKS))
+def test_a_port_left_at_its_default_is_not_passed_as_chosen(name):
+    declared = {d.name for d in stacks.STACKS[name][1]}
+    ports = {arg for arg in declared if arg.endswith('_port')}
+    argv = ['robots:=2'] if 'robots' in declared else []
+    pages = [a for a in stacks.describe(name, argv)
+             if getattr(a, 'executable', None) in ('viewer', 'joint_state_publisher_gui')]
+    assert bool(ports) == bool(pages), (name, ports, pages)
+    for page in pages:
+        assert 'port' not in page.parameters[0], (name, page.executable, page.parameters)
 
 
 def test_unreadable_urdf(tmp_path):

@@ -122,6 +122,36 @@ def test_missing_collision(urdf_xml):
     assert [f for f in run(light) if 'imu_link' in f.element] == []
 
 
+def test_driven_wheel_without_collision_is_an_error(tmp_path, capsys, urdf_xml, controllers):
+    xml = remove_element(urdf_xml, 'wheel_front_left', 'collision')
+    for given in (None, controllers):  # its velocity command interface is enough
+        found = [f for f in run(xml, given) if f.expected == '<collision>']
+        assert [(f.severity, f.element) for f in found] == [(ERROR, "link 'wheel_front_left'")]
+        assert "joint 'joint_wheel_front_left'" in found[0].message
+        assert 'velocity command interface' in found[0].message
+    broken = tmp_path / 'no_wheel_collision.urdf'
+    broken.write_text(xml)
+    assert check_model_command.main(['--controllers', YAML_PATH, str(broken)]) == 1
+    out = capsys.readouterr().out
+    assert "ERROR   link 'wheel_front_left': no <collision> on the wheel driven by joint " \
+        "'joint_wheel_front_left'" in out
+    assert '1 error(s)' in out
+    # named as a wheel by the controllers YAML only (no command interface in the block)
+    no_command = xml.replace('<command_interface name="velocity">', '<command_interface '
+                             'name="position">')
+    found = [f for f in run(no_command, controllers) if f.expected == '<collision>']
+    assert [f.severity for f in found] == [ERROR]
+    assert 'a wheel in the controllers YAML' in found[0].message
+    # another moving link without collision (a caster, a flap) keeps the warning
+    caster = urdf_xml.replace('</robot>', '<link name="flap"><inertial><mass value="0.1"/>'
+                              '<inertia ixx="1e-4" iyy="1e-4" izz="1e-4" ixy="0" ixz="0" '
+                              'iyz="0"/></inertial></link><joint name="flap_joint" '
+                              'type="continuous"><parent link="base_link"/><child link="flap"/>'
+                              '<axis xyz="0 0 1"/></joint></robot>')
+    found = [f for f in run(caster, controllers) if f.expected == '<collision>']
+    assert [(f.severity, f.element) for f in found] == [(WARNING, "link 'flap'")]
+
+
 @pytest.mark.parametrize('mass', ['-0.5', '0'])
 def test_non_positive_mass(urdf_xml, mass):
     # on base_link (fixed joint); on a wheel the loader itself refuses it (test_urdf_model)

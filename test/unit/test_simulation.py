@@ -174,6 +174,32 @@ def test_failed_setup_undoes_the_spawn_and_releases_the_controller_manager():
     sim.spawn(tutorial_urdf(), 'a', None, namespace='a')  # the name is free again
 
 
+def test_driven_wheel_without_collision_spawns_with_one_warning():
+    class Log:
+
+        def __init__(self):
+            self.warnings = []
+
+        def info(self, text):
+            pass
+
+        def warning(self, text):
+            self.warnings.append(text)
+
+        error = info
+    urdf = tutorial_urdf()
+    start = urdf.index('<link name="wheel_front_left">')
+    start = urdf.index('<collision>', start)
+    urdf = urdf[:start] + urdf[urdf.index('</collision>', start) + len('</collision>'):]
+    logger = Log()
+    sim = _simulation({'a': _forward}, [], logger=logger)
+    sim.spawn(urdf, 'a', None)  # Gazebo spawns it too
+    assert list(sim.entities) == ['a']
+    assert logger.warnings == [
+        "entity 'a': link 'wheel_front_left': no <collision> on the wheel driven by joint "
+        "'joint_wheel_front_left' (velocity command interface): it cannot touch the ground"]
+
+
 def test_normalize_namespace():
     assert normalize_namespace('') == '' and normalize_namespace('/') == ''
     assert normalize_namespace('r1') == '/r1'

@@ -7,11 +7,14 @@ Model checks beyond ``check_urdf``: physics, drive wheels, ros2_control and cont
 ``check_urdf`` (urdfdom) only proves the file parses into a tree. The checks here catch what
 makes a robot fall through the floor, explode, or drive backwards in simulation:
 
-- every non-root link has ``<collision>`` and ``<inertial>``; mass > 0; the inertia matrix is
-  symmetric positive definite and its principal moments obey the triangle inequality
-  (``I1 + I2 >= I3``, true of every real body); it is close to what the collision geometry and
-  mass imply (solid box / cylinder / sphere formulas; warning only); a root link with inertia
-  is flagged (KDL, hence robot_state_publisher, ignores it: warning);
+- every non-root link has ``<collision>`` and ``<inertial>`` (a driven wheel without
+  ``<collision>``, one whose joint has a velocity or effort command interface or that the
+  controllers YAML names as a wheel, is an error: it cannot touch the ground); mass > 0;
+  the inertia matrix is symmetric positive definite and its principal moments obey the
+  triangle inequality (``I1 + I2 >= I3``, true of every real body); it is close to what the
+  collision geometry and mass imply (solid box / cylinder / sphere formulas; warning only);
+  a root link with inertia is flagged (KDL, hence robot_state_publisher, ignores it:
+  warning);
 - drive wheels: positive wheel speed must roll the base forward. With the axle ``a`` (the
   joint axis rotated into the base frame, ``R(rpy) @ axis``) and the wheel touching the ground
   below its centre, rolling without slipping moves the centre with ``v = w a x r`` where
@@ -41,6 +44,8 @@ from amr_description.core.model_check.links import check_links
 from amr_description.core.model_check.mujoco import check_mujoco_block
 from amr_description.core.model_check.wheels import check_wheels
 from amr_description.core.model_check.wheels import wheel_joints
+from amr_description.core.ros2_control_info import driven_joints
+from amr_description.core.ros2_control_info import parse_ros2_control
 from lxml import etree
 
 
@@ -53,10 +58,17 @@ def check_model(model, urdf_xml, controllers=None):
     :param controllers: parsed controllers.yaml (dict) or None.
     :returns: list of :class:`Finding`.
     """
-    findings = check_links(model)
     base = 'base_link'
+    wheel_names = []
     for params in diff_drive_params(controllers or {}).values():
         base = params.get('base_frame_id', base)
+        for key in ('left_wheel_names', 'right_wheel_names'):
+            wheel_names.extend(params.get(key) or [])
+    try:
+        infos = parse_ros2_control(urdf_xml)
+    except ValueError:
+        infos = []  # check_ros2_control reports it
+    findings = check_links(model, driven_joints(model, infos, wheel_names))
     findings += check_wheels(model, wheel_joints(model, controllers), base)
     findings += check_ros2_control(model, urdf_xml, controllers)
     findings += check_mujoco_block(model, urdf_xml)

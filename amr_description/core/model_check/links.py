@@ -87,7 +87,7 @@ HEAVY_SHARE = 0.1
 """Share of the robot's mass from which a link without ``<collision>`` is reported."""
 
 
-def check_links(model):
+def check_links(model, driven=None):
     """
     Check collision, inertial, mass and inertia of every link.
 
@@ -95,10 +95,17 @@ def check_links(model):
     into its parent) unless it carries :data:`HEAVY_SHARE` of the robot's mass (a chassis
     without ``<collision>`` falls through the floor: a warning); a link on a moving joint
     without ``<collision>`` is a warning, without ``<inertial>`` an error (Gazebo drops it).
+    A driven wheel without ``<collision>`` is an error: it cannot touch the ground, so the
+    robot sits on its base while the wheel spins in the air.
 
     :param model: :class:`~amr_description.core.urdf_model.RobotModel`.
+    :param driven: dict joint name -> why it is driven (text), from
+        :func:`~amr_description.core.ros2_control_info.driven_joints`.
     :returns: list of :class:`Finding`.
     """
+    driven = driven or {}
+    driven_links = {model.joints[name].child: (name, why) for name, why in driven.items()
+                    if name in model.joints}
     findings = []
     parent_types = {joint.child: joint.type for joint in model.joints.values()}
     total = sum(link.inertial.mass for link in model.links.values()
@@ -116,7 +123,13 @@ def check_links(model):
             continue
         fixed = parent_types.get(name) == 'fixed'
         mass = inertial.mass if inertial is not None and inertial.mass else 0.0
-        if not link.collisions and (not fixed or mass >= HEAVY_SHARE * total):
+        if not link.collisions and name in driven_links:
+            joint, why = driven_links[name]
+            findings.append(Finding(
+                ERROR, element, f'no <collision> on the wheel driven by joint {joint!r} '
+                f'({why}): it cannot touch the ground; the robot sits on its base while the '
+                'wheel spins in the air', '<collision>', 'none'))
+        elif not link.collisions and (not fixed or mass >= HEAVY_SHARE * total):
             findings.append(Finding(WARNING, element, 'no <collision>: it cannot touch anything',
                                     '<collision>', 'none'))
         if inertial is None:
