@@ -22,7 +22,7 @@ def _ensure_gl():
 
 
 def build_scene(urdf_xml, width=640, height=480, pose=(0.0, 0.0, 0.0, 0.0, 0.0, 0.0),
-                path=(), others=()):
+                path=(), others=(), world=None):
     """
     Return a compiled ``(model, data)`` of the robot on a ground plane with a light.
 
@@ -32,11 +32,16 @@ def build_scene(urdf_xml, width=640, height=480, pose=(0.0, 0.0, 0.0, 0.0, 0.0, 
     :param pose: root-link pose in the world, ``(x, y, z, roll, pitch, yaw)`` in m and rad.
     :param path: planar points ``(x, y)`` in m drawn as small green markers on the ground.
     :param others: ``(pose, path)`` pairs of more copies of the robot (a fleet), as above.
+    :param world: None, or a :class:`~amr_description.core.sdf_world.World` whose models
+        (walls, pillars, shelves, loose boxes at their initial poses) stand around the robot;
+        its ground, when it has one, is drawn as the checkered plane.
     :returns: ``(mujoco.MjModel, mujoco.MjData)`` after ``mj_forward``.
     :raises ValueError: one line when the URDF cannot be converted.
     """
     _ensure_gl()
     import mujoco
+    from amr_description.sim.sdf_to_mjcf import add_world
+    from amr_description.sim.sdf_to_mjcf import GROUND_BODY
     from amr_description.sim.urdf_to_mjcf import urdf_to_spec
 
     spec = urdf_to_spec(urdf_xml, name='render', pose=pose, free=False)
@@ -47,11 +52,15 @@ def build_scene(urdf_xml, width=640, height=480, pose=(0.0, 0.0, 0.0, 0.0, 0.0, 
         name='grid', type=mujoco.mjtTexture.mjTEXTURE_2D,
         builtin=mujoco.mjtBuiltin.mjBUILTIN_CHECKER, rgb1=[0.82, 0.82, 0.8],
         rgb2=[0.7, 0.7, 0.68], width=256, height=256)
-    material = spec.add_material(name='ground', texrepeat=[32, 32], reflectance=0.05)
+    # no mirror image in a world: its walls and pillars would stand on their reflections
+    material = spec.add_material(name='ground', texrepeat=[32, 32],
+                                 reflectance=0.05 if world is None else 0.0)
     material.textures[mujoco.mjtTextureRole.mjTEXROLE_RGB] = texture.name
-    spec.worldbody.add_geom(
-        name='ground', type=mujoco.mjtGeom.mjGEOM_PLANE, size=[20.0, 20.0, 0.05],
+    spec.worldbody.add_body(name=GROUND_BODY).add_geom(
+        name='ground_plane', type=mujoco.mjtGeom.mjGEOM_PLANE, size=[20.0, 20.0, 0.05],
         material='ground', contype=0, conaffinity=0)
+    if world is not None:
+        add_world(spec, world)  # what it cannot build is left out, as the simulator does
     points = list(path)
     for index, (other_pose, other_path) in enumerate(others, start=1):
         robot = urdf_to_spec(urdf_xml, name=f'render{index}', pose=other_pose, free=False)
@@ -61,8 +70,13 @@ def build_scene(urdf_xml, width=640, height=480, pose=(0.0, 0.0, 0.0, 0.0, 0.0, 
         spec.worldbody.add_geom(
             type=mujoco.mjtGeom.mjGEOM_SPHERE, size=[0.012, 0, 0], pos=[x, y, 0.012],
             rgba=[0.1, 0.7, 0.2, 1.0], contype=0, conaffinity=0)
-    spec.worldbody.add_light(name='sun', pos=[1.0, 1.0, 3.0], dir=[-0.3, -0.3, -1.0],
-                             diffuse=[0.8, 0.8, 0.8], castshadow=True)
+    if world is None:
+        spec.worldbody.add_light(name='sun', pos=[1.0, 1.0, 3.0], dir=[-0.3, -0.3, -1.0],
+                                 diffuse=[0.8, 0.8, 0.8], castshadow=True)
+    else:  # a hall: light it all, as the simulator's sun
+        spec.worldbody.add_light(name='sun', pos=[0.0, 0.0, 10.0], dir=[0.3, 0.2, -1.0],
+                                 type=mujoco.mjtLightType.mjLIGHT_DIRECTIONAL,
+                                 diffuse=[0.8, 0.8, 0.8], castshadow=False)
     model = spec.compile()
     data = mujoco.MjData(model)
     mujoco.mj_forward(model, data)
@@ -163,9 +177,10 @@ def _render(model, data, width, height, frames, elevation=-25.0, scale=2.2):
         renderer.close()
 
 
-def render_scene(urdf_xml, pose, path=(), width=800, height=600, markers=150, others=()):
+def render_scene(urdf_xml, pose, path=(), width=800, height=600, markers=150, others=(),
+                 world=None):
     """
-    Render the robot at a planar pose on the ground, with the path it drove.
+    Render the robot at a planar pose on the ground, with the path it drove, in its world.
 
     :param urdf_xml: URDF text.
     :param pose: ``(x, y, yaw)`` of the root link (``base_footprint``) in the world, m and rad.
@@ -175,8 +190,10 @@ def render_scene(urdf_xml, pose, path=(), width=800, height=600, markers=150, ot
     :param height: pixels (> 0).
     :param markers: largest number of path markers per robot, int > 0.
     :param others: ``(pose, path)`` of more robots (a fleet), as ``pose`` and ``path``.
+    :param world: None (a plain ground) or the
+        :class:`~amr_description.core.sdf_world.World` the robots drove in (``load_world``).
     :returns: numpy array of shape (height, width, 3), dtype uint8, seen from above at 55 deg
-        so that the whole path and the robot are in view.
+        so that the whole path, the robots and the world's models are in view.
     :raises ValueError: when the URDF cannot be converted.
     """
     def thin(path):
@@ -190,12 +207,13 @@ def render_scene(urdf_xml, pose, path=(), width=800, height=600, markers=150, ot
         return (pose[0], pose[1], 0.0, 0.0, 0.0, pose[2])
 
     model, data = build_scene(urdf_xml, width, height, pose=pose6(pose), path=thin(path),
-                              others=[(pose6(p), thin(q)) for p, q in others])
+                              others=[(pose6(p), thin(q)) for p, q in others], world=world)
     import mujoco
 
     renderer = mujoco.Renderer(model, height=int(height), width=int(width))
     try:
-        camera = frame_camera(model, data, azimuth=-120.0, elevation=-55.0)
+        camera = frame_camera(model, data, azimuth=-120.0, elevation=-55.0,
+                              scale=2.2 if world is None else 1.2)
         camera.distance *= 1.2
         renderer.update_scene(data, camera=camera)
         return renderer.render().copy()

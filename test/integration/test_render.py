@@ -114,3 +114,21 @@ def test_a_fleet_scene_draws_every_robot_where_it_stands():
     columns = np.flatnonzero(((b > 90) & (r < 50) & (g < 50)).any(axis=0))
     groups = np.split(columns, np.flatnonzero(np.diff(columns) > 5) + 1)
     assert len(groups) == 3, [(int(c[0]), int(c[-1])) for c in groups]
+
+
+def test_the_main_jobs_scene_draws_the_world_it_drove_in():
+    # out/scene.png of the main job in arena.sdf: the pillars (diffuse 0.25 0.45 0.8) and the
+    # walls stand around the robot; on the plain ground there are none
+    from amr_description.core.sdf_world import load_world
+    from amr_description.launch.stacks import read_urdf
+    from amr_description.sim.render import render_scene
+    urdf = read_urdf(os.path.join(ROOT, 'urdf', 'amr.urdf'))
+
+    def pillar_share(world):
+        image = render_scene(urdf, (1.0, 0.0, 1.57), [(1.0, -0.5)], 400, 300, world=world)
+        r, g, b = (image[..., k].astype(int) for k in range(3))
+        # light blue: green well above red (the chassis' pure blue has g == r)
+        return ((b > 150) & (b - r > 60) & (g - r > 30)).mean()
+
+    in_arena, alone = pillar_share(load_world('arena')), pillar_share(None)
+    assert in_arena > 0.002 and alone == 0.0, (in_arena, alone)

@@ -19,13 +19,16 @@ PACKAGE = os.path.join(ROOT, 'amr_description')
 
 FLOORS = {
     'core': 1, 'ros': 1,
-    'control': 2, 'sim': 2, 'web': 2, 'launch': 2,
+    'control': 2, 'sim': 2, 'web': 2, 'launch': 2, 'nav': 2,
     'nodes': 3, 'cli': 3, 'tools': 3,
 }
 """Folder -> floor (1 is the ground), as drawn in docs/architecture.md."""
 
 ONLY_ITSELF = {'core', 'ros'}
 """Ground-floor folders that import no other folder of the package."""
+
+NO_RCLPY = {'core', 'sim', 'nav'}
+"""Folders of pure logic and engines: they never import rclpy (nodes drive them)."""
 
 
 def _modules():
@@ -61,6 +64,19 @@ def _imports(module, path):
     return [name for name in found if name.split('.')[0] == 'amr_description']
 
 
+def _external_imports(path):
+    """Return the top-level names of every module the file at ``path`` imports."""
+    with open(path) as f:
+        tree = ast.parse(f.read(), path)
+    found = set()
+    for node in ast.walk(tree):
+        if isinstance(node, ast.Import):
+            found |= {alias.name.split('.')[0] for alias in node.names}
+        elif isinstance(node, ast.ImportFrom) and not node.level and node.module:
+            found.add(node.module.split('.')[0])
+    return found
+
+
 def _folder_of(name):
     parts = name.split('.')
     return parts[1] if len(parts) > 1 and parts[1] in FLOORS else None
@@ -92,6 +108,12 @@ def test_no_import_runs_up_a_floor():
 def test_ground_floor_imports_no_other_folder():
     bad = [where for (a, b), where in _edges().items() if a in ONLY_ITSELF]
     assert not bad, 'ground-floor imports of other folders:\n' + '\n'.join(sorted(bad))
+
+
+def test_pure_folders_import_no_rclpy():
+    bad = [module for folder, module, path in _modules()
+           if folder in NO_RCLPY and 'rclpy' in _external_imports(path)]
+    assert not bad, 'rclpy imported by pure logic or an engine:\n' + '\n'.join(sorted(bad))
 
 
 def test_no_circle_between_folders():

@@ -197,12 +197,13 @@ def report(opts, node, legs, log_path, scans=None):
                              'truth_origin': r.truth_marks[0]} for r in robots], opts.side)
     written = [plot]
     scene = os.path.join(opts.output_dir, 'scene.png')
+    from amr_description.core.sdf_world import load_world
     from amr_description.launch.stacks import read_urdf
     from amr_description.sim.render import render_scene
     from amr_description.sim.render import save_png
     save_png(render_scene(read_urdf(), robots[0].truth_marks[-1], robots[0].truth_path,
-                          others=[(r.truth_marks[-1], r.truth_path) for r in robots[1:]]),
-             scene)
+                          others=[(r.truth_marks[-1], r.truth_path) for r in robots[1:]],
+                          world=load_world(opts.world)), scene)
     written.append(scene)
     print(f'wrote {" and ".join(written)}')
     mapped = scan_report(opts, robots[0], scans) if scans is not None else None
