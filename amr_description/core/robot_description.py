@@ -78,11 +78,6 @@ class RobotDescription:
         apply_surface_tags(self.mujoco, self.gazebo_tags, self.model)
         self.sensors = parse_sensors(self.root, self.model.links)
         self.link_colours, self.weightless_links, self.messages = {}, set(), []
-        for joint, why in driven_joints(self.model, self.hardware + self.system_hardware).items():
-            link = self.model.joints[joint].child
-            if not self.model.links[link].collisions:  # spawned anyway, as Gazebo does
-                self.messages.append(f'link {link!r}: no <collision> on the wheel driven by '
-                                     f'joint {joint!r} ({why}): it cannot touch the ground')
         for reference, tags in self.gazebo_tags.items():
             if reference not in self.model.links:
                 continue
@@ -94,6 +89,11 @@ class RobotDescription:
                 self.messages.append(line)
             if not link_gravity(tags, where):
                 self.weightless_links.add(reference)
+        for joint, why in driven_joints(self.model, self.hardware + self.system_hardware).items():
+            link = self.model.joints[joint].child
+            if not self.model.links[link].collisions:  # spawned anyway, as Gazebo does
+                self.messages.append(f'link {link!r}: no <collision> on the link driven by '
+                                     f'joint {joint!r} ({why}): it cannot touch the ground')
 
     def parameters_files(self):
         """

@@ -133,7 +133,7 @@ def test_driven_wheel_without_collision_is_an_error(tmp_path, capsys, urdf_xml, 
     broken.write_text(xml)
     assert check_model_command.main(['--controllers', YAML_PATH, str(broken)]) == 1
     out = capsys.readouterr().out
-    assert "ERROR   link 'wheel_front_left': no <collision> on the wheel driven by joint " \
+    assert "ERROR   link 'wheel_front_left': no <collision> on the link driven by joint " \
         "'joint_wheel_front_left'" in out
     assert '1 error(s)' in out
     # named as a wheel by the controllers YAML only (no command interface in the block)

@@ -196,7 +196,7 @@ def test_driven_wheel_without_collision_spawns_with_one_warning():
     sim.spawn(urdf, 'a', None)  # Gazebo spawns it too
     assert list(sim.entities) == ['a']
     assert logger.warnings == [
-        "entity 'a': link 'wheel_front_left': no <collision> on the wheel driven by joint "
+        "entity 'a': link 'wheel_front_left': no <collision> on the link driven by joint "
         "'joint_wheel_front_left' (velocity command interface): it cannot touch the ground"]
 
 

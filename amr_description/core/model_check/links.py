@@ -126,9 +126,9 @@ def check_links(model, driven=None):
         if not link.collisions and name in driven_links:
             joint, why = driven_links[name]
             findings.append(Finding(
-                ERROR, element, f'no <collision> on the wheel driven by joint {joint!r} '
-                f'({why}): it cannot touch the ground; the robot sits on its base while the '
-                'wheel spins in the air', '<collision>', 'none'))
+                ERROR, element, f'no <collision> on the link driven by joint {joint!r} '
+                f'({why}): it cannot touch the ground (a wheel spins in the air while the '
+                'robot sits on its base)', '<collision>', 'none'))
         elif not link.collisions and (not fixed or mass >= HEAVY_SHARE * total):
             findings.append(Finding(WARNING, element, 'no <collision>: it cannot touch anything',
                                     '<collision>', 'none'))
