@@ -19,6 +19,31 @@ import time
 
 import pytest
 
+TIERS = ('unit', 'integration')
+"""The suite's tiers, in the order they run (docs/testing.md): ``unit`` (test/unit/ and the
+lint checks: no process, no DDS) first, so a broken piece of logic shows in seconds, then
+``integration`` (test/integration/: real processes, real DDS, browsers)."""
+
+
+def pytest_collection_modifyitems(config, items):
+    """
+    Mark every test with its tier and run the unit tier first.
+
+    ``unit`` or ``integration`` by folder, ``browser`` too for a page test; the order inside
+    a tier, and so every module-scoped stack, is kept.
+    """
+    def tier(item):
+        parts = item.path.parts
+        return 'integration' if 'integration' in parts else 'unit'
+
+    for item in items:
+        item.add_marker(tier(item))
+        names = vars(item.module).values() if item.module is not None else ()
+        if any(getattr(value, '__module__', None) == 'browser' for value in names):
+            item.add_marker('browser')  # uses the page helpers of test/integration/browser.py
+    items.sort(key=lambda item: TIERS.index(tier(item)))
+
+
 os.environ.setdefault('MUJOCO_GL', 'egl')  # cameras render headless (before MuJoCo's import)
 
 # Domain IDs 1..199 are handed out to tests; 200..232 stay free for hand-started stacks.

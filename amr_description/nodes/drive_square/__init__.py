@@ -32,8 +32,8 @@ log), when a course does not finish within ``--timeout``, or when a robot's grou
 closure misses ``--tolerance`` (m) or ``--tolerance-deg``, or when fewer than 95 % of the
 lidar's scan points placed with ground truth lie on a true surface. Otherwise it prints a
 table per leg (one robot) or one row per robot and a per-leg summary (several robots), writes
-``path.png`` (odometry vs ground truth of every robot) and, for one robot, ``scene.png`` (a
-render of the final scene in its world) and, in a world with obstacles (``--world``: ``arena`` for one
+``path.png`` (odometry vs ground truth of every robot), ``scene.png`` (a render of the
+final scene in its world) and, in a world with obstacles (``--world``: ``arena`` for one
 robot, ``empty`` for a fleet), ``scans.png`` (:mod:`.scans`), stops the stack and exits 0.
 
 Modules: :mod:`.driver` (the node, one driver per robot, lock-step), :mod:`.report`
