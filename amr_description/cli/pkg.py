@@ -75,7 +75,8 @@ def _executables(args):
 
 
 def _xml(args):
-    import xml.etree.ElementTree as ElementTree
+    from amr_description.core.xml_document import parse_text
+    from amr_description.core.xml_document import XMLError
     prefix = package_prefixes().get(args.package_name)
     if prefix is None:
         return fail('Package not found')
@@ -89,8 +90,8 @@ def _xml(args):
         print(text, end='' if text.endswith('\n') else '\n')
         return 0
     try:
-        root = ElementTree.fromstring(text)
-    except ElementTree.ParseError as exc:
+        root = parse_text(text)
+    except XMLError as exc:
         return fail(f'{path}: {exc}')
     for element in root.findall(args.tag):
         print((element.text or '').strip())

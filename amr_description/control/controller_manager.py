@@ -80,8 +80,8 @@ class ControllerManager(RealtimeLoop, Node):
     The controller manager node (see the module docstring).
 
     :param urdf_xml: robot description with ``<ros2_control>`` blocks: URDF XML (str), or
-        its :class:`~amr_description.core.robot_description.RobotDescription` (the simulator
-        parses a spawned robot once and hands it on).
+        its :class:`~amr_description.core.description.robot_description.RobotDescription` (the
+        simulator parses a spawned robot once and hands it on).
     :param executor: rclpy executor; the manager adds itself and every controller node.
     :param hardware_factory: ``(HardwareInfo) -> SystemInterface`` (default: entry points).
     :param parameters_file: path of the controllers YAML, a list of paths (a later file

@@ -20,12 +20,13 @@ interface), ``extra_joints``, ``use_local_topics`` (false), ``map_interface_to_j
 
 from array import array
 import math
-import xml.etree.ElementTree as ET
 
 from amr_description.control.controller_interface import ControllerInterface
 from amr_description.control.controller_interface import TransitionCallbackReturn
 from amr_description.control.parameter_table import Parameter
 from amr_description.control.parameter_table import ParameterTable
+from amr_description.core.xml_document import parse_text
+from amr_description.core.xml_document import XMLError
 from amr_description.ros.stamps import has_subscribers
 from amr_description.ros.stamps import set_stamp
 from rclpy.qos import QoSProfile
@@ -88,8 +89,8 @@ class JointStateBroadcaster(ControllerInterface):
         if self.description is not None:  # parsed once by the simulator
             return self.description.joint_names(moving_only=True)
         try:
-            root = ET.fromstring(self.robot_description)
-        except ET.ParseError:
+            root = parse_text(self.robot_description)
+        except XMLError:
             return []
         return [j.get('name') for j in root.findall('joint')
                 if j.get('type') not in ('fixed', None)]

@@ -11,10 +11,11 @@ command interface (one controller per command interface).
 """
 
 from importlib.metadata import entry_points
-import xml.etree.ElementTree as ET
 
 from amr_description.control import hardware_interface as hi
-from amr_description.core.ros2_control_info import parse_ros2_control
+from amr_description.core.description.ros2_control_info import parse_ros2_control
+from amr_description.core.xml_document import parse_text
+from amr_description.core.xml_document import XMLError
 
 HARDWARE_GROUP = 'amr_description.hardware'
 
@@ -45,7 +46,8 @@ class ResourceManager:
     Hardware components of one robot and their claimed interfaces.
 
     :param urdf_xml: the robot description with ``<ros2_control>`` blocks: URDF XML (str),
-        or its :class:`~amr_description.core.robot_description.RobotDescription` (no parse).
+        or its :class:`~amr_description.core.description.robot_description.RobotDescription` (no
+        parse).
     :param hardware_factory: callable ``(HardwareInfo) -> SystemInterface``; default
         :func:`default_hardware_factory`.
     :param activate: when True (default) every component is configured and activated.
@@ -60,8 +62,8 @@ class ResourceManager:
             root, self.infos = urdf_xml.root, urdf_xml.hardware
         else:
             try:
-                root = ET.fromstring(urdf_xml)
-            except ET.ParseError as exc:
+                root = parse_text(urdf_xml)
+            except XMLError as exc:
                 raise ValueError(f'robot description is not valid XML: {exc}') from None
             self.infos = parse_ros2_control(root)
         urdf_joints = [j.get('name') for j in root.findall('joint')]

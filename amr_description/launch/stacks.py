@@ -18,9 +18,9 @@ str values of ``name:=value`` pairs (see
 import math
 import os
 
-from amr_description.core.description_file import parse_xacro_args
-from amr_description.core.description_file import read_description
-from amr_description.core.urdf_model import parse_xml
+from amr_description.core.description.files import parse_xacro_args
+from amr_description.core.description.files import read_description
+from amr_description.core.description.urdf_model import parse_xml
 from amr_description.launch.actions import ComposableNode
 from amr_description.launch.actions import ComposableNodeContainer
 from amr_description.launch.actions import DeclareLaunchArgument

@@ -5,6 +5,8 @@
 import argparse
 import sys
 
+from amr_description.core.description.urdf_model import parse_urdf_file
+from amr_description.core.description.urdf_model import URDFError
 from amr_description.core.model_check import check_model
 from amr_description.core.model_check.controllers_yaml import load_controllers
 from amr_description.core.model_check.findings import ERROR
@@ -13,24 +15,21 @@ from amr_description.core.model_check.findings import INFO
 from amr_description.core.model_check.findings import WARNING
 from amr_description.core.model_check.installed import compare_installed
 from amr_description.core.model_check.installed import installed_counterpart
-from amr_description.core.urdf_model import parse_urdf_file
-from amr_description.core.urdf_model import URDFError
 
 
-def _controllers_of(urdf_xml):
+def _controllers_of(root):
     """
     Return ``(controllers dict, last path)`` of the YAML files a description names, or Nones.
 
     Several gz_ros2_control ``<parameters>`` files are merged per node section, a later file
     overriding an earlier one (rcl's ``--params-file`` rule).
 
+    :param root: the parsed ``<robot>`` element (``RobotModel.element``).
     :raises ValueError: one line naming a file that cannot be read.
     """
-    from amr_description.core.description_file import resolve_uri
-    from amr_description.core.gazebo_tags import parse_control_plugin
-    from amr_description.core.mujoco_block import parse_mujoco_block
-    from amr_description.core.urdf_model import parse_xml
-    root = parse_xml(urdf_xml, 'URDF')
+    from amr_description.core.description.files import resolve_uri
+    from amr_description.core.description.mujoco_block import parse_mujoco_block
+    from amr_description.core.gazebo.tags import parse_control_plugin
     try:  # the same choice as RobotDescription.parameters_files; the checks report errors
         block, plugin = parse_mujoco_block(root), parse_control_plugin(root)
     except ValueError:
@@ -83,7 +82,7 @@ def main(argv=None):
             findings = [Finding(ERROR, exc.element, exc.problem)]
         controllers = load_controllers(args.controllers) if args.controllers else None
         if controllers is None and model is not None:
-            controllers, args.controllers = _controllers_of(urdf_xml)
+            controllers, args.controllers = _controllers_of(model.element)
     except ValueError as exc:
         print(f'check_model: {exc}', file=sys.stderr)
         return 2

@@ -105,7 +105,7 @@ class Create(Node):
         if opts.string is not None:
             return opts.string
         if opts.file is not None:
-            from amr_description.core.description_file import read_description
+            from amr_description.core.description.files import read_description
             try:
                 return read_description(opts.file)  # a URDF, or a xacro expanded
             except ValueError as exc:
@@ -158,7 +158,7 @@ class Create(Node):
             request, timeout=opts.timeout + 30.0 if opts.timeout > 0 else None,
             repeat=not opts.allow_renaming, on_retry=self._on_retry)
         if lost_answer:
-            from amr_description.core.urdf_model import entity_name
+            from amr_description.core.description.urdf_model import entity_name
             return True, (f'OK creation of entity [{entity_name(opts.name, urdf)}]. (the answer '
                           'to the first request was lost; the entity exists)')
         if response is None:
@@ -179,8 +179,8 @@ def main(args=None):
 
     Clean-shutdown pattern of :mod:`amr_description.ros.shutdown`; a ``-file``, ``-string``
     or ``-param`` description the URDF loader
-    (:func:`amr_description.core.urdf_model.parse_urdf`) refuses is one error line and exit
-    code 1, before the simulator is asked; one from ``-topic`` is checked by the simulator
+    (:func:`amr_description.core.description.urdf_model.parse_urdf`) refuses is one error line and
+    exit code 1, before the simulator is asked; one from ``-topic`` is checked by the simulator
     with the same loader (its refusal is the one error line).
     """
     argv = sys.argv[1:] if args is None else list(args)
@@ -197,7 +197,7 @@ def main(args=None):
             # description from a topic was published by robot_state_publisher, which ran
             # the same loader (the simulator runs it again), so yourdfpy's import (~0.8 s of
             # CPU per robot) is saved on the fleet's start-up
-            from amr_description.core.urdf_model import parse_urdf
+            from amr_description.core.description.urdf_model import parse_urdf
             parse_urdf(urdf, source=opts.file or opts.param or '-string')
         ok, message = node.spawn(urdf)
         if ok:

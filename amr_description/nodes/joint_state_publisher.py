@@ -17,7 +17,7 @@ Follows upstream ``joint_state_publisher`` (ROS 2):
 
 import sys
 
-from amr_description.core.urdf_model import parse_urdf
+from amr_description.core.description.urdf_model import parse_urdf
 from amr_description.ros import shutdown
 from amr_description.ros.node import Node
 from rcl_interfaces.msg import ParameterDescriptor

@@ -78,7 +78,7 @@ class JointStatePublisherGui(JointStatePublisher):
 
     def _set_model(self, description):
         """Parse a new description; on success rebuild the sliders, else show the error."""
-        from amr_description.core.urdf_model import parse_urdf
+        from amr_description.core.description.urdf_model import parse_urdf
         try:
             model = parse_urdf(description, source='robot_description')
             sliders = joint_sliders.sliders(model.joints.values(), self._zeros)

@@ -79,7 +79,7 @@ def main(args=None):
     options = _parse(shutdown.remove_ros_args(argv)[1:])
     try:
         if options.urdf:
-            from amr_description.core.description_file import read_description
+            from amr_description.core.description.files import read_description
             urdf_xml = read_description(options.urdf)  # a URDF, or a xacro expanded
         else:
             urdf_xml = _description_from_topic(argv, options.timeout)
@@ -87,7 +87,7 @@ def main(args=None):
                 raise ValueError(f'no message on /robot_description within {options.timeout:g} s '
                                  '(it reads a running stack, e.g. ros2 launch amr_description '
                                  'display; or give a file with --urdf PATH)')
-        from amr_description.core.urdf_model import parse_urdf
+        from amr_description.core.description.urdf_model import parse_urdf
         from amr_description.sim.render import render_urdf
         from amr_description.sim.render import save_png
         # the package's one loader: what robot_state_publisher and the simulator refuse is
@@ -95,8 +95,8 @@ def main(args=None):
         parse_urdf(urdf_xml, source=options.urdf or '/robot_description')
         world = None
         if options.world:
-            from amr_description.core.sdf_world import collapse_repeats
-            from amr_description.core.sdf_world import load_world
+            from amr_description.core.gazebo.sdf_world import collapse_repeats
+            from amr_description.core.gazebo.sdf_world import load_world
             world = load_world(options.world)  # WorldError (a ValueError): one line
             for line in collapse_repeats(world.messages):
                 print(f'render: {line}', file=sys.stderr)

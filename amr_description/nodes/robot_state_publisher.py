@@ -24,15 +24,15 @@ Reproduces the behaviour of upstream ``robot_state_publisher`` (ROS 2 Jazzy):
   the old one kept) and republishes the description and the static transforms.
 
 Forward kinematics: :mod:`amr_description.core.kinematics`; URDF: yourdfpy through
-:mod:`amr_description.core.urdf_model`.
+:mod:`amr_description.core.description.urdf_model`.
 """
 
 import sys
 
+from amr_description.core.description.urdf_model import parse_urdf
 from amr_description.core.kinematics import joint_transform
 from amr_description.core.kinematics import matrix_to_translation_quaternion
 from amr_description.core.kinematics import MOVING_JOINT_TYPES
-from amr_description.core.urdf_model import parse_urdf
 from amr_description.ros import shutdown
 from amr_description.ros.node import Node
 from geometry_msgs.msg import TransformStamped

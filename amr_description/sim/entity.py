@@ -10,11 +10,11 @@ No rclpy: the controller-manager factory and ``setup`` callbacks given to the
 import os
 
 from amr_description.control.resource_manager import default_hardware_factory
-from amr_description.core.description_file import resolve_uri
-from amr_description.core.gazebo_tags import ControlPlugin
-from amr_description.core.gazebo_tags import GAZEBO_SYSTEMS
-from amr_description.core.gazebo_tags import SIMULATOR_SYSTEMS
-from amr_description.core.robot_description import RobotDescription
+from amr_description.core.description.files import resolve_uri
+from amr_description.core.description.robot_description import RobotDescription
+from amr_description.core.gazebo.tags import ControlPlugin
+from amr_description.core.gazebo.tags import GAZEBO_SYSTEMS
+from amr_description.core.gazebo.tags import SIMULATOR_SYSTEMS
 from amr_description.core.ros_names import normalize_namespace
 from amr_description.sim.mujoco_system import MujocoSystem
 from amr_description.sim.sensors.registry import make_sensors
@@ -44,8 +44,9 @@ class Entity:
     :ivar name: entity name, unique in the simulation (str).
     :ivar namespace: ROS namespace, ``''`` or ``'/r1'`` (unique in the simulation).
     :ivar robot: the :class:`~amr_description.sim.world.Robot` (bodies prefixed ``name/``).
-    :ivar description: the :class:`~amr_description.core.robot_description.RobotDescription`
-        it was spawned from (parsed once; ``description.xml`` is the URDF text).
+    :ivar description: the
+        :class:`~amr_description.core.description.robot_description.RobotDescription` it was
+        spawned from (parsed once; ``description.xml`` is the URDF text).
     :ivar controller_manager: the controller manager, or None (no ``<ros2_control>``).
     :ivar systems: the ``MujocoSystem`` hardware components bound to the world.
     :ivar sensors: its :class:`~amr_description.sim.sensors.base.Sensor` instances, made from

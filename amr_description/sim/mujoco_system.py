@@ -21,7 +21,7 @@ stays inside that range (``lo <= kv (command - qdot) + ki (act - q) <= hi``), so
 or overloaded wheel does not store up a run-away.
 
 As gz_ros2_control's ``GazeboSimSystem`` (``gazebo`` given: the robot's
-:class:`~amr_description.core.gazebo_tags.ControlPlugin`; gz_ros2_control ``gz_system.cpp``
+:class:`~amr_description.core.gazebo.tags.ControlPlugin`; gz_ros2_control ``gz_system.cpp``
 ``write``), a joint's command is what a controller claims now (learnt through
 :meth:`perform_command_mode_switch`): a claimed ``velocity`` is the velocity servo's target; a
 claimed ``position`` is a velocity target too, ``position_proportional_gain * (command - q) /
@@ -52,7 +52,7 @@ class MujocoSystem(SystemInterface):
     :param prefix: name prefix of the robot's joints and actuators in the model
         (``'<entity name>/'`` when spawned by :class:`amr_description.sim.world.World`).
     :param gazebo: gz_ros2_control's plugin settings
-        (:class:`~amr_description.core.gazebo_tags.ControlPlugin`: ``hold_joints``,
+        (:class:`~amr_description.core.gazebo.tags.ControlPlugin`: ``hold_joints``,
         ``position_proportional_gain``) for a ``gz_ros2_control/GazeboSimSystem`` component,
         None for ``amr_description/MujocoSystem`` (NaN command = hold).
     """

@@ -53,11 +53,11 @@ import logging
 import math
 import os
 
-from amr_description.core.description_file import resolve_uri
-from amr_description.core.gazebo_tags import GAZEBO_SYSTEMS
-from amr_description.core.mujoco_block import DEFAULT_CONTACT
-from amr_description.core.robot_description import MOVING_TYPES
-from amr_description.core.robot_description import RobotDescription
+from amr_description.core.description.files import resolve_uri
+from amr_description.core.description.mujoco_block import DEFAULT_CONTACT
+from amr_description.core.description.robot_description import MOVING_TYPES
+from amr_description.core.description.robot_description import RobotDescription
+from amr_description.core.gazebo.tags import GAZEBO_SYSTEMS
 from amr_description.sim.sensors.mount import add_mounts
 import mujoco
 import numpy as np
@@ -362,8 +362,9 @@ def urdf_to_spec(urdf_xml, name='amr', pose=(0.0, 0.0, 0.0, 0.0, 0.0, 0.0), free
     Build a MuJoCo spec holding the robot described by a URDF.
 
     :param urdf_xml: the URDF document (str or bytes), with optional ``<ros2_control>``
-        and ``<mujoco>`` blocks, or its :class:`~amr_description.core.robot_description.
-        RobotDescription` (parsed once by the caller).
+        and ``<mujoco>`` blocks, or its
+        :class:`~amr_description.core.description.robot_description.RobotDescription` (parsed
+        once by the caller).
     :param name: the model name (``spec.modelname``), str.
     :param pose: initial pose of the root link in the world frame: (x, y, z) in m then
         either (roll, pitch, yaw) in rad (URDF fixed-axis convention) or a quaternion

@@ -32,7 +32,7 @@ import math
 import os
 import sys
 
-from amr_description.core.ros2_control_info import parse_ros2_control
+from amr_description.core.description.ros2_control_info import parse_ros2_control
 from amr_description.core.skid_steer import steady_twist
 from amr_description.core.skid_steer import turn_in_place_rate
 from amr_description.sim.mujoco_system import MujocoSystem

@@ -90,7 +90,7 @@ class RobotScene:
     The links of one robot model in a viser scene.
 
     :param scene: a viser ``SceneApi`` (``server.scene``).
-    :param model: :class:`amr_description.core.urdf_model.RobotModel`.
+    :param model: :class:`amr_description.core.description.urdf_model.RobotModel`.
     :param root: scene path of the robot, e.g. ``/robot``.
     :param frame_prefix: prepended to link names to form TF frame ids (``r1/``), as
         robot_state_publisher's ``frame_prefix``.

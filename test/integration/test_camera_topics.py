@@ -52,7 +52,7 @@ def camera_peer(ros_env):
 def test_our_robot_with_camera_true_publishes_rgbd_topics_at_their_rate(
         procs, exe, ros_env, camera_peer):
     import numpy as np
-    from amr_description.core.description_file import read_description
+    from amr_description.core.description.files import read_description
     peer = camera_peer
     urdf = read_description(XACRO, {'camera': 'true'})
     sim = procs.start([exe('mujoco_sim'), '--ros-args', '-p', f'world:={TARGETS}',

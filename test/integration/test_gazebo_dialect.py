@@ -31,7 +31,7 @@ def drive_peer(ros_env):
 
 
 def _description(**xacro_args):
-    from amr_description.core.description_file import read_description
+    from amr_description.core.description.files import read_description
     args = {'controllers': os.path.join(DATA, 'controllers.yaml')}
     args.update(xacro_args)
     return read_description(os.path.join(DATA, 'robot.urdf.xacro'), args)
@@ -105,7 +105,7 @@ def test_bad_gazebo_descriptions_are_one_line_and_the_simulator_runs_on(procs, e
         refused.output
     # a gz-sim DiffDrive naming a joint the URDF does not have
     caster = os.path.join(ROOT, 'test', 'data', 'gz_diff_drive', 'robot.urdf.xacro')
-    from amr_description.core.description_file import read_description
+    from amr_description.core.description.files import read_description
     wrong = tmp_path / 'wrong_joint.urdf'
     wrong.write_text(read_description(caster).replace(
         '<left_joint>left_wheel_joint</left_joint>', '<left_joint>left_wheel</left_joint>'))

@@ -119,7 +119,7 @@ def test_a_fleet_scene_draws_every_robot_where_it_stands():
 def test_the_main_jobs_scene_draws_the_world_it_drove_in():
     # out/scene.png of the main job in arena.sdf: the pillars (diffuse 0.25 0.45 0.8) and the
     # walls stand around the robot; on the plain ground there are none
-    from amr_description.core.sdf_world import load_world
+    from amr_description.core.gazebo.sdf_world import load_world
     from amr_description.launch.stacks import read_urdf
     from amr_description.sim.render import render_scene
     urdf = read_urdf(os.path.join(ROOT, 'urdf', 'amr.urdf'))

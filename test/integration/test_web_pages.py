@@ -215,7 +215,7 @@ def test_fleet_viewer_shows_every_robot(ros_env, procs, exe, tmp_path):
 def test_gui_slider_moves_joint_states_and_tf(ros_env, procs, exe, tmp_path):
     from amr_description.core.kinematics import joint_transform
     from amr_description.core.kinematics import quaternion_to_matrix
-    from amr_description.core.urdf_model import parse_urdf_file
+    from amr_description.core.description.urdf_model import parse_urdf_file
 
     with open(URDF_PATH) as f:
         description = f.read()

@@ -75,8 +75,8 @@ def test_a_world_that_cannot_be_read_stops_the_simulator_in_one_line(procs, exe,
     sim = procs.start([exe('mujoco_sim'), '--ros-args', '-p', f'world:={world}'], ros_env)
     assert sim.wait(60) == 1, sim.output
     errors = [line for line in sim.output.splitlines() if 'malformed XML' in line]
-    assert len(errors) == 1 and f'{world}:4: malformed XML (mismatched tag' in errors[0], \
-        sim.output
+    assert len(errors) == 1 and f'{world}:4: malformed XML (Opening and ending tag mismatch: ' \
+        'model line 3 and world' in errors[0], sim.output
     assert 'Traceback' not in sim.output
     missing = procs.start([exe('mujoco_sim'), '--ros-args', '-p', 'world:=nowhere'], ros_env)
     assert missing.wait(60) == 1, missing.output

@@ -2,8 +2,8 @@
 # Licensed under the Apache License, Version 2.0
 """ros_gz_bridge YAML: parsing as ros_gz_bridge does, and the ROS side of system topics."""
 
-from amr_description.core.bridge_config import parse_bridge_config
-from amr_description.core.bridge_config import read_bridge_config
+from amr_description.core.gazebo.bridge_config import parse_bridge_config
+from amr_description.core.gazebo.bridge_config import read_bridge_config
 from amr_description.nodes.mujoco_sim.bridge import bridged_inputs
 from amr_description.nodes.mujoco_sim.bridge import bridged_outputs
 from amr_description.sim.systems.base import Input

@@ -17,11 +17,11 @@ import subprocess
 import sys
 import xml.etree.ElementTree as ET
 
-from amr_description.core.description_file import read_description
-from amr_description.core.gazebo_sensors import read_sensor
-from amr_description.core.gazebo_sensors import SensorError
-from amr_description.core.robot_description import RobotDescription
-from amr_description.core.sdf_world import read_world
+from amr_description.core.description.files import read_description
+from amr_description.core.description.robot_description import RobotDescription
+from amr_description.core.gazebo.sdf_world import read_world
+from amr_description.core.gazebo.sensors import read_sensor
+from amr_description.core.gazebo.sensors import SensorError
 from amr_description.sim.simulation import Simulation
 import numpy as np
 import pytest

@@ -11,9 +11,9 @@ box's collision (``loose_box::link::collision``).
 
 import os
 
-from amr_description.core.gazebo_sensors import collision_names
-from amr_description.core.robot_description import RobotDescription
-from amr_description.core.sdf_world import read_world
+from amr_description.core.description.robot_description import RobotDescription
+from amr_description.core.gazebo.sdf_world import read_world
+from amr_description.core.gazebo.sensors import collision_names
 from amr_description.sim.simulation import Simulation
 import numpy as np
 import pytest

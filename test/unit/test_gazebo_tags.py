@@ -5,10 +5,10 @@
 import os
 import xml.etree.ElementTree as ET
 
-from amr_description.core.description_file import parse_xacro_args
-from amr_description.core.description_file import read_description
-from amr_description.core.gazebo_tags import parse_control_plugin
-from amr_description.core.robot_description import RobotDescription
+from amr_description.core.description.files import parse_xacro_args
+from amr_description.core.description.files import read_description
+from amr_description.core.description.robot_description import RobotDescription
+from amr_description.core.gazebo.tags import parse_control_plugin
 import pytest
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))

@@ -11,10 +11,10 @@ As ``gz_system.cpp``: a claimed position command is a velocity target ``gain * (
 joint at velocity 0 (``hold_joints``) or leaves it free.
 """
 
-from amr_description.core.gazebo_tags import ControlPlugin
-from amr_description.core.gazebo_tags import gazebo_material
-from amr_description.core.gazebo_tags import link_gravity
-from amr_description.core.robot_description import RobotDescription
+from amr_description.core.description.robot_description import RobotDescription
+from amr_description.core.gazebo.tags import ControlPlugin
+from amr_description.core.gazebo.tags import gazebo_material
+from amr_description.core.gazebo.tags import link_gravity
 from amr_description.sim.mujoco_system import IDLE_GROUP
 from amr_description.sim.mujoco_system import MujocoSystem
 from amr_description.sim.urdf_to_mjcf import urdf_to_spec

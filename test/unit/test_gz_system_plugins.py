@@ -4,10 +4,10 @@
 
 import os
 
-from amr_description.core import gazebo_systems as gs
-from amr_description.core.gazebo_tags import apply_surface_tags
-from amr_description.core.gazebo_tags import parse_reference_tags
-from amr_description.core.gazebo_tags import surface_friction
+from amr_description.core.gazebo import systems as gs
+from amr_description.core.gazebo.tags import apply_surface_tags
+from amr_description.core.gazebo.tags import parse_reference_tags
+from amr_description.core.gazebo.tags import surface_friction
 from lxml import etree
 import pytest
 
@@ -108,7 +108,7 @@ def test_other_systems_defaults_and_unknown_ones():
 
 
 def test_friction_tags_value_or_text_smaller_wins_and_mujoco_block_wins():
-    from amr_description.core.mujoco_block import MujocoConfig
+    from amr_description.core.description.mujoco_block import MujocoConfig
     assert surface_friction({'mu1': '0.8', 'mu2': '0.3'}, 'x') == 0.3
     assert surface_friction({'mu2': '0.5'}, 'x') == 0.5
     assert surface_friction({'kp': '1e6'}, 'x') is None
@@ -146,7 +146,7 @@ def test_gz_limiter_is_gz_maths_speed_limiter():
 
 @pytest.fixture(scope='module')
 def caster_bot():
-    from amr_description.core.description_file import read_description
+    from amr_description.core.description.files import read_description
     from amr_description.sim.simulation import Simulation
     sim = Simulation(0.001, 0.0)
     entity = sim.spawn(read_description(XACRO, {'cmd_topic': 'base/cmd_vel'}))

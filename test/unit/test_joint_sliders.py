@@ -7,7 +7,7 @@ import math
 import random
 
 from amr_description.core import joint_sliders as js
-from amr_description.core.urdf_model import parse_urdf
+from amr_description.core.description.urdf_model import parse_urdf
 import pytest
 
 URDF = """<robot name="r">

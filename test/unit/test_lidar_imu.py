@@ -5,10 +5,10 @@
 import math
 import os
 
-from amr_description.core.description_file import read_description
-from amr_description.core.gazebo_sensors import Noise
-from amr_description.core.robot_description import RobotDescription
-from amr_description.core.sdf_world import read_world
+from amr_description.core.description.files import read_description
+from amr_description.core.description.robot_description import RobotDescription
+from amr_description.core.gazebo.sdf_world import read_world
+from amr_description.core.gazebo.sensor_kinds import Noise
 from amr_description.sim.sensors.noise import generator
 from amr_description.sim.sensors.noise import NoiseModel
 from amr_description.sim.simulation import Simulation
@@ -417,7 +417,7 @@ def test_noise_model_mean_and_stddev_over_10000_samples():
 
 def test_check_model_says_what_becomes_of_each_sensor_block():
     from amr_description.core.model_check.gazebo import check_gazebo
-    from amr_description.core.urdf_model import parse_xml
+    from amr_description.core.description.urdf_model import parse_xml
     extra = ('<gazebo reference="base_link"><sensor name="cam" type="camera"/></gazebo>'
              '<gazebo reference="ghost"><sensor name="g" type="imu"/></gazebo>')
     xml = _robot(_lidar(rmin=5.0, rmax=1.0).replace('name="lidar"', 'name="bad"')
@@ -434,8 +434,8 @@ def test_check_model_says_what_becomes_of_each_sensor_block():
 
 
 def test_fortress_and_turtlebot_frame_tags_and_sensor_systems_are_understood():
-    from amr_description.core.gazebo_systems import parse_gazebo_systems
-    from amr_description.core.urdf_model import parse_xml
+    from amr_description.core.gazebo.systems import parse_gazebo_systems
+    from amr_description.core.description.urdf_model import parse_xml
     lidar = _lidar().replace('<topic>', '<ignition_frame_id>laser</ignition_frame_id><topic>')
     imu = _imu().replace('<topic>', '<frame_id>imu_frame</frame_id><topic>')
     extra = ('<gazebo><plugin filename="gz-sim-sensors-system" name="gz::sim::systems::Sensors">'
@@ -446,3 +446,19 @@ def test_fortress_and_turtlebot_frame_tags_and_sensor_systems_are_understood():
     blocks = {b.name: b for b in RobotDescription(xml).sensors.sensors}
     assert (blocks['lidar'].frame_id, blocks['imu'].frame_id) == ('laser', 'imu_frame')
     assert parse_gazebo_systems(parse_xml(xml, 'x'), []).unknown == []
+
+
+def test_every_sensor_kind_has_its_reader_and_a_kind_without_one_is_one_line(monkeypatch):
+    from amr_description.core.gazebo import sensor_kinds
+    from amr_description.core.gazebo.sensors import read_sensor
+    from amr_description.core.gazebo.sensors import SensorError
+    from amr_description.core.xml_document import parse_text
+    assert set(sensor_kinds.KINDS.values()) == set(sensor_kinds.SENSOR_KINDS)
+    assert all(callable(reader) for _, reader in sensor_kinds.SENSOR_KINDS.values())
+    # a kind added to the table without its reader is refused, never read as another kind
+    monkeypatch.setitem(sensor_kinds.SENSOR_KINDS, 'sonar', (('sonar',), None))
+    monkeypatch.setitem(sensor_kinds.KINDS, 'sonar', 'sonar')
+    sensor = parse_text('<sensor name="s1" type="sonar"><imu/></sensor>')
+    with pytest.raises(SensorError) as error:
+        read_sensor(sensor, 'base_link')
+    assert str(error.value) == "sensor 's1': kind 'sonar' has no reader (SENSOR_KINDS)"

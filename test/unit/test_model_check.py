@@ -9,6 +9,7 @@ import shutil
 import warnings as python_warnings
 
 from amr_description.core import model_check as mc
+from amr_description.core.description.urdf_model import parse_urdf
 from amr_description.core.model_check import controllers as controller_checks
 from amr_description.core.model_check import controllers_yaml
 from amr_description.core.model_check import installed
@@ -17,7 +18,6 @@ from amr_description.core.model_check import wheels
 from amr_description.core.model_check.findings import ERROR
 from amr_description.core.model_check.findings import INFO
 from amr_description.core.model_check.findings import WARNING
-from amr_description.core.urdf_model import parse_urdf
 from amr_description.nodes import check_model as check_model_command
 import numpy as np
 import pytest

@@ -5,7 +5,7 @@
 
 import math
 
-from amr_description.core.ros2_control_info import parse_ros2_control
+from amr_description.core.description.ros2_control_info import parse_ros2_control
 from amr_description.sim.mujoco_system import MujocoSystem
 from amr_description.sim.urdf_to_mjcf import urdf_to_spec
 from amr_description.sim.world import World

@@ -13,13 +13,13 @@ has its origin at 47.397742 N, 8.545594 E, 488 m.
 import math
 import os
 
+from amr_description.core.gazebo.sdf_world import read_world
 from amr_description.core.geodesy import ecef_to_geodetic
 from amr_description.core.geodesy import geodetic_to_ecef
 from amr_description.core.geodesy import local_to_geodetic
 from amr_description.core.geodesy import SphericalCoordinates
 from amr_description.core.geodesy import WGS84_A
 from amr_description.core.geodesy import WGS84_E2
-from amr_description.core.sdf_world import read_world
 from amr_description.sim.simulation import Simulation
 import numpy as np
 import pytest

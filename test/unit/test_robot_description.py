@@ -12,7 +12,7 @@ import pytest
 rclpy = pytest.importorskip('rclpy')
 
 from amr_description.control.controller_manager import ControllerManager  # noqa: E402, I100
-from amr_description.core.robot_description import RobotDescription  # noqa: E402
+from amr_description.core.description.robot_description import RobotDescription  # noqa: E402
 from amr_description.ros.sim_time import SimTime  # noqa: E402
 from amr_description.ros.sim_time import SimTimeExecutor  # noqa: E402
 from amr_description.sim.simulation import Simulation  # noqa: E402

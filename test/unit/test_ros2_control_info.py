@@ -1,11 +1,11 @@
 # Copyright 2026 The amr_description Authors
 # Licensed under the Apache License, Version 2.0
 
-"""Unit tests of amr_description.core.ros2_control_info (pure, no rclpy)."""
+"""Unit tests of amr_description.core.description.ros2_control_info (pure, no rclpy)."""
 
 import os
 
-from amr_description.core.ros2_control_info import parse_ros2_control
+from amr_description.core.description.ros2_control_info import parse_ros2_control
 import pytest
 
 URDF_PATH = os.path.join(os.path.dirname(__file__), '..', '..', 'urdf', 'amr.urdf')

@@ -5,13 +5,13 @@
 import math
 import os
 
+from amr_description.core.gazebo.sdf_world import read_world
 from amr_description.core.scan_map import compose
 from amr_description.core.scan_map import interpolate
 from amr_description.core.scan_map import inverse
 from amr_description.core.scan_map import scan_to_world
 from amr_description.core.scan_map import surface_distance
 from amr_description.core.scan_map import world_sections
-from amr_description.core.sdf_world import read_world
 import numpy as np
 import pytest
 

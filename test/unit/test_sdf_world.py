@@ -1,13 +1,13 @@
 # Copyright 2026 The amr_description Authors
 # Licensed under the Apache License, Version 2.0
-"""SDF worlds: the reader (core/sdf_world.py) and the MuJoCo world built from it."""
+"""SDF worlds: the reader (core/gazebo/sdf_world.py) and the MuJoCo world built from it."""
 
 import math
 import os
 
-from amr_description.core.sdf_world import load_world
-from amr_description.core.sdf_world import read_world
-from amr_description.core.sdf_world import WorldError
+from amr_description.core.gazebo.sdf_world import load_world
+from amr_description.core.gazebo.sdf_world import read_world
+from amr_description.core.gazebo.sdf_world import WorldError
 import mujoco
 import numpy as np
 import pytest
@@ -91,7 +91,7 @@ def test_every_geometry_is_where_the_closed_form_puts_it(models_path):
 
 
 def test_the_shipped_empty_world_is_the_empty_world():
-    from amr_description.core.description_file import read_description
+    from amr_description.core.description.files import read_description
     from amr_description.sim.urdf_to_mjcf import urdf_to_spec
     from amr_description.sim.world import World
     urdf = read_description(os.path.join(ROOT, 'urdf', 'amr.urdf'))
@@ -155,7 +155,7 @@ def test_bad_parts_are_one_line_each_and_the_rest_loads(tmp_path, models_path):
 
 @pytest.mark.parametrize('text, message', [
     ('<sdf version="1.9"><world name="w"><model name="x"></world></sdf>',
-     ':1: malformed XML (mismatched tag, column 54)'),
+     ':1: malformed XML (Opening and ending tag mismatch: model line 1 and world, column 60)'),
     ('<robot name="r"><link name="base"/></robot>',
      ': this is a URDF (<robot>), not an SDF world; spawn it with create -file'),
     ('<sdf version="1.9"><model name="m"/></sdf>', ': no <world> in this SDF file'),
@@ -206,7 +206,7 @@ def _drive(sim, entity, linear, seconds):
 
 
 def test_a_robot_driven_into_a_shelf_stops_and_a_pushed_box_moves():
-    from amr_description.core.description_file import read_description
+    from amr_description.core.description.files import read_description
     from amr_description.sim.simulation import Simulation
     sim = Simulation(0.001, 0.0, world=load_world('warehouse'))
     urdf = read_description(CASTER_BOT)
@@ -238,7 +238,7 @@ def test_a_robot_driven_into_a_shelf_stops_and_a_pushed_box_moves():
 
 
 def test_a_robot_spawned_into_a_pillar_is_one_warning_naming_it(caplog):
-    from amr_description.core.description_file import read_description
+    from amr_description.core.description.files import read_description
     from amr_description.sim.simulation import Simulation
     sim = Simulation(0.001, 0.0, world=load_world('arena'))
     caplog.set_level('WARNING')
@@ -249,7 +249,7 @@ def test_a_robot_spawned_into_a_pillar_is_one_warning_naming_it(caplog):
 
 
 def test_a_link_whose_visual_meshes_are_missing_shows_its_collision(tmp_path, models_path):
-    from amr_description.core.sdf_world import collapse_repeats
+    from amr_description.core.gazebo.sdf_world import collapse_repeats
     from amr_description.sim.urdf_to_mjcf import COLLISION_GROUP
     from amr_description.sim.urdf_to_mjcf import VISUAL_GROUP
     from amr_description.sim.world import World
@@ -269,8 +269,8 @@ def test_a_link_whose_visual_meshes_are_missing_shows_its_collision(tmp_path, mo
 
 
 def test_shape_bounds_are_the_posed_corners_of_the_primitive():
-    from amr_description.core.sdf_world import Shape
-    from amr_description.core.sdf_world import shape_bounds
+    from amr_description.core.gazebo.sdf_world import Shape
+    from amr_description.core.gazebo.sdf_world import shape_bounds
     turn = np.eye(4)
     turn[:3, :3] = [[0, -1, 0], [1, 0, 0], [0, 0, 1]]  # 90 deg about z
     turn[:3, 3] = [1.0, 2.0, 0.5]
@@ -313,7 +313,7 @@ def test_the_walls_around_a_world_get_static_bodies_of_their_own(tmp_path):
 
 def test_a_robot_with_a_ground_contact_pair_meets_a_shelf_with_its_wheels():
     """urdf/amr.urdf's wheels (explicit ground pairs) reach 0.3 m ahead, its base 0.25 m."""
-    from amr_description.core.description_file import read_description
+    from amr_description.core.description.files import read_description
     from amr_description.sim.urdf_to_mjcf import urdf_to_spec
     from amr_description.sim.world import World
     world = World(0.001, load_world('warehouse'))
@@ -337,7 +337,7 @@ def test_a_robot_with_a_ground_contact_pair_meets_a_shelf_with_its_wheels():
 
 @pytest.mark.parametrize('name, robots', [('arena', 4), ('warehouse', 16)])
 def test_the_fleet_grid_keeps_clear_of_every_world_model_wheels_included(name, robots):
-    from amr_description.core.description_file import read_description
+    from amr_description.core.description.files import read_description
     from amr_description.launch.stacks import fleet_grid
     from amr_description.sim.urdf_to_mjcf import urdf_to_spec
     from amr_description.sim.world import World

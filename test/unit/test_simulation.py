@@ -7,7 +7,7 @@ import math
 import os
 import threading
 
-from amr_description.core.ros2_control_info import parse_ros2_control
+from amr_description.core.description.ros2_control_info import parse_ros2_control
 from amr_description.core.ros_names import normalize_namespace
 from amr_description.sim.simulation import Simulation
 import numpy as np

@@ -5,9 +5,9 @@
 
 import os
 
-from amr_description.core.urdf_model import parse_urdf
-from amr_description.core.urdf_model import parse_urdf_file
-from amr_description.core.urdf_model import URDFError
+from amr_description.core.description.urdf_model import parse_urdf
+from amr_description.core.description.urdf_model import parse_urdf_file
+from amr_description.core.description.urdf_model import URDFError
 import pytest
 
 URDF_PATH = os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', '..', 'urdf',
@@ -178,7 +178,7 @@ def test_file_errors_name_the_file(tmp_path):
 
 
 def test_entity_name():
-    from amr_description.core.urdf_model import entity_name
+    from amr_description.core.description.urdf_model import entity_name
     assert entity_name('r1', '<not xml') == 'r1'
     assert entity_name('', '<robot name="amr"><link name="a"/></robot>') == 'amr'
     assert entity_name('', b'<?xml version="1.0"?><robot name="b"/>') == 'b'

@@ -6,7 +6,7 @@
 import math
 import os
 
-from amr_description.core.mujoco_block import parse_mujoco_block
+from amr_description.core.description.mujoco_block import parse_mujoco_block
 from amr_description.sim.urdf_to_mjcf import rpy_to_quat
 from amr_description.sim.urdf_to_mjcf import urdf_to_spec
 import mujoco

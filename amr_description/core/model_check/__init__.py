@@ -21,9 +21,9 @@ makes a robot fall through the floor, explode, or drive backwards in simulation:
   ``r = +z`` points from the contact to the centre, so the drive direction is ``a x z`` and
   forward needs ``(a x z) . x = a_y > 0``: the axle must point along base +y;
 - the document itself goes through the package's one loader
-  (:func:`amr_description.core.urdf_model.parse_urdf`): what it refuses (non-finite numbers,
-  duplicate names, unknown joint types, broken trees, non-positive inertia on moving links)
-  is an error naming the element that holds it, and no other check runs;
+  (:func:`amr_description.core.description.urdf_model.parse_urdf`): what it refuses (non-finite
+  numbers, duplicate names, unknown joint types, broken trees, non-positive inertia on moving
+  links) is an error naming the element that holds it, and no other check runs;
 - every ``<ros2_control>`` ``<hardware><plugin>`` is a hardware plugin the package registers
   (entry-point group ``amr_description.hardware``, what mujoco_sim loads);
 - the ``<ros2_control>`` block against controllers.yaml (ros2_control format): every wheel of
@@ -37,6 +37,8 @@ Pure logic except the optional ament index lookup of the installed copy; the ``c
 command is :mod:`amr_description.nodes.check_model`. One module per group of checks.
 """
 
+from amr_description.core.description.ros2_control_info import driven_joints
+from amr_description.core.description.ros2_control_info import parse_ros2_control
 from amr_description.core.model_check.controllers import check_ros2_control
 from amr_description.core.model_check.controllers_yaml import diff_drive_params
 from amr_description.core.model_check.gazebo import check_gazebo
@@ -44,17 +46,17 @@ from amr_description.core.model_check.links import check_links
 from amr_description.core.model_check.mujoco import check_mujoco_block
 from amr_description.core.model_check.wheels import check_wheels
 from amr_description.core.model_check.wheels import wheel_joints
-from amr_description.core.ros2_control_info import driven_joints
-from amr_description.core.ros2_control_info import parse_ros2_control
-from lxml import etree
+from amr_description.core.xml_document import parse_text
 
 
 def check_model(model, urdf_xml, controllers=None):
     """
     Run every model check that needs no file system.
 
-    :param model: :class:`~amr_description.core.urdf_model.RobotModel`.
-    :param urdf_xml: the URDF text.
+    :param model: :class:`~amr_description.core.description.urdf_model.RobotModel`; its
+        ``element`` (the parsed ``<robot>``) is read by every check, so the description is
+        parsed once.
+    :param urdf_xml: the URDF text (parsed only when the model holds no element).
     :param controllers: parsed controllers.yaml (dict) or None.
     :returns: list of :class:`Finding`.
     """
@@ -64,14 +66,14 @@ def check_model(model, urdf_xml, controllers=None):
         base = params.get('base_frame_id', base)
         for key in ('left_wheel_names', 'right_wheel_names'):
             wheel_names.extend(params.get(key) or [])
+    root = model.element if model.element is not None else parse_text(urdf_xml)
     try:
-        infos = parse_ros2_control(urdf_xml)
+        infos = parse_ros2_control(root)
     except ValueError:
         infos = []  # check_ros2_control reports it
     findings = check_links(model, driven_joints(model, infos, wheel_names))
     findings += check_wheels(model, wheel_joints(model, controllers), base)
-    findings += check_ros2_control(model, urdf_xml, controllers)
-    findings += check_mujoco_block(model, urdf_xml)
-    findings += check_gazebo(etree.fromstring(
-        urdf_xml.encode('utf-8') if isinstance(urdf_xml, str) else urdf_xml))
+    findings += check_ros2_control(model, root, controllers)
+    findings += check_mujoco_block(model, root)
+    findings += check_gazebo(root)
     return findings

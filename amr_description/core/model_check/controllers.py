@@ -3,6 +3,7 @@
 """The ``<ros2_control>`` blocks and controllers.yaml against the URDF geometry."""
 
 
+from amr_description.core.description.ros2_control_info import parse_ros2_control
 from amr_description.core.model_check.controllers_yaml import diff_drive_params
 from amr_description.core.model_check.controllers_yaml import node_parameters
 from amr_description.core.model_check.findings import ERROR
@@ -13,7 +14,6 @@ from amr_description.core.model_check.findings import INFO
 from amr_description.core.model_check.findings import WARNING
 from amr_description.core.model_check.wheels import joint_position_in_frame
 from amr_description.core.model_check.wheels import wheel_radius
-from amr_description.core.ros2_control_info import parse_ros2_control
 import numpy as np
 
 
@@ -32,8 +32,9 @@ def check_ros2_control(model, urdf_xml, controllers=None):
     """
     Check the ``<ros2_control>`` blocks, and the diff_drive_controller against them.
 
-    :param model: :class:`~amr_description.core.urdf_model.RobotModel`.
-    :param urdf_xml: the URDF text (for the ``<ros2_control>`` blocks).
+    :param model: :class:`~amr_description.core.description.urdf_model.RobotModel`.
+    :param urdf_xml: the URDF text or its parsed ``<robot>`` element (for the
+        ``<ros2_control>`` blocks).
     :param controllers: parsed controllers.yaml (dict) or None to skip the YAML checks.
     :returns: list of :class:`Finding`.
     """
@@ -136,7 +137,7 @@ def check_separation_multiplier(model, element, params, base, sides):
     ``wheel_separation_multiplier = (a^2 + b^2) / b^2`` with ``b`` half the track and ``a``
     the mean distance of the wheels from their centre along x (half the wheelbase).
 
-    :param model: :class:`~amr_description.core.urdf_model.RobotModel`.
+    :param model: :class:`~amr_description.core.description.urdf_model.RobotModel`.
     :param element: the controller's name in findings (str).
     :param params: its ``ros__parameters`` (dict).
     :param base: the base frame the wheel positions are expressed in.

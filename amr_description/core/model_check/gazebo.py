@@ -11,23 +11,23 @@ mapped to contact friction; the tags Harmonic's default engine ignores are ignor
 everything else is reported as not read by the simulator (yet).
 """
 
-from amr_description.core.gazebo_sensors import read_sensor
-from amr_description.core.gazebo_sensors import SensorError
-from amr_description.core.gazebo_systems import is_sensor_system
-from amr_description.core.gazebo_systems import parse_gazebo_systems
-from amr_description.core.gazebo_systems import system_class
-from amr_description.core.gazebo_tags import FRICTION_TAGS
-from amr_description.core.gazebo_tags import gazebo_material
-from amr_description.core.gazebo_tags import GRAVITY_TAGS
-from amr_description.core.gazebo_tags import IGNORED_AS_HARMONIC
-from amr_description.core.gazebo_tags import is_control_plugin
-from amr_description.core.gazebo_tags import KEPT_JOINT_TAGS
-from amr_description.core.gazebo_tags import link_gravity
-from amr_description.core.gazebo_tags import parse_control_plugin
-from amr_description.core.gazebo_tags import surface_friction
-from amr_description.core.gazebo_tags import tag_bool
-from amr_description.core.gazebo_tags import tag_text
-from amr_description.core.gazebo_tags import VISUAL_TAGS
+from amr_description.core.gazebo.sensors import read_sensor
+from amr_description.core.gazebo.sensors import SensorError
+from amr_description.core.gazebo.systems import is_sensor_system
+from amr_description.core.gazebo.systems import parse_gazebo_systems
+from amr_description.core.gazebo.systems import system_class
+from amr_description.core.gazebo.tags import FRICTION_TAGS
+from amr_description.core.gazebo.tags import gazebo_material
+from amr_description.core.gazebo.tags import GRAVITY_TAGS
+from amr_description.core.gazebo.tags import IGNORED_AS_HARMONIC
+from amr_description.core.gazebo.tags import is_control_plugin
+from amr_description.core.gazebo.tags import KEPT_JOINT_TAGS
+from amr_description.core.gazebo.tags import link_gravity
+from amr_description.core.gazebo.tags import parse_control_plugin
+from amr_description.core.gazebo.tags import surface_friction
+from amr_description.core.gazebo.tags import tag_bool
+from amr_description.core.gazebo.tags import tag_text
+from amr_description.core.gazebo.tags import VISUAL_TAGS
 from amr_description.core.model_check.findings import ERROR
 from amr_description.core.model_check.findings import Finding
 from amr_description.core.model_check.findings import INFO
@@ -150,8 +150,12 @@ def _sensor(sensor, where, reference, links):
         what = f'{kind[block.kind]} of {camera.width}x{camera.height} pixels'
     elif block.kind == 'navsat':
         what = "a navsat (GPS) receiver, given the world's <spherical_coordinates>,"
-    else:
+    elif block.kind == 'contact':
+        what = f'a contact sensor of collision {block.contact_collision!r}'
+    elif block.kind == 'imu':
         what = 'an IMU'
+    else:
+        what = f'a {block.kind} sensor'
     return Finding(INFO, element, f'simulated as {what} at {rate} (docs/sensors.md)')
 
 

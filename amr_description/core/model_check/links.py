@@ -98,9 +98,9 @@ def check_links(model, driven=None):
     A driven wheel without ``<collision>`` is an error: it cannot touch the ground, so the
     robot sits on its base while the wheel spins in the air.
 
-    :param model: :class:`~amr_description.core.urdf_model.RobotModel`.
+    :param model: :class:`~amr_description.core.description.urdf_model.RobotModel`.
     :param driven: dict joint name -> why it is driven (text), from
-        :func:`~amr_description.core.ros2_control_info.driven_joints`.
+        :func:`~amr_description.core.description.ros2_control_info.driven_joints`.
     :returns: list of :class:`Finding`.
     """
     driven = driven or {}

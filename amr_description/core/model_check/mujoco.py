@@ -3,27 +3,28 @@
 """The ``<mujoco>`` simulator block, read by the simulator's own reader."""
 
 
+from amr_description.core.description.mujoco_block import parse_mujoco_block
+from amr_description.core.description.ros2_control_info import parse_ros2_control
 from amr_description.core.model_check.findings import ERROR
 from amr_description.core.model_check.findings import Finding
 from amr_description.core.model_check.findings import INFO
-from amr_description.core.mujoco_block import parse_mujoco_block
-from amr_description.core.ros2_control_info import parse_ros2_control
-from lxml import etree
+from amr_description.core.xml_document import parse_text
 
 
 def check_mujoco_block(model, urdf_xml):
     """
     Check the ``<mujoco>`` extension block (format: docs/architecture.md).
 
-    Values are read by :func:`amr_description.core.mujoco_block.parse_mujoco_block`, the
-    reader the simulator's converter uses: what it refuses is reported here with its line.
+    :param model: :class:`~amr_description.core.description.urdf_model.RobotModel`.
+    :param urdf_xml: the URDF text, or its parsed ``<robot>`` element.
+
+    Values are read by :func:`amr_description.core.description.mujoco_block.parse_mujoco_block`,
+    the reader the simulator's converter uses: what it refuses is reported here with its line.
 
     :returns: list of :class:`Finding`: a value the reader refuses, link/joint names that do
         not exist, actuators on joints without a velocity command interface.
     """
-    if isinstance(urdf_xml, str):
-        urdf_xml = urdf_xml.encode('utf-8')
-    root = etree.fromstring(urdf_xml)
+    root = parse_text(urdf_xml) if isinstance(urdf_xml, (str, bytes)) else urdf_xml
     blocks = root.findall('mujoco')
     if not blocks:
         return [Finding(INFO, '<mujoco>', 'no simulator block: the measured defaults of '

@@ -33,7 +33,7 @@ def wheel_radius(model, link_name, axis=None):
     """
     Return the wheel radius (m) of a link from its collision (else visual) geometry.
 
-    :param model: :class:`~amr_description.core.urdf_model.RobotModel`.
+    :param model: :class:`~amr_description.core.description.urdf_model.RobotModel`.
     :param link_name: the wheel link.
     :param axis: unused; kept for symmetry with the joint axis checks.
     :returns: the radius of the first cylinder or sphere, or None when there is none.
@@ -54,7 +54,7 @@ def wheel_joints(model, controllers=None):
     """
     Return the names of the drive wheel joints.
 
-    :param model: :class:`~amr_description.core.urdf_model.RobotModel`.
+    :param model: :class:`~amr_description.core.description.urdf_model.RobotModel`.
     :param controllers: parsed controllers.yaml (dict) or None.
     :returns: the ``left_wheel_names + right_wheel_names`` of every diff_drive_controller in
         ``controllers`` that are URDF joints; without controllers, every continuous joint
@@ -94,7 +94,7 @@ def check_wheels(model, joints, base_frame):
     """
     Check that positive speed of each drive wheel rolls the base forward.
 
-    :param model: :class:`~amr_description.core.urdf_model.RobotModel`.
+    :param model: :class:`~amr_description.core.description.urdf_model.RobotModel`.
     :param joints: wheel joint names.
     :param base_frame: the base link (REP 105 ``base_link``; the root when absent).
     :returns: list of :class:`Finding`.

@@ -144,7 +144,7 @@ def scan_report(opts, robot, scans):
     from amr_description.core.scan_map import compose
     from amr_description.core.scan_map import inverse
     from amr_description.core.scan_map import world_sections
-    from amr_description.core.sdf_world import load_world
+    from amr_description.core.gazebo.sdf_world import load_world
     from amr_description.launch.stacks import read_urdf
     from amr_description.nodes.drive_square.scans import lidar_mount
     from amr_description.nodes.drive_square.scans import MARGIN
@@ -197,7 +197,7 @@ def report(opts, node, legs, log_path, scans=None):
                              'truth_origin': r.truth_marks[0]} for r in robots], opts.side)
     written = [plot]
     scene = os.path.join(opts.output_dir, 'scene.png')
-    from amr_description.core.sdf_world import load_world
+    from amr_description.core.gazebo.sdf_world import load_world
     from amr_description.launch.stacks import read_urdf
     from amr_description.sim.render import render_scene
     from amr_description.sim.render import save_png

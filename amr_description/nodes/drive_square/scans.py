@@ -14,7 +14,7 @@ stddev + 1 cm of a true surface.
 
 import math
 
-from amr_description.core.robot_description import RobotDescription
+from amr_description.core.description.robot_description import RobotDescription
 from amr_description.core.scan_map import compose
 from amr_description.core.scan_map import interpolate
 from amr_description.core.scan_map import scan_to_world

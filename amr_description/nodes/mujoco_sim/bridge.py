@@ -4,14 +4,14 @@
 The ROS side of a robot's gz-sim topics, as the user's ros_gz_bridge would make it.
 
 Without a bridge configuration every gz topic of a system is the ROS topic of the same name.
-With one (``bridge_config`` parameter, :mod:`amr_description.core.bridge_config`), a system's
-topic reaches ROS only when an entry bridges it in that direction, under the entry's ROS
+With one (``bridge_config`` parameter, :mod:`amr_description.core.gazebo.bridge_config`), a
+system's topic reaches ROS only when an entry bridges it in that direction, under the entry's ROS
 name; the entry's ROS type must be the type the bridge would convert to (a command topic may
 also be bridged as ``geometry_msgs/msg/TwistStamped``, whose ``twist`` is used, as
 ros_gz_bridge's TwistStamped <-> gz.msgs.Twist conversion does).
 """
 
-from amr_description.core.bridge_config import ros_side
+from amr_description.core.gazebo.bridge_config import ros_side
 from geometry_msgs.msg import Twist
 from geometry_msgs.msg import TwistStamped
 

@@ -8,9 +8,9 @@ Parameters, topics, services and threads: see :mod:`amr_description.nodes.mujoco
 
 import threading
 
-from amr_description.core.bridge_config import read_bridge_config
-from amr_description.core.sdf_world import collapse_repeats
-from amr_description.core.sdf_world import load_world
+from amr_description.core.gazebo.bridge_config import read_bridge_config
+from amr_description.core.gazebo.sdf_world import collapse_repeats
+from amr_description.core.gazebo.sdf_world import load_world
 from amr_description.nodes.mujoco_sim.bridge import bridged_inputs
 from amr_description.nodes.mujoco_sim.bridge import bridged_outputs
 from amr_description.nodes.mujoco_sim.clock import ClockFollower

@@ -10,7 +10,7 @@ a coroutine awaiting it, so the executor serves other callbacks meanwhile.
 
 import math
 
-from amr_description.core.description_file import read_description
+from amr_description.core.description.files import read_description
 from amr_description.core.ros_names import normalize_namespace
 from amr_description.sim.simulation import SpawnError
 from rclpy.task import Future

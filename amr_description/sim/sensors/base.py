@@ -2,8 +2,8 @@
 # Licensed under the Apache License, Version 2.0
 """The sensor protocol of the simulator (no rclpy)."""
 
-from amr_description.core.gazebo_sensors import default_topic
-from amr_description.core.gazebo_sensors import lumped_link
+from amr_description.core.gazebo.sensors import default_topic
+from amr_description.core.gazebo.sensors import lumped_link
 from amr_description.ros.stamps import set_stamp
 
 

@@ -51,7 +51,7 @@ import array
 import copy
 import threading
 
-from amr_description.core.gazebo_sensors import IMAGE_FORMATS
+from amr_description.core.gazebo.sensor_kinds import IMAGE_FORMATS
 from amr_description.ros.stamps import set_stamp
 from amr_description.sim.sensors.base import named_topic
 from amr_description.sim.sensors.base import Sensor
@@ -167,7 +167,7 @@ class CameraCapture:
     One camera block: what to render and the outputs asking for it at the current instant.
 
     :param prefix: the entity's name prefix in the world (``<entity>/``).
-    :param block: the :class:`~amr_description.core.gazebo_sensors.SensorBlock`.
+    :param block: the :class:`~amr_description.core.gazebo.sensors.SensorBlock`.
     :param frame_id: the optical frame id (with the frame prefix).
     :param optical: True when ``frame_id`` is an optical frame (points in optical axes).
     :param renderer: the :class:`CameraRenderer` that renders it.

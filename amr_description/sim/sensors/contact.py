@@ -4,7 +4,7 @@
 A contact sensor: ``contact`` sensor blocks (a bumper).
 
 ``<contact><collision>`` names one collision of the sensor's link by its SDF name
-(:func:`~amr_description.core.gazebo_sensors.collision_names`: ``base_link_collision``, ...).
+(:func:`~amr_description.core.gazebo.sensors.collision_names`: ``base_link_collision``, ...).
 At each due instant the sensor reports MuJoCo's contacts of that collision's geom, one
 ``ros_gz_interfaces/Contact`` per touching collision, as ros_gz_bridge delivers gz-sim's
 ``gz.msgs.Contacts`` (``ros_gz_interfaces/msg/Contacts``, built field for field in
@@ -27,8 +27,8 @@ An empty ``contacts`` list when nothing touches. A collision name the link does 
 one line naming the sensor and the field; the sensor is skipped.
 """
 
-from amr_description.core.gazebo_sensors import collision_names
-from amr_description.core.gazebo_sensors import lumped_link
+from amr_description.core.gazebo.sensors import collision_names
+from amr_description.core.gazebo.sensors import lumped_link
 from amr_description.ros.stamps import set_stamp
 from amr_description.sim.sensors.base import Sensor
 from amr_description.sim.sensors.base import sensor_frame

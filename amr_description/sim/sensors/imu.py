@@ -30,7 +30,7 @@ class Imu(Sensor):
     One IMU of one entity (module docstring); measured at every due instant.
 
     :param prefix: the entity's name prefix in the world (``<entity>/``).
-    :param block: the :class:`~amr_description.core.gazebo_sensors.SensorBlock`.
+    :param block: the :class:`~amr_description.core.gazebo.sensors.SensorBlock`.
     :param topics: ``(ROS topic, gz topic)``.
     :param frame_id: ``header.frame_id``.
     :param rate: Hz of sim time.

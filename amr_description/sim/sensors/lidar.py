@@ -57,7 +57,7 @@ class LidarCast:
     The rays of one lidar and its last scan (no rclpy).
 
     :param prefix: the entity's name prefix in the world (``<entity>/``).
-    :param block: the :class:`~amr_description.core.gazebo_sensors.SensorBlock`.
+    :param block: the :class:`~amr_description.core.gazebo.sensors.SensorBlock`.
     :param rng: numpy ``Generator`` of its noise.
     :ivar ranges: (rows, columns) float64, m, the last scan after REP 117 and noise.
     :ivar directions: (rows * columns, 3) unit ray directions in the sensor frame.

@@ -12,7 +12,7 @@ A camera gets a MuJoCo camera ``camera/<name>`` at the site: MuJoCo's camera loo
 -Z with +Y up and +X right, SDF's along the sensor's +X with +Z up, so the camera's axes in
 the sensor frame are x = -y_s, y = z_s, z = -x_s (:data:`CAMERA_IN_SENSOR`); its vertical
 field of view is ``2 atan(height / (2 fy))`` (``fy`` from the SDF intrinsics or the
-horizontal field of view, :meth:`~amr_description.core.gazebo_sensors.CameraSpec.k`).
+horizontal field of view, :meth:`~amr_description.core.gazebo.sensors.CameraSpec.k`).
 The world's attach prefix (``<entity>/``) is put in front of every name.
 """
 
@@ -46,7 +46,7 @@ def camera_quat(rpy):
 
 
 def site_name(block):
-    """Return the site name of a :class:`~amr_description.core.gazebo_sensors.SensorBlock`."""
+    """Return the site name of a :class:`~amr_description.core.gazebo.sensors.SensorBlock`."""
     return f'sensor/{block.name}'
 
 
@@ -70,7 +70,7 @@ def add_mounts(spec, blocks):
     Add the site (and an IMU's MuJoCo sensors) of every sensor block to a robot spec.
 
     :param spec: the robot's ``mujoco.MjSpec`` (bodies named after the URDF links).
-    :param blocks: list of :class:`~amr_description.core.gazebo_sensors.SensorBlock`.
+    :param blocks: list of :class:`~amr_description.core.gazebo.sensors.SensorBlock`.
     """
     for block in blocks:
         body = spec.body(block.link)

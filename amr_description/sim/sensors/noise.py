@@ -30,7 +30,7 @@ class NoiseModel:
     """
     One SDF ``<noise>`` bound to a generator.
 
-    :param noise: :class:`~amr_description.core.gazebo_sensors.Noise`.
+    :param noise: :class:`~amr_description.core.gazebo.sensors.Noise`.
     :param rng: numpy ``Generator``.
     """
 
@@ -80,7 +80,7 @@ class AxesNoise:
     the gaussian draws of all axes come from one call of the generator, so that an IMU's six
     axes cost one draw per measurement.
 
-    :param noises: list of :class:`~amr_description.core.gazebo_sensors.Noise`, one per axis.
+    :param noises: list of :class:`~amr_description.core.gazebo.sensors.Noise`, one per axis.
     :param rng: numpy ``Generator``.
     """
 

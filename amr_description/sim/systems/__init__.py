@@ -4,7 +4,7 @@
 gz-sim systems a robot description names in ``<gazebo><plugin>`` (no rclpy).
 
 gz-sim runs a model's systems (DiffDrive, JointStatePublisher, OdometryPublisher; parameters
-read by :mod:`amr_description.core.gazebo_systems`) at every physics step. Here a robot's
+read by :mod:`amr_description.core.gazebo.systems`) at every physics step. Here a robot's
 systems are one :class:`SystemGroup` that the
 :class:`~amr_description.sim.simulation.Simulation` steps like a controller manager, at
 :data:`~amr_description.sim.systems.base.SYSTEM_RATE` Hz of sim time (or faster when a system
@@ -17,7 +17,7 @@ bridge would deliver (docs/gazebo.md).
 
 import copy
 
-from amr_description.core.gazebo_systems import resolve_defaults
+from amr_description.core.gazebo.systems import resolve_defaults
 from amr_description.sim.systems.base import SYSTEM_RATE
 from amr_description.sim.systems.diff_drive import DiffDrive
 from amr_description.sim.systems.joint_state_publisher import JointStatePublisher

@@ -2,9 +2,9 @@
 # Licensed under the Apache License, Version 2.0
 """The protocol of a gz-sim system run by the simulator (no rclpy)."""
 
-from amr_description.core.ros2_control_info import ComponentInfo
-from amr_description.core.ros2_control_info import HardwareInfo
-from amr_description.core.ros2_control_info import InterfaceInfo
+from amr_description.core.description.ros2_control_info import ComponentInfo
+from amr_description.core.description.ros2_control_info import HardwareInfo
+from amr_description.core.description.ros2_control_info import InterfaceInfo
 from amr_description.sim.mujoco_system import MujocoSystem
 from amr_description.sim.sensors.base import Sensor
 
@@ -92,7 +92,7 @@ def joint_hardware(world, entity, name, joints, commands=(), states=('position',
     :param name: the component's name in error messages.
     :param joints: URDF joint names.
     :param commands: command interface names of every joint (their actuators must exist:
-        :meth:`~amr_description.core.gazebo_systems.GazeboSystems.hardware`).
+        :meth:`~amr_description.core.gazebo.systems.GazeboSystems.hardware`).
     :param states: state interface names of every joint.
     :raises ValueError: one line naming a joint or actuator missing from the model.
     """

@@ -24,7 +24,7 @@ Reproduced from gz-sim 8 ``src/systems/diff_drive/DiffDrive.cc`` (behaviour, not
 
 import math
 
-from amr_description.core.gazebo_systems import frame_id_gz_to_ros
+from amr_description.core.gazebo.systems import frame_id_gz_to_ros
 from amr_description.core.odometry import Odometry
 from amr_description.core.speed_limiter import SpeedLimiter
 from amr_description.ros.stamps import set_stamp
@@ -74,7 +74,7 @@ class DiffDrive(ModelSystem):
     """
     One DiffDrive system of one robot (see the module docstring).
 
-    :param params: :class:`~amr_description.core.gazebo_systems.DiffDriveParams` with its
+    :param params: :class:`~amr_description.core.gazebo.systems.DiffDriveParams` with its
         defaults resolved.
     :param world: the :class:`~amr_description.sim.world.World`.
     :param entity: the spawned entity.

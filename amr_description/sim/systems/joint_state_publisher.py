@@ -24,7 +24,7 @@ class JointStatePublisher(ModelSystem):
     """
     One JointStatePublisher of one robot (see the module docstring).
 
-    :param params: :class:`~amr_description.core.gazebo_systems.JointStatePublisherParams`
+    :param params: :class:`~amr_description.core.gazebo.systems.JointStatePublisherParams`
         with its defaults resolved.
     :param world: the :class:`~amr_description.sim.world.World`.
     :param entity: the spawned entity.

@@ -18,7 +18,7 @@ mean); here the twist is MuJoCo's exact velocity of the root link.
 
 import math
 
-from amr_description.core.gazebo_systems import frame_id_gz_to_ros
+from amr_description.core.gazebo.systems import frame_id_gz_to_ros
 from amr_description.ros.stamps import set_stamp
 from amr_description.sim.sensors.base import fill_odometry
 from amr_description.sim.systems.base import ModelSystem
@@ -66,7 +66,7 @@ class OdometryPublisher(ModelSystem):
     """
     One OdometryPublisher of one robot (see the module docstring).
 
-    :param params: :class:`~amr_description.core.gazebo_systems.OdometryPublisherParams`
+    :param params: :class:`~amr_description.core.gazebo.systems.OdometryPublisherParams`
         with its defaults resolved.
     :param world: the :class:`~amr_description.sim.world.World`.
     :param entity: the spawned entity.

@@ -32,7 +32,7 @@ import time
 
 
 def _xacro(mappings):
-    from amr_description.core.description_file import read_description
+    from amr_description.core.description.files import read_description
     from amr_description.launch.stacks import urdf_path
     return read_description(urdf_path(), mappings)
 
@@ -57,7 +57,7 @@ def run(urdf, seconds, heard):
 
     :param heard: request every camera output at its due instants (else none).
     """
-    from amr_description.core.sdf_world import load_world
+    from amr_description.core.gazebo.sdf_world import load_world
     from amr_description.sim.simulation import Simulation
     sim = Simulation(real_time_factor=0.0, world=load_world('warehouse'),
                      sensor_settings={'publish_ground_truth': False})
@@ -86,7 +86,7 @@ def run(urdf, seconds, heard):
 
 def memory():
     """Return resident MB: (before a render, after one camera renders, after a second)."""
-    from amr_description.core.sdf_world import load_world
+    from amr_description.core.gazebo.sdf_world import load_world
     from amr_description.sim.simulation import Simulation
     urdf = _xacro({'camera': 'true', 'lidar': 'false', 'imu': 'false'})
     sim = Simulation(real_time_factor=0.0, world=load_world('warehouse'),

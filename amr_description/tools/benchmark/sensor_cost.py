@@ -49,7 +49,7 @@ VLP = ('<vertical><samples>16</samples><min_angle>-0.2618</min_angle>'
 
 
 def _xacro(mappings=None):
-    from amr_description.core.description_file import read_description
+    from amr_description.core.description.files import read_description
     from amr_description.launch.stacks import urdf_path
     return read_description(urdf_path(), mappings or {})
 
@@ -70,7 +70,7 @@ def ray_rates(scans):
     """Return (sensor-path rays/s, raw mj_multiRay rays/s) in the warehouse."""
     import mujoco
     import numpy as np
-    from amr_description.core.sdf_world import load_world
+    from amr_description.core.gazebo.sdf_world import load_world
     from amr_description.sim.simulation import Simulation
     sim = Simulation(real_time_factor=0.0, world=load_world('warehouse'),
                      sensor_settings={'publish_ground_truth': False})
@@ -102,7 +102,7 @@ def ray_rates(scans):
 
 def sim_rate(urdfs, world_name, seconds):
     """Return sim seconds per wall second of robots measuring every due sensor."""
-    from amr_description.core.sdf_world import load_world
+    from amr_description.core.gazebo.sdf_world import load_world
     from amr_description.sim.simulation import Simulation
     world = None if world_name == 'empty' else load_world(world_name)
     sim = Simulation(real_time_factor=0.0, world=world,

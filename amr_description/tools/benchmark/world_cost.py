@@ -8,7 +8,7 @@ Side by side in one run, in this process (no ROS): for the shipped ``empty`` and
 change of the machine's load hits both alike:
 
 load
-    wall time of :func:`~amr_description.core.sdf_world.load_world` plus building and
+    wall time of :func:`~amr_description.core.gazebo.sdf_world.load_world` plus building and
     compiling the MuJoCo world (:class:`~amr_description.sim.world.World`); the smallest of
     the repeats.
 step rate
@@ -43,7 +43,7 @@ def measure(world_name, urdf, steps):
     :param steps: physics steps timed.
     """
     import mujoco
-    from amr_description.core.sdf_world import load_world
+    from amr_description.core.gazebo.sdf_world import load_world
     from amr_description.sim.urdf_to_mjcf import urdf_to_spec
     from amr_description.sim.world import World
     start = time.perf_counter()
@@ -68,7 +68,7 @@ def run(names, steps=5000, repeats=5):
     :param names: world names or files; the first is the reference (``empty``).
     :returns: list of ``(name, load s, mj_step/s, ratio to the first)``.
     """
-    from amr_description.core.description_file import read_description
+    from amr_description.core.description.files import read_description
     from amr_description.tools.benchmark.common import repo_root
     urdf = read_description(os.path.join(repo_root(), 'urdf', 'amr.urdf'))
     loads = {n: [] for n in names}

@@ -48,7 +48,7 @@ class RobotModelDisplay(Display):
                 latched)
 
     def _on_description(self, topic, msg):
-        from amr_description.core.urdf_model import parse_urdf
+        from amr_description.core.description.urdf_model import parse_urdf
         from amr_description.web.robot_scene import RobotScene
         log = self.node.get_logger()
         try:

@@ -34,11 +34,12 @@ from dataclasses import dataclass
 from dataclasses import field
 import math
 import os
-import xml.etree.ElementTree as ET
 
 from amr_description.core.geodesy import SphericalCoordinates
 from amr_description.core.kinematics import quaternion_to_matrix
 from amr_description.core.kinematics import rpy_to_matrix
+from amr_description.core.xml_document import parse_file
+from amr_description.core.xml_document import XMLError
 import numpy as np
 
 NEWEST_VERSION = (1, 11)
@@ -268,13 +269,12 @@ def _version(root, source, messages):
 def _parse_file(path, what):
     """Return the root element of an XML file; raise _Skip with file and line."""
     try:
-        return ET.parse(path).getroot()
+        return parse_file(path)
     except OSError as exc:
         raise _Skip(f'{path}: cannot read {what}: {exc.strerror or exc}') from None
-    except ET.ParseError as exc:
-        line, column = exc.position
-        raise _Skip(f'{path}:{line}: malformed XML ({str(exc).split(":")[0]}, '
-                    f'column {column + 1})') from None
+    except XMLError as exc:
+        raise _Skip(f'{path}:{exc.line}: malformed XML ({exc.reason}, '
+                    f'column {exc.column})') from None
 
 
 class _Reader:
@@ -308,7 +308,7 @@ class _Reader:
             searched = ':'.join(self.search_path()) or 'empty'
             raise _Skip(f'{uri} not found in GZ_SIM_RESOURCE_PATH ({searched})')
         if uri.startswith('package://'):
-            from amr_description.core.description_file import resolve_uri
+            from amr_description.core.description.files import resolve_uri
             return resolve_uri(uri)
         if uri.startswith('file://'):
             uri = uri[len('file://'):]
@@ -682,7 +682,7 @@ def find_world(value):
         raise WorldError(f'world {value!r}: no such file and not a shipped world '
                          f'({", ".join(names)})')
     if value.startswith('package://'):
-        from amr_description.core.description_file import resolve_uri
+        from amr_description.core.description.files import resolve_uri
         try:
             value = resolve_uri(value)
         except ValueError as exc:

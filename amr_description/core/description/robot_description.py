@@ -8,22 +8,22 @@ hands it to the URDF -> MJCF converter, the resource manager and joint_state_bro
 one spawn is one XML parse (test/unit/test_robot_description.py counts them).
 """
 
-from amr_description.core.gazebo_sensors import parse_sensors
-from amr_description.core.gazebo_systems import parse_gazebo_systems
-from amr_description.core.gazebo_tags import apply_surface_tags
-from amr_description.core.gazebo_tags import gazebo_material
-from amr_description.core.gazebo_tags import GAZEBO_SYSTEMS
-from amr_description.core.gazebo_tags import link_gravity
-from amr_description.core.gazebo_tags import parse_control_plugin
-from amr_description.core.gazebo_tags import parse_reference_tags
-from amr_description.core.gazebo_tags import SIMULATOR_SYSTEMS
-from amr_description.core.gazebo_tags import text_bool
-from amr_description.core.mujoco_block import add_drive_defaults
-from amr_description.core.mujoco_block import parse_mujoco_block
-from amr_description.core.ros2_control_info import driven_joints
-from amr_description.core.ros2_control_info import parse_ros2_control
-from amr_description.core.urdf_model import model_from_element
-from amr_description.core.urdf_model import parse_xml
+from amr_description.core.description.mujoco_block import add_drive_defaults
+from amr_description.core.description.mujoco_block import parse_mujoco_block
+from amr_description.core.description.ros2_control_info import driven_joints
+from amr_description.core.description.ros2_control_info import parse_ros2_control
+from amr_description.core.description.urdf_model import model_from_element
+from amr_description.core.description.urdf_model import parse_xml
+from amr_description.core.gazebo.sensors import parse_sensors
+from amr_description.core.gazebo.systems import parse_gazebo_systems
+from amr_description.core.gazebo.tags import apply_surface_tags
+from amr_description.core.gazebo.tags import gazebo_material
+from amr_description.core.gazebo.tags import GAZEBO_SYSTEMS
+from amr_description.core.gazebo.tags import link_gravity
+from amr_description.core.gazebo.tags import parse_control_plugin
+from amr_description.core.gazebo.tags import parse_reference_tags
+from amr_description.core.gazebo.tags import SIMULATOR_SYSTEMS
+from amr_description.core.gazebo.tags import text_bool
 
 
 class RobotDescription:
@@ -35,21 +35,21 @@ class RobotDescription:
     :ivar xml: the URDF text (str), as given to controllers (``robot_description``).
     :ivar root: the lxml ``<robot>`` element (comments removed).
     :ivar name: the ``<robot name>``.
-    :ivar model: the kinematic :class:`~amr_description.core.urdf_model.RobotModel`.
+    :ivar model: the kinematic :class:`~amr_description.core.description.urdf_model.RobotModel`.
     :ivar hardware: the ``<ros2_control>`` blocks, list of
-        :class:`~amr_description.core.ros2_control_info.HardwareInfo`.
-    :ivar mujoco: the simulator settings, :class:`~amr_description.core.mujoco_block.
+        :class:`~amr_description.core.description.ros2_control_info.HardwareInfo`.
+    :ivar mujoco: the simulator settings, :class:`~amr_description.core.description.mujoco_block.
         MujocoConfig`.
     :ivar control_plugin: gz_ros2_control's ``<gazebo><plugin>``, a
-        :class:`~amr_description.core.gazebo_tags.ControlPlugin`, or None.
+        :class:`~amr_description.core.gazebo.tags.ControlPlugin`, or None.
     :ivar gz_systems: the gz-sim system plugins, a
-        :class:`~amr_description.core.gazebo_systems.GazeboSystems`.
+        :class:`~amr_description.core.gazebo.systems.GazeboSystems`.
     :ivar gazebo_tags: the ``<gazebo reference>`` tags, dict reference -> dict tag -> value.
     :ivar sensors: the ``<gazebo reference><sensor>`` blocks, a
-        :class:`~amr_description.core.gazebo_sensors.SensorBlocks` (its ``messages`` name the
+        :class:`~amr_description.core.gazebo.sensors.SensorBlocks` (its ``messages`` name the
         sensors left out).
     :ivar link_colours: dict link -> rgba (4 floats) of its ``<gazebo reference><material>``
-        (``Gazebo/*``, :data:`~amr_description.core.gazebo_tags.GAZEBO_MATERIALS`): the
+        (``Gazebo/*``, :data:`~amr_description.core.gazebo.tags.GAZEBO_MATERIALS`): the
         colour of all its visuals in the simulator, as gz-sim.
     :ivar weightless_links: links whose ``<gazebo reference>`` turns gravity off (a set).
     :ivar messages: lines about Gazebo tags read but not applied (an unknown material) and

@@ -15,7 +15,7 @@ Read as gz-sim 8 reads them (``src/systems/diff_drive``, ``joint_state_publisher
 - a relative topic gets a leading ``/`` (gz-transport resolves it against an empty
   namespace).
 
-gz_ros2_control's plugin is :mod:`amr_description.core.gazebo_tags`'s. Every other plugin is
+gz_ros2_control's plugin is :mod:`amr_description.core.gazebo.tags`'s. Every other plugin is
 kept by name in :attr:`GazeboSystems.unknown`, to be reported once as not simulated.
 """
 
@@ -23,11 +23,11 @@ from dataclasses import dataclass
 from dataclasses import field
 import math
 
-from amr_description.core.gazebo_tags import is_control_plugin
-from amr_description.core.gazebo_tags import tag_text
-from amr_description.core.ros2_control_info import ComponentInfo
-from amr_description.core.ros2_control_info import HardwareInfo
-from amr_description.core.ros2_control_info import InterfaceInfo
+from amr_description.core.description.ros2_control_info import ComponentInfo
+from amr_description.core.description.ros2_control_info import HardwareInfo
+from amr_description.core.description.ros2_control_info import InterfaceInfo
+from amr_description.core.gazebo.tags import is_control_plugin
+from amr_description.core.gazebo.tags import tag_text
 
 DIFF_DRIVE = 'gz::sim::systems::DiffDrive'
 JOINT_STATE_PUBLISHER = 'gz::sim::systems::JointStatePublisher'
@@ -211,9 +211,9 @@ class GazeboSystems:
         """
         Return the joints the systems command as a ``<ros2_control>``-like block.
 
-        One :class:`~amr_description.core.ros2_control_info.HardwareInfo` (the simulator's
-        system) with a velocity command interface per driven joint, so the converter gives
-        each its velocity servo as it does a ros2_control velocity joint; [] without one.
+        One :class:`~amr_description.core.description.ros2_control_info.HardwareInfo` (the
+        simulator's system) with a velocity command interface per driven joint, so the converter
+        gives each its velocity servo as it does a ros2_control velocity joint; [] without one.
         """
         joints = self.driven_joints()
         if not joints:

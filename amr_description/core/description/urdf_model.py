@@ -35,7 +35,8 @@ import math
 from amr_description.core.kinematics import chain_transform
 from amr_description.core.kinematics import mimic_position
 from amr_description.core.kinematics import MOVING_JOINT_TYPES
-from lxml import etree
+from amr_description.core.xml_document import parse_text
+from amr_description.core.xml_document import XMLError
 import numpy as np
 
 
@@ -51,6 +52,8 @@ class RobotModel:
     :param parent_joint: dict child link name -> the yourdfpy ``Joint`` above it.
     :param materials: dict material name -> rgba (numpy, 4 floats) of the top-level materials.
     :param urdf: the yourdfpy ``URDF`` object.
+    :param element: the parsed ``<robot>`` element (lxml) it was read from, for readers of
+        the other blocks (``<ros2_control>``, ``<gazebo>``, ``<mujoco>``) without a second parse.
     """
 
     name: str
@@ -60,6 +63,7 @@ class RobotModel:
     parent_joint: dict
     materials: dict
     urdf: object
+    element: object = None
 
     def chain(self, link):
         """
@@ -239,9 +243,8 @@ def entity_name(name, urdf_xml):
     if name:
         return name
     try:
-        name = etree.fromstring(urdf_xml.encode('utf-8') if isinstance(urdf_xml, str)
-                                else urdf_xml).get('name') or ''
-    except etree.XMLSyntaxError as exc:
+        name = parse_text(urdf_xml).get('name') or ''
+    except XMLError as exc:
         raise ValueError(f'URDF is not well-formed XML: {exc}') from None
     if not name:
         raise ValueError('no entity name given and the URDF <robot> has no name')
@@ -252,8 +255,9 @@ def parse_xml(urdf_xml, source='robot_description'):
     """
     Parse a URDF document's XML once: the ``<robot>`` element, comments removed.
 
-    The parser is the one yourdfpy's ``URDF.load`` uses (lxml, blank text removed), so the
-    element can be handed to yourdfpy without a second parse.
+    The parser is the package's one (:mod:`amr_description.core.xml_document`: lxml, as
+    yourdfpy's ``URDF.load``, blank text removed), so the element can be handed to yourdfpy
+    without a second parse.
 
     :param urdf_xml: the URDF, str or bytes.
     :param source: what to name in error messages (a file path or parameter name).
@@ -265,14 +269,13 @@ def parse_xml(urdf_xml, source='robot_description'):
     if not urdf_xml.strip():
         raise URDFError(source, '', 'empty URDF')
     try:
-        root_element = etree.fromstring(urdf_xml, etree.XMLParser(remove_blank_text=True))
-    except etree.XMLSyntaxError as exc:
+        root_element = parse_text(urdf_xml, remove_blank_text=True)
+    except XMLError as exc:
         raise URDFError(source, '', f'not well-formed XML: {_one_line(exc)}') from None
     if root_element.tag != 'robot':
         raise URDFError(source, '', f'root element must be <robot>, found <{root_element.tag}>')
     if not root_element.get('name'):
         raise URDFError(source, '<robot>', 'no name attribute')
-    etree.strip_tags(root_element, etree.Comment)
     return root_element
 
 
@@ -338,7 +341,7 @@ def model_from_element(root_element, source='robot_description'):
         parent_joint=parent_joint,
         materials={m.name: np.asarray(m.color.rgba, dtype=float) for m in robot.materials
                    if m.color is not None and m.color.rgba is not None},
-        urdf=urdf)
+        urdf=urdf, element=root_element)
     for link in links:
         try:
             model.chain(link)
@@ -356,7 +359,7 @@ def parse_urdf_file(path):
     :returns: ``(urdf_xml str, RobotModel)``.
     :raises ValueError: one line naming ``path`` when the file cannot be read or parsed.
     """
-    from amr_description.core.description_file import read_description
+    from amr_description.core.description.files import read_description
     try:
         text = read_description(path)
     except ValueError as exc:

@@ -29,7 +29,9 @@ Numeric interface parameters (``min``, ``max``, ``initial_value``) are converted
 
 from dataclasses import dataclass
 from dataclasses import field
-import xml.etree.ElementTree as ET
+
+from amr_description.core.xml_document import parse_text
+from amr_description.core.xml_document import XMLError
 
 HARDWARE_TYPES = ('system', 'actuator', 'sensor')
 
@@ -204,8 +206,8 @@ def parse_ros2_control(urdf_xml):
         if isinstance(urdf_xml, str):
             urdf_xml = urdf_xml.encode('utf-8')
         try:
-            root = ET.fromstring(urdf_xml)
-        except ET.ParseError as exc:
+            root = parse_text(urdf_xml)
+        except XMLError as exc:
             raise ValueError(f'ros2_control: URDF is not well-formed XML: {exc}') from None
     else:
         root = urdf_xml
@@ -218,9 +220,9 @@ def driven_joints(model, infos, wheel_names=()):
     """
     Return the joints that drive the robot: the wheels that must touch the ground.
 
-    :param model: :class:`~amr_description.core.urdf_model.RobotModel`.
+    :param model: :class:`~amr_description.core.description.urdf_model.RobotModel`.
     :param infos: the ``<ros2_control>`` blocks
-        (:func:`~amr_description.core.ros2_control_info.parse_ros2_control`).
+        (:func:`~amr_description.core.description.ros2_control_info.parse_ros2_control`).
     :param wheel_names: wheel joint names the controllers YAML gives
         (``left_wheel_names``/``right_wheel_names`` of a diff_drive_controller).
     :returns: dict joint name -> why it is driven (``'velocity command interface'``,

@@ -286,10 +286,10 @@ def apply_surface_tags(config, tags, model):
     """
     Give every link with ``mu1``/``mu2`` tags its friction, unless ``<mujoco>`` sets one.
 
-    :param config: the :class:`~amr_description.core.mujoco_block.MujocoConfig` (changed in
-        place: ``link_contact[link]`` gets ``friction`` and ``priority`` 1).
+    :param config: the :class:`~amr_description.core.description.mujoco_block.MujocoConfig`
+        (changed in place: ``link_contact[link]`` gets ``friction`` and ``priority`` 1).
     :param tags: :func:`parse_reference_tags`.
-    :param model: the :class:`~amr_description.core.urdf_model.RobotModel`.
+    :param model: the :class:`~amr_description.core.description.urdf_model.RobotModel`.
     :raises ValueError: as :func:`surface_friction`.
     """
     for reference, link_tags in tags.items():

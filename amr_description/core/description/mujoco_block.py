@@ -79,7 +79,7 @@ def add_drive_defaults(config, model, hardware, simulator_systems, gazebo=()):
     left as it is.
 
     :param config: the :class:`MujocoConfig` to complete (changed in place).
-    :param model: the :class:`~amr_description.core.urdf_model.RobotModel`.
+    :param model: the :class:`~amr_description.core.description.urdf_model.RobotModel`.
     :param hardware: the ``<ros2_control>`` blocks (``HardwareInfo`` list).
     :param simulator_systems: hardware plugin names of the simulator.
     :param gazebo: those of gz_ros2_control, whose position commands are velocity targets
