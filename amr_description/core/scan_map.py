@@ -22,7 +22,7 @@ def world_sections(world, height):
     """
     Return the sections of a world's collision shapes with the plane ``z = height``.
 
-    :param world: a :class:`~amr_description.core.gazebo.sdf_world.World`.
+    :param world: a :class:`~amr_description.core.gazebo.sdf_elements.World`.
     :param height: m, in the world frame.
     :returns: list of ``('box', (x, y), yaw, (half x, half y))`` and
         ``('circle', (x, y), radius)``; shapes whose axis is not upright, or that the plane

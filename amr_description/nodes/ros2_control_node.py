@@ -55,6 +55,12 @@ def main(args=None):
     except OSError as exc:
         print(f'controller_manager: cannot read {opts.urdf}: {exc.strerror}', file=sys.stderr)
         return 1
+    from amr_description.core.description.robot_description import RobotDescription
+    try:  # parsed once: the resource manager and the controllers read this one parse
+        urdf = RobotDescription(urdf, source=opts.urdf)
+    except ValueError as exc:
+        print(f'controller_manager: {str(exc).splitlines()[0]}', file=sys.stderr)
+        return 1
     rclpy.init(args=['controller_manager'] + ros_args)
     executor = rclpy.executors.MultiThreadedExecutor(num_threads=2)
     cm = None

@@ -32,7 +32,7 @@ def build_scene(urdf_xml, width=640, height=480, pose=(0.0, 0.0, 0.0, 0.0, 0.0, 
     :param pose: root-link pose in the world, ``(x, y, z, roll, pitch, yaw)`` in m and rad.
     :param path: planar points ``(x, y)`` in m drawn as small green markers on the ground.
     :param others: ``(pose, path)`` pairs of more copies of the robot (a fleet), as above.
-    :param world: None, or a :class:`~amr_description.core.gazebo.sdf_world.World` whose models
+    :param world: None, or a :class:`~amr_description.core.gazebo.sdf_elements.World` whose models
         (walls, pillars, shelves, loose boxes at their initial poses) stand around the robot;
         its ground, when it has one, is drawn as the checkered plane.
     :returns: ``(mujoco.MjModel, mujoco.MjData)`` after ``mj_forward``.
@@ -128,8 +128,8 @@ def render_urdf(urdf_xml, width=640, height=480, frames=False, world=None):
     :param height: pixels (> 0).
     :param frames: draw every body frame's axes (x red, y green, z blue).
     :param world: None (the robot on a plain ground), or a
-        :class:`~amr_description.core.gazebo.sdf_world.World` (``load_world``): the robot spawned
-        at the origin of that world (as the sim stack spawns it), the whole world in view.
+        :class:`~amr_description.core.gazebo.sdf_elements.World` (``load_world``): the robot
+        spawned at the origin of that world (as the sim stack spawns it), the whole world in view.
     :returns: numpy array of shape (height, width, 3), dtype uint8.
     :raises ValueError: when the URDF cannot be converted or the size is not positive.
     """
@@ -191,7 +191,8 @@ def render_scene(urdf_xml, pose, path=(), width=800, height=600, markers=150, ot
     :param markers: largest number of path markers per robot, int > 0.
     :param others: ``(pose, path)`` of more robots (a fleet), as ``pose`` and ``path``.
     :param world: None (a plain ground) or the
-        :class:`~amr_description.core.gazebo.sdf_world.World` the robots drove in (``load_world``).
+        :class:`~amr_description.core.gazebo.sdf_elements.World` the robots drove in
+        (``load_world``).
     :returns: numpy array of shape (height, width, 3), dtype uint8, seen from above at 55 deg
         so that the whole path, the robots and the world's models are in view.
     :raises ValueError: when the URDF cannot be converted.

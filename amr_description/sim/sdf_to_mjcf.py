@@ -1,7 +1,9 @@
 # Copyright 2026 The amr_description Authors
 # Licensed under the Apache License, Version 2.0
 """
-An SDF world (:class:`~amr_description.core.gazebo.sdf_world.World`) into a MuJoCo spec (no rclpy).
+An SDF world into a MuJoCo spec (no rclpy).
+
+The world is a :class:`~amr_description.core.gazebo.sdf_elements.World`.
 
 Names are gz-sim's scoped names: collision geoms ``<model>::<link>::<collision>`` in
 :data:`COLLISION_GROUP`, visual geoms ``<model>::<link>::visual::<visual>`` in
@@ -30,7 +32,7 @@ its own hull of at most :data:`MAX_HULL_VERTICES` vertices (docs/worlds.md).
 
 import logging
 
-from amr_description.core.gazebo.sdf_world import shape_bounds
+from amr_description.core.gazebo.sdf_elements import shape_bounds
 from amr_description.sim.urdf_to_mjcf import add_mesh_asset
 from amr_description.sim.urdf_to_mjcf import mesh_triangles
 import mujoco
@@ -157,7 +159,7 @@ def add_world(spec, world):
     :param spec: the ``mujoco.MjSpec`` of :func:`~amr_description.sim.world.make_world_spec`;
         its ``ground_plane`` becomes the SDF world's ground, or is deleted when the SDF
         world has none (see the module docstring).
-    :param world: a :class:`~amr_description.core.gazebo.sdf_world.World`.
+    :param world: a :class:`~amr_description.core.gazebo.sdf_elements.World`.
     :returns: one-line messages about shapes that could not be built (a mesh trimesh cannot
         read); those shapes are left out.
     """
@@ -238,7 +240,7 @@ def large_static_links(world):
     body of its own, the link is passed over by MuJoCo's sweep-and-prune broadphase unless
     a moving body is near it (measured in warehouse.sdf: docs/worlds.md).
 
-    :param world: a :class:`~amr_description.core.gazebo.sdf_world.World`.
+    :param world: a :class:`~amr_description.core.gazebo.sdf_elements.World`.
     :returns: set of ``'<model>::<link>'`` names; spans are compared along x and y, over the
         primitive collision shapes of static models (planes and meshes are not measured).
     """

@@ -83,8 +83,8 @@ class Simulation:
         cameras' shared render thread is kept there as ``camera_renderer`` (a
         :class:`~amr_description.sim.sensors.camera.CameraRenderer`, made when missing and
         closed by :meth:`close`).
-    :param world: an SDF world (:class:`~amr_description.core.gazebo.sdf_world.World`) or None (the
-        empty world); its physics step is ``physics_step``, not its own (the caller chooses).
+    :param world: an SDF world (:class:`~amr_description.core.gazebo.sdf_elements.World`) or None
+        (the empty world); its physics step is ``physics_step``, not its own (the caller chooses).
     :raises ValueError: one line on a bad ``real_time_factor`` or a world MuJoCo cannot build.
 
     Hooks (lists of listeners, called in order on the simulation thread; append to them):

@@ -99,8 +99,8 @@ class World:
     bodies already present is kept); holders of the old objects must re-read them.
 
     :param physics_step: physics time step in seconds (default 1 ms).
-    :param description: an SDF world (:class:`~amr_description.core.gazebo.sdf_world.World`) whose
-        models and gravity are added (:func:`~amr_description.sim.sdf_to_mjcf.add_world`);
+    :param description: an SDF world (:class:`~amr_description.core.gazebo.sdf_elements.World`)
+        whose models and gravity are added (:func:`~amr_description.sim.sdf_to_mjcf.add_world`);
         None: the empty world (gravity -9.81 m/s^2).
     :ivar name: the world's name in gz topics (``/world/<name>/...``): the SDF ``<world
         name>``, ``'empty'`` without one (the empty world of the Gazebo tutorials, gz-sim's

@@ -269,8 +269,8 @@ def test_a_link_whose_visual_meshes_are_missing_shows_its_collision(tmp_path, mo
 
 
 def test_shape_bounds_are_the_posed_corners_of_the_primitive():
-    from amr_description.core.gazebo.sdf_world import Shape
-    from amr_description.core.gazebo.sdf_world import shape_bounds
+    from amr_description.core.gazebo.sdf_elements import Shape
+    from amr_description.core.gazebo.sdf_elements import shape_bounds
     turn = np.eye(4)
     turn[:3, :3] = [[0, -1, 0], [1, 0, 0], [0, 0, 1]]  # 90 deg about z
     turn[:3, 3] = [1.0, 2.0, 0.5]

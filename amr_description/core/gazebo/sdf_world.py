@@ -30,14 +30,20 @@ past a missing model. A world that cannot be read at all raises :class:`WorldErr
 naming the file).
 """
 
-from dataclasses import dataclass
-from dataclasses import field
-import math
 import os
 
+from amr_description.core.gazebo.sdf_elements import child_number
+from amr_description.core.gazebo.sdf_elements import child_text
+from amr_description.core.gazebo.sdf_elements import Link
+from amr_description.core.gazebo.sdf_elements import Model
+from amr_description.core.gazebo.sdf_elements import PartError
+from amr_description.core.gazebo.sdf_elements import pose_matrix
+from amr_description.core.gazebo.sdf_elements import read_geometry
+from amr_description.core.gazebo.sdf_elements import sdf_bool
+from amr_description.core.gazebo.sdf_elements import sdf_floats
+from amr_description.core.gazebo.sdf_elements import Shape
+from amr_description.core.gazebo.sdf_elements import World
 from amr_description.core.geodesy import SphericalCoordinates
-from amr_description.core.kinematics import quaternion_to_matrix
-from amr_description.core.kinematics import rpy_to_matrix
 from amr_description.core.xml_document import parse_file
 from amr_description.core.xml_document import XMLError
 import numpy as np
@@ -45,15 +51,9 @@ import numpy as np
 NEWEST_VERSION = (1, 11)
 """The newest SDFormat version read without a warning (sdformat 14, Gazebo Harmonic)."""
 
-SHAPES = ('box', 'cylinder', 'sphere', 'capsule', 'ellipsoid', 'plane', 'mesh')
-"""SDF geometries simulated; the others (cone, heightmap, polyline, image) are reported."""
-
 SIMULATED_WORLD_ELEMENTS = ('physics', 'gravity', 'model', 'include', 'state', 'frame',
                             'spherical_coordinates')
 """``<world>`` children read; every other one is listed once as not simulated."""
-
-SDF_GRAVITY = (0.0, 0.0, -9.8)
-"""SDF's default ``<world><gravity>`` (m/s^2)."""
 
 RESOURCE_PATH_VARIABLES = ('GZ_SIM_RESOURCE_PATH', 'IGN_GAZEBO_RESOURCE_PATH', 'SDF_PATH')
 """Environment variables searched for ``model://`` URIs, in this order (gz-sim 8 reads all)."""
@@ -61,185 +61,6 @@ RESOURCE_PATH_VARIABLES = ('GZ_SIM_RESOURCE_PATH', 'IGN_GAZEBO_RESOURCE_PATH', '
 
 class WorldError(ValueError):
     """A world file that cannot be read: one line naming the file and the cause."""
-
-
-class _Skip(ValueError):
-    """One model (or one shape) that cannot be used: its one-line reason."""
-
-
-@dataclass
-class Shape:
-    """
-    One ``<collision>`` or ``<visual>`` of a link.
-
-    :param name: its SDF name.
-    :param kind: one of :data:`SHAPES`.
-    :param size: box ``(x, y, z)`` full lengths; cylinder and capsule ``(radius, length)``;
-        sphere ``(radius,)``; ellipsoid ``(a, b, c)`` radii; plane ``(nx, ny, nz, sx, sy)``
-        normal and size; mesh ``(sx, sy, sz)`` scale. Metres.
-    :param pose: pose in the link frame, shape (4, 4).
-    :param path: the mesh file (resolved path), '' for primitives.
-    :param rgba: visual colour (4 floats in 0..1) or None (unset).
-    :param friction: ``min(mu, mu2)`` of ``<surface><friction><ode>``, or None (unset).
-    """
-
-    name: str
-    kind: str
-    size: tuple
-    pose: np.ndarray
-    path: str = ''
-    rgba: tuple = None
-    friction: float = None
-
-
-def shape_bounds(shape, T):
-    """
-    Return the axis-aligned bounds of a primitive shape posed at ``T @ shape.pose``.
-
-    The shape's own bounding box (box: its half sizes; cylinder ``(r, r, l/2)``; capsule
-    ``(r, r, l/2 + r)``; sphere ``(r, r, r)``; ellipsoid its radii) has its 8 corners moved
-    by the pose; their smallest and largest coordinates are the bounds.
-
-    :param shape: a :class:`Shape`.
-    :param T: the pose of the shape's link in the world frame, shape (4, 4).
-    :returns: ``(low, high)``, two arrays of shape (3,) in metres in the world frame, or
-        None for a plane (infinite) or a mesh (its size is known once the file is read).
-    """
-    size = np.asarray(shape.size, dtype=float)
-    if shape.kind == 'box':
-        half = size / 2.0
-    elif shape.kind == 'cylinder':
-        half = np.array([size[0], size[0], size[1] / 2.0])
-    elif shape.kind == 'capsule':
-        half = np.array([size[0], size[0], size[1] / 2.0 + size[0]])
-    elif shape.kind == 'sphere':
-        half = np.full(3, size[0])
-    elif shape.kind == 'ellipsoid':
-        half = size[:3]
-    else:
-        return None
-    pose = np.asarray(T, dtype=float) @ np.asarray(shape.pose, dtype=float)
-    signs = np.array([[x, y, z] for x in (-1, 1) for y in (-1, 1) for z in (-1, 1)])
-    corners = (signs * half) @ pose[:3, :3].T + pose[:3, 3]
-    return corners.min(axis=0), corners.max(axis=0)
-
-
-@dataclass
-class Link:
-    """
-    One ``<link>``: pose in its model's frame (4, 4), inertial, shapes.
-
-    :param mass: kg (SDF default 1).
-    :param inertia: (ixx, iyy, izz, ixy, ixz, iyz) kg m^2 (SDF default 1, 1, 1, 0, 0, 0).
-    :param inertial_pose: centre of mass frame in the link frame, shape (4, 4).
-    :param missing_visuals: visuals left out (a mesh not found): with none left, the link's
-        collisions are drawn instead.
-    """
-
-    name: str
-    pose: np.ndarray
-    mass: float = 1.0
-    inertia: tuple = (1.0, 1.0, 1.0, 0.0, 0.0, 0.0)
-    inertial_pose: np.ndarray = field(default_factory=lambda: np.eye(4))
-    collisions: list = field(default_factory=list)
-    visuals: list = field(default_factory=list)
-    missing_visuals: int = 0
-
-
-@dataclass
-class Model:
-    """
-    One model of the world: its name, world pose (4, 4), ``static`` and links.
-
-    Nested models are flattened: their links join the outer model, named ``inner::link``.
-    """
-
-    name: str
-    pose: np.ndarray
-    static: bool = False
-    links: list = field(default_factory=list)
-    relative_to: str = ''
-
-
-@dataclass
-class World:
-    """
-    A world read from SDF.
-
-    :param name: ``<world name>`` (gz topics: ``/world/<name>/...``).
-    :param physics_step: ``<physics><max_step_size>`` (s, SDF default 0.001).
-    :param real_time_factor: ``<physics><real_time_factor>`` (SDF default 1).
-    :param gravity: ``<gravity>`` (m/s^2, 3 floats; SDF default 0 0 -9.8).
-    :param models: :class:`Model` list, in document order.
-    :param source: the world file.
-    :param messages: one-line warnings (models left out, shapes skipped, ...).
-    :param not_simulated: names of ``<world>`` children not simulated (lights, gui, ...).
-    :param spherical_coordinates: the world origin on the Earth
-        (:class:`~amr_description.core.geodesy.SphericalCoordinates`), None without
-        ``<spherical_coordinates>`` (navsat sensors then have nothing to report).
-    """
-
-    name: str = 'default'
-    physics_step: float = 0.001
-    real_time_factor: float = 1.0
-    gravity: tuple = SDF_GRAVITY
-    models: list = field(default_factory=list)
-    source: str = ''
-    messages: list = field(default_factory=list)
-    not_simulated: list = field(default_factory=list)
-    spherical_coordinates: SphericalCoordinates = None
-
-    def model(self, name):
-        """Return the model named ``name`` or None."""
-        return next((m for m in self.models if m.name == name), None)
-
-
-def _floats(text, count, where):
-    """Return ``count`` floats of a whitespace-separated text; raise _Skip naming ``where``."""
-    try:
-        values = tuple(float(v) for v in (text or '').split())
-    except ValueError:
-        raise _Skip(f'{where}: expected {count} numbers, found {text!r}') from None
-    if len(values) != count or not all(math.isfinite(v) for v in values):
-        raise _Skip(f'{where}: expected {count} finite numbers, found {text!r}')
-    return values
-
-
-def _child_text(element, tag, default=None):
-    child = element.find(tag)
-    return default if child is None or child.text is None else child.text.strip()
-
-
-def _number(element, tag, default, where):
-    text = _child_text(element, tag)
-    return default if text is None else _floats(text, 1, f'{where} <{tag}>')[0]
-
-
-def _bool(text):
-    return (text or '').strip().lower() in ('true', '1')
-
-
-def pose_matrix(element, where):
-    """
-    Return the 4x4 matrix of an SDF ``<pose>`` element (identity for None or empty text).
-
-    :param element: the ``<pose>`` element or None.
-    :param where: the element's place, for the error line.
-    :raises ValueError: one line when the text is not 6 (or 7 with ``quat_xyzw``) numbers.
-    """
-    T = np.eye(4)
-    if element is None or not (element.text or '').strip():
-        return T
-    if element.get('rotation_format', 'euler_rpy') == 'quat_xyzw':
-        x, y, z, qx, qy, qz, qw = _floats(element.text, 7, f'{where} <pose>')
-        T[:3, :3] = quaternion_to_matrix((qx, qy, qz, qw))
-    else:
-        x, y, z, roll, pitch, yaw = _floats(element.text, 6, f'{where} <pose>')
-        if _bool(element.get('degrees')):
-            roll, pitch, yaw = (math.radians(v) for v in (roll, pitch, yaw))
-        T[:3, :3] = rpy_to_matrix((roll, pitch, yaw))
-    T[:3, 3] = (x, y, z)
-    return T
 
 
 def collapse_repeats(lines):
@@ -267,14 +88,14 @@ def _version(root, source, messages):
 
 
 def _parse_file(path, what):
-    """Return the root element of an XML file; raise _Skip with file and line."""
+    """Return the root element of an XML file; raise PartError with file and line."""
     try:
         return parse_file(path)
     except OSError as exc:
-        raise _Skip(f'{path}: cannot read {what}: {exc.strerror or exc}') from None
+        raise PartError(f'{path}: cannot read {what}: {exc.strerror or exc}') from None
     except XMLError as exc:
-        raise _Skip(f'{path}:{exc.line}: malformed XML ({exc.reason}, '
-                    f'column {exc.column})') from None
+        raise PartError(f'{path}:{exc.line}: malformed XML ({exc.reason}, '
+                        f'column {exc.column})') from None
 
 
 class _Reader:
@@ -294,11 +115,11 @@ class _Reader:
         return folders + self.model_paths
 
     def resolve(self, uri, base):
-        """Return the file or folder of ``uri`` named in file ``base``; raise _Skip."""
+        """Return the file or folder of ``uri`` named in file ``base``; raise PartError."""
         uri = uri.strip()
         if uri.startswith(('http://', 'https://')):
-            raise _Skip(f'{uri}: Fuel models are not downloaded here (put the model in a '
-                        'folder of GZ_SIM_RESOURCE_PATH)')
+            raise PartError(f'{uri}: Fuel models are not downloaded here (put the model in a '
+                            'folder of GZ_SIM_RESOURCE_PATH)')
         if uri.startswith('model://'):
             name, _, rest = uri[len('model://'):].partition('/')
             for folder in self.search_path():
@@ -306,7 +127,7 @@ class _Reader:
                 if os.path.isdir(candidate):
                     return os.path.join(candidate, rest) if rest else candidate
             searched = ':'.join(self.search_path()) or 'empty'
-            raise _Skip(f'{uri} not found in GZ_SIM_RESOURCE_PATH ({searched})')
+            raise PartError(f'{uri} not found in GZ_SIM_RESOURCE_PATH ({searched})')
         if uri.startswith('package://'):
             from amr_description.core.description.files import resolve_uri
             return resolve_uri(uri)
@@ -343,7 +164,7 @@ class _Reader:
         world = World(name=element.get('name', 'default'), source=self.source)
         try:
             self._physics(element, world)
-        except _Skip as exc:
+        except PartError as exc:
             raise WorldError(f'{self.source}: {exc}') from None
         models = []
         for child in element:
@@ -354,7 +175,7 @@ class _Reader:
                     model = self.include(child, self.source)
                     if model is not None:
                         models.append((child, model))
-            except _Skip as exc:
+            except PartError as exc:
                 self.messages.append(str(exc) + ': the world loads without it')
         self._place_models(element, models)
         world.models = [m for _, m in models]
@@ -370,36 +191,36 @@ class _Reader:
         if spherical is None:
             return
         where = '<spherical_coordinates>'
-        model = _child_text(spherical, 'surface_model', 'EARTH_WGS84')
-        orientation = _child_text(spherical, 'world_frame_orientation', 'ENU')
+        model = child_text(spherical, 'surface_model', 'EARTH_WGS84')
+        orientation = child_text(spherical, 'world_frame_orientation', 'ENU')
         if model != 'EARTH_WGS84' or orientation != 'ENU':
             self.messages.append(f'{where}: only surface_model EARTH_WGS84 with '
                                  f'world_frame_orientation ENU is simulated, found {model} '
                                  f'{orientation}: navsat sensors have no origin')
             return
         world.spherical_coordinates = SphericalCoordinates(
-            _number(spherical, 'latitude_deg', 0.0, where),
-            _number(spherical, 'longitude_deg', 0.0, where),
-            _number(spherical, 'elevation', 0.0, where),
-            _number(spherical, 'heading_deg', 0.0, where))
+            child_number(spherical, 'latitude_deg', 0.0, where),
+            child_number(spherical, 'longitude_deg', 0.0, where),
+            child_number(spherical, 'elevation', 0.0, where),
+            child_number(spherical, 'heading_deg', 0.0, where))
 
     def _physics(self, element, world):
         physics = element.findall('physics')
-        chosen = next((p for p in physics if _bool(p.get('default'))),
+        chosen = next((p for p in physics if sdf_bool(p.get('default'))),
                       physics[0] if physics else None)
         if chosen is not None:
-            world.physics_step = _number(chosen, 'max_step_size', 0.001, '<physics>')
-            world.real_time_factor = _number(chosen, 'real_time_factor', 1.0, '<physics>')
+            world.physics_step = child_number(chosen, 'max_step_size', 0.001, '<physics>')
+            world.real_time_factor = child_number(chosen, 'real_time_factor', 1.0, '<physics>')
             if not world.physics_step > 0:
-                raise _Skip(f'<physics><max_step_size> must be > 0 s, found '
-                            f'{world.physics_step:g}')
+                raise PartError(f'<physics><max_step_size> must be > 0 s, found '
+                                f'{world.physics_step:g}')
             if not world.real_time_factor >= 0:
-                raise _Skip(f'<physics><real_time_factor> must be >= 0, found '
-                            f'{world.real_time_factor:g}')
+                raise PartError(f'<physics><real_time_factor> must be >= 0, found '
+                                f'{world.real_time_factor:g}')
         self._spherical(element, world)
-        gravity = _child_text(element, 'gravity')
+        gravity = child_text(element, 'gravity')
         if gravity is not None:
-            world.gravity = _floats(gravity, 3, '<world><gravity>')
+            world.gravity = sdf_floats(gravity, 3, '<world><gravity>')
 
     def _place_models(self, element, models):
         """Resolve each model's ``<pose relative_to>`` against world frames and models."""
@@ -409,14 +230,14 @@ class _Reader:
             if name in ('', 'world'):
                 return np.eye(4)
             if name in seen:
-                raise _Skip(f'<frame> {name!r}: a cycle of relative_to')
+                raise PartError(f'<frame> {name!r}: a cycle of relative_to')
             seen = seen | {name}
             for _, model in models:
                 if model.name == name:
                     return frame_pose(model.relative_to, seen) @ model.pose
             frame = world_frames.get(name)
             if frame is None:
-                raise _Skip(f'relative_to {name!r}: no such frame or model in the world')
+                raise PartError(f'relative_to {name!r}: no such frame or model in the world')
             pose = frame.find('pose')
             base = (pose.get('relative_to') if pose is not None else None) or \
                 frame.get('attached_to', '')
@@ -429,7 +250,7 @@ class _Reader:
                 try:
                     placed[model.name] = frame_pose(model.relative_to, {model.name}) @ \
                         model.pose
-                except _Skip as exc:
+                except PartError as exc:
                     self.messages.append(f'model {model.name!r}: {exc}: the world loads '
                                          'without it')
                     models.remove(entry)
@@ -448,45 +269,45 @@ class _Reader:
                 continue
             try:
                 model.pose = pose_matrix(entry.find('pose'), f'<state> model {model.name!r}')
-            except _Skip as exc:
+            except PartError as exc:
                 self.messages.append(str(exc))
 
     # ------------------------------------------------------------------ models
     def include(self, element, base):
-        uri = _child_text(element, 'uri')
+        uri = child_text(element, 'uri')
         if not uri:
-            raise _Skip(f'{base}: <include> without <uri>')
+            raise PartError(f'{base}: <include> without <uri>')
         target = self.model_file(self.resolve(uri, base))
         if os.path.abspath(target) in self.stack:
-            raise _Skip(f'{uri}: an include cycle ({" -> ".join(self.stack + [target])})')
+            raise PartError(f'{uri}: an include cycle ({" -> ".join(self.stack + [target])})')
         root = _parse_file(target, 'the model')
         inner = root.find('model')
         if inner is None:
-            raise _Skip(f'{uri} ({target}): no <model> in it')
+            raise PartError(f'{uri} ({target}): no <model> in it')
         self.stack.append(os.path.abspath(target))
         try:
             model = self.model(inner, target, element.get('name') or
-                               _child_text(element, 'name'))
+                               child_text(element, 'name'))
         finally:
             self.stack.pop()
         if element.find('pose') is not None:
             model.pose = pose_matrix(element.find('pose'), f'<include> {uri}')
             model.relative_to = element.find('pose').get('relative_to', '')
-        static = _child_text(element, 'static')
+        static = child_text(element, 'static')
         if static is not None:
-            model.static = _bool(static)
+            model.static = sdf_bool(static)
         return model
 
     def model(self, element, source, name=None):
         name = name or element.get('name', '')
         if not name:
-            raise _Skip(f'{source}: a <model> without a name')
+            raise PartError(f'{source}: a <model> without a name')
         where = f'model {name!r}'
         if element.find('joint') is not None:
-            raise _Skip(f'{where} has joints: articulated SDF models are not simulated yet')
+            raise PartError(f'{where} has joints: articulated SDF models are not simulated yet')
         pose_element = element.find('pose')
         model = Model(name=name, pose=pose_matrix(pose_element, where),
-                      static=_bool(_child_text(element, 'static', 'false')))
+                      static=sdf_bool(child_text(element, 'static', 'false')))
         model.relative_to = pose_element.get('relative_to', '') \
             if pose_element is not None else ''
         model.links = self._links(element, source, where)
@@ -503,7 +324,7 @@ class _Reader:
             if name in frames:
                 return frames[name]
             if name in seen or name not in declared:
-                raise _Skip(f'{where}: relative_to {name!r} names no link or frame of it')
+                raise PartError(f'{where}: relative_to {name!r} names no link or frame of it')
             found, kind = declared[name]
             pose = found.find('pose')
             base = pose.get('relative_to', '') if pose is not None else ''
@@ -527,7 +348,7 @@ class _Reader:
                         shape = self._shape(shape_element, source,
                                             f'{where} link {link_name!r} {tag} '
                                             f'{shape_name!r}', tag)
-                    except _Skip as exc:
+                    except PartError as exc:
                         self.messages.append(f'{exc}: skipped')
                         link.missing_visuals += tag == 'visual'
                         continue
@@ -555,71 +376,34 @@ class _Reader:
         inertial = element.find('inertial')
         if inertial is None:
             return
-        link.mass = _number(inertial, 'mass', 1.0, f'{where} <inertial>')
+        link.mass = child_number(inertial, 'mass', 1.0, f'{where} <inertial>')
         if not link.mass > 0:
-            raise _Skip(f'{where} <inertial><mass> must be > 0 kg, found {link.mass:g}')
+            raise PartError(f'{where} <inertial><mass> must be > 0 kg, found {link.mass:g}')
         link.inertial_pose = pose_matrix(inertial.find('pose'), f'{where} <inertial>')
         matrix = inertial.find('inertia')
         if matrix is not None:
             defaults = (1.0, 1.0, 1.0, 0.0, 0.0, 0.0)
             link.inertia = tuple(
-                _number(matrix, tag, default, f'{where} <inertia>')
+                child_number(matrix, tag, default, f'{where} <inertia>')
                 for tag, default in zip(('ixx', 'iyy', 'izz', 'ixy', 'ixz', 'iyz'), defaults))
 
     def _shape(self, element, source, where, tag):
-        geometry = element.find('geometry')
-        if geometry is None or not len(geometry):
-            raise _Skip(f'{where}: no <geometry>')
-        kind_element = geometry[0]
-        kind = kind_element.tag
-        if kind not in SHAPES:
-            raise _Skip(f'{where}: <{kind}> geometry is not simulated')
+        kind, size, path = read_geometry(element.find('geometry'), where,
+                                         lambda uri: self.resolve(uri, source))
         pose = pose_matrix(element.find('pose'), where)
-        path = ''
-        if kind == 'box':
-            size = _floats(_child_text(kind_element, 'size', '1 1 1'), 3, f'{where} <box><size>')
-        elif kind in ('cylinder', 'capsule'):
-            size = (_number(kind_element, 'radius', 0.5, f'{where} <{kind}>'),
-                    _number(kind_element, 'length', 1.0, f'{where} <{kind}>'))
-        elif kind == 'sphere':
-            size = (_number(kind_element, 'radius', 1.0, f'{where} <sphere>'),)
-        elif kind == 'ellipsoid':
-            size = _floats(_child_text(kind_element, 'radii', '1 1 1'), 3,
-                           f'{where} <ellipsoid><radii>')
-        elif kind == 'plane':
-            normal = _floats(_child_text(kind_element, 'normal', '0 0 1'), 3,
-                             f'{where} <plane><normal>')
-            extent = _floats(_child_text(kind_element, 'size', '1 1'), 2,
-                             f'{where} <plane><size>')
-            if not np.linalg.norm(normal) > 0:
-                raise _Skip(f'{where} <plane><normal> must not be zero')
-            size = tuple(normal) + tuple(extent)
-        else:
-            uri = _child_text(kind_element, 'uri')
-            if not uri:
-                raise _Skip(f'{where}: <mesh> without <uri>')
-            path = self.resolve(uri, source)
-            if not os.path.isfile(path):
-                raise _Skip(f'{where}: mesh {uri!r} not found ({path})')
-            size = _floats(_child_text(kind_element, 'scale', '1 1 1'), 3,
-                           f'{where} <mesh><scale>')
-        checked = size[3:] if kind == 'plane' else size
-        if not all(v > 0 for v in checked):
-            raise _Skip(f'{where}: <{kind}> sizes must be > 0, found '
-                        f'{" ".join(f"{v:g}" for v in checked)}')
         shape = Shape(name='', kind=kind, size=tuple(size), pose=pose, path=path)
         if tag == 'visual':
             material = element.find('material')
             if material is not None:
-                colour = _child_text(material, 'diffuse') or _child_text(material, 'ambient')
+                colour = child_text(material, 'diffuse') or child_text(material, 'ambient')
                 if colour:
-                    values = _floats(colour, len(colour.split()) if len(colour.split()) in (3, 4)
-                                     else 4, f'{where} <material>')
+                    count = len(colour.split()) if len(colour.split()) in (3, 4) else 4
+                    values = sdf_floats(colour, count, f'{where} <material>')
                     shape.rgba = tuple(values) + ((1.0,) if len(values) == 3 else ())
         else:
             ode = element.find('surface/friction/ode')
             if ode is not None:
-                values = [_number(ode, t, None, f'{where} <ode>') for t in ('mu', 'mu2')]
+                values = [child_number(ode, t, None, f'{where} <ode>') for t in ('mu', 'mu2')]
                 values = [v for v in values if v is not None]
                 if values:
                     shape.friction = max(0.0, min(values))
@@ -640,7 +424,7 @@ def read_world(path, model_paths=()):
     reader = _Reader(str(path), model_paths)
     try:
         root = _parse_file(str(path), 'the world')
-    except _Skip as exc:
+    except PartError as exc:
         raise WorldError(str(exc)) from None
     return reader.world(root)
 

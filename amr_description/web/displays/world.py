@@ -26,7 +26,7 @@ def shape_mesh(shape, sections=24):
     """
     Return the trimesh of one SDF shape in its link frame (a plane: None).
 
-    :param shape: :class:`~amr_description.core.gazebo.sdf_world.Shape`.
+    :param shape: :class:`~amr_description.core.gazebo.sdf_elements.Shape`.
     :raises ValueError: one line when a mesh file cannot be read.
     """
     import trimesh
@@ -82,7 +82,7 @@ def world_mesh(world):
 
     The links of non-static models are left out: :func:`moving_links` draws them.
 
-    :param world: :class:`~amr_description.core.gazebo.sdf_world.World`.
+    :param world: :class:`~amr_description.core.gazebo.sdf_elements.World`.
     :returns: ``(vertices (V, 3) float32, faces (F, 3) uint32, colours (F, 3) uint8,
         problems)``; problems are one-line messages of shapes left out. Empty arrays when
         the world has nothing but a ground plane.
@@ -110,7 +110,7 @@ def moving_links(world):
     """
     Return the links of the world's non-static models, each a mesh in its own frame.
 
-    :param world: :class:`~amr_description.core.gazebo.sdf_world.World`.
+    :param world: :class:`~amr_description.core.gazebo.sdf_elements.World`.
     :returns: ``(links, problems)``: links a list of ``(frame, mesh, face colours (F, 3)
         uint8, initial pose (4, 4) in the world frame)`` with ``frame`` = ``<model>/<link>``
         (the child frame of :mod:`amr_description.sim.sensors.world_poses`).
