@@ -142,6 +142,55 @@ def spawn_stages(sim, urdf, name='', pose=None, namespace='', allow_renaming=Fal
     return entity
 
 
+def place_entity(world, entities, description, name, pose, namespace, allow_renaming, logger):
+    """
+    Add a robot's bodies to ``world`` and return its :class:`Entity` (simulation thread).
+
+    A taken name gets ``_0``, ``_1``, ... with ``allow_renaming`` (gz-sim's UserCommands);
+    initial joint states are applied; a robot spawned overlapping a world model is warned
+    about and kept, as gz-sim does.
+
+    :param world: the :class:`~amr_description.sim.world.World`.
+    :param entities: dict name -> :class:`Entity` already in the world (not changed).
+    :param description: the spawn's
+        :class:`~amr_description.core.description.robot_description.RobotDescription`.
+    :param name: entity name; ``pose``: ``[x, y, z, qx, qy, qz, qw]`` or None.
+    :param namespace: its ROS namespace (normalized).
+    :param logger: ``logging.Logger``-like (``warning``).
+    :raises SpawnError: a taken name or namespace, a description MuJoCo cannot build.
+    """
+    from amr_description.sim.urdf_to_mjcf import urdf_to_spec
+    if name in entities and allow_renaming:  # gz-sim's UserCommands: X_0, X_1, ...
+        index = 0
+        while f'{name}_{index}' in entities:
+            index += 1
+        name = f'{name}_{index}'
+    if name in entities:
+        raise SpawnError(f'an entity named {name!r} already exists', 'NAME_NOT_UNIQUE')
+    for other in entities.values():
+        if other.namespace == namespace:
+            shown = namespace or '/'
+            raise SpawnError(
+                f'namespace {shown!r} is already used by entity {other.name!r}; give each '
+                'robot its own namespace (entity_namespace / -robot_namespace)',
+                'NAME_NOT_UNIQUE')
+    try:
+        spec = urdf_to_spec(description, name=name,
+                            pose=(0, 0, 0, 0, 0, 0) if pose is None else pose)
+        self_collide = description.self_collide_links()
+    except ValueError as exc:
+        raise SpawnError(str(exc).splitlines()[0], 'RESOURCE_PARSE_ERROR') from None
+    robot = world.spawn(spec, name, description.xml, self_collide=self_collide)
+    for joint, position, velocity in description.initial_joint_states():
+        world.set_initial_joint_state(robot.prefix + joint, position, velocity)
+    overlapping = world.overlapping_models(name)
+    if overlapping:  # spawned all the same, as gz-sim does
+        logger.warning(f'robot {name!r} is spawned overlapping world model'
+                       f'{"s" if len(overlapping) > 1 else ""} '
+                       f'{", ".join(repr(m) for m in overlapping)}')
+    return Entity(name, namespace, robot, description)
+
+
 def hardware_factory(world, entity):
     """Return ``(HardwareInfo) -> SystemInterface`` building MujocoSystem for ``entity``."""
 

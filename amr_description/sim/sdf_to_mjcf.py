@@ -152,11 +152,59 @@ def _add_shape(spec, body, shape, name, collision, frame, messages):
     return geoms
 
 
+def make_world_spec(physics_step=0.001, gravity=(0.0, 0.0, -9.81)):
+    """
+    Return the spec of the empty world: ground plane, light, sky.
+
+    The ground plane is the geom ``ground_plane`` in a static body of the same name.
+
+    :param physics_step: physics time step in seconds (> 0).
+    :param gravity: m/s^2 in the world frame (3 floats).
+    :returns: a ``mujoco.MjSpec`` (integrator ``implicitfast``, elliptic friction cones).
+    :raises ValueError: when ``physics_step`` is not a positive number.
+    """
+    if not physics_step > 0:
+        raise ValueError(f'physics_step must be > 0 s, found {physics_step!r}')
+    spec = mujoco.MjSpec()
+    spec.modelname = 'empty_world'
+    spec.option.timestep = float(physics_step)
+    spec.option.integrator = mujoco.mjtIntegrator.mjINT_IMPLICITFAST
+    spec.option.gravity = [float(g) for g in gravity]
+    # elliptic friction cones: isotropic Coulomb friction at the wheel contacts. MuJoCo's
+    # default pyramidal cones resist the sideways slip of a skid-steer turn far more than
+    # Coulomb friction does (measured: 0.3x the rotation rate); see docs/simulation.md
+    spec.option.cone = mujoco.mjtCone.mjCONE_ELLIPTIC
+    # MuJoCo's sleeping: a world model at rest (a loose box in warehouse.sdf) leaves the
+    # dynamics and the contact solver until something touches it; robots never sleep
+    # (add_robot). Measured: one robot in warehouse.sdf 19.6 -> 8.9 us per mj_step (the three
+    # resting boxes' twelve contacts), docs/worlds.md
+    spec.option.enableflags |= mujoco.mjtEnableBit.mjENBL_SLEEP
+    spec.compiler.inertiafromgeom = mujoco.mjtInertiaFromGeom.mjINERTIAFROMGEOM_FALSE
+    spec.add_texture(name='skybox', type=mujoco.mjtTexture.mjTEXTURE_SKYBOX,
+                     builtin=mujoco.mjtBuiltin.mjBUILTIN_GRADIENT,
+                     rgb1=[0.6, 0.8, 1.0], rgb2=[0.1, 0.15, 0.25], width=64, height=64)
+    spec.add_texture(name='grid', type=mujoco.mjtTexture.mjTEXTURE_2D,
+                     builtin=mujoco.mjtBuiltin.mjBUILTIN_CHECKER,
+                     rgb1=[0.35, 0.35, 0.38], rgb2=[0.45, 0.45, 0.48], width=256, height=256)
+    grid = spec.add_material(name='grid', texrepeat=[2, 2], reflectance=0.1)
+    grid.textures[mujoco.mjtTextureRole.mjTEXROLE_RGB] = 'grid'
+    # the ground plane in a static body of its own: a robot link with an explicit ground
+    # contact pair (its friction reference) excludes its dynamic contact with this body
+    # only, and still collides with the world body's walls and shelves
+    spec.worldbody.add_body(name=GROUND_BODY).add_geom(
+        name='ground_plane', type=mujoco.mjtGeom.mjGEOM_PLANE, size=[0, 0, 0.05],
+        friction=list(GROUND_FRICTION), material='grid', group=0)
+    spec.worldbody.add_light(name='sun', pos=[0, 0, 10], dir=[0.3, 0.2, -1],
+                             type=mujoco.mjtLightType.mjLIGHT_DIRECTIONAL,
+                             diffuse=[0.8, 0.8, 0.8], castshadow=True)
+    return spec
+
+
 def add_world(spec, world):
     """
     Add the models of an SDF world to a world spec.
 
-    :param spec: the ``mujoco.MjSpec`` of :func:`~amr_description.sim.world.make_world_spec`;
+    :param spec: the ``mujoco.MjSpec`` of :func:`make_world_spec`;
         its ``ground_plane`` becomes the SDF world's ground, or is deleted when the SDF
         world has none (see the module docstring).
     :param world: a :class:`~amr_description.core.gazebo.sdf_elements.World`.

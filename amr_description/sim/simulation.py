@@ -41,9 +41,8 @@ import math
 import threading
 import time
 
-from amr_description.sim.entity import Entity
+from amr_description.sim.entity import place_entity
 from amr_description.sim.entity import spawn_stages
-from amr_description.sim.entity import SpawnError
 from amr_description.sim.non_finite import BAD_STATE_WARNINGS
 from amr_description.sim.non_finite import first_bad_body
 from amr_description.sim.pacing import Pacer
@@ -81,7 +80,7 @@ class Simulation:
     :param sensor_settings: dict of simulator-wide sensor settings handed to the sensor
         factories (:func:`~amr_description.sim.sensors.registry.make_sensors`); the
         cameras' shared render thread is kept there as ``camera_renderer`` (a
-        :class:`~amr_description.sim.sensors.camera.CameraRenderer`, made when missing and
+        :class:`~amr_description.sim.sensors.camera_renderer.CameraRenderer`, made when missing and
         closed by :meth:`close`).
     :param world: an SDF world (:class:`~amr_description.core.gazebo.sdf_elements.World`) or None
         (the empty world); its physics step is ``physics_step``, not its own (the caller chooses).
@@ -107,7 +106,7 @@ class Simulation:
         self.logger = logger or logging.getLogger('simulation')
         self.sensor_settings = dict(sensor_settings or {})
         if 'camera_renderer' not in self.sensor_settings:  # no thread, no GL until a camera
-            from amr_description.sim.sensors.camera import CameraRenderer
+            from amr_description.sim.sensors.camera_renderer import CameraRenderer
             self.sensor_settings['camera_renderer'] = CameraRenderer()
         self.controller_manager_factory = controller_manager_factory
         self.controller_manager_release = controller_manager_release
@@ -260,37 +259,9 @@ class Simulation:
 
         :raises SpawnError: a taken name or namespace, a description MuJoCo cannot build.
         """
-        from amr_description.sim.urdf_to_mjcf import urdf_to_spec
-        if name in self.entities and allow_renaming:  # gz-sim's UserCommands: X_0, X_1, ...
-            index = 0
-            while f'{name}_{index}' in self.entities:
-                index += 1
-            name = f'{name}_{index}'
-        if name in self.entities:
-            raise SpawnError(f'an entity named {name!r} already exists', 'NAME_NOT_UNIQUE')
-        for other in self.entities.values():
-            if other.namespace == namespace:
-                shown = namespace or '/'
-                raise SpawnError(
-                    f'namespace {shown!r} is already used by entity {other.name!r}; give each '
-                    'robot its own namespace (entity_namespace / -robot_namespace)',
-                    'NAME_NOT_UNIQUE')
-        try:
-            spec = urdf_to_spec(description, name=name,
-                                pose=(0, 0, 0, 0, 0, 0) if pose is None else pose)
-            self_collide = description.self_collide_links()
-        except ValueError as exc:
-            raise SpawnError(str(exc).splitlines()[0], 'RESOURCE_PARSE_ERROR') from None
-        robot = self.world.spawn(spec, name, description.xml, self_collide=self_collide)
-        for joint, position, velocity in description.initial_joint_states():
-            self.world.set_initial_joint_state(robot.prefix + joint, position, velocity)
-        overlapping = self.world.overlapping_models(name)
-        if overlapping:  # spawned all the same, as gz-sim does
-            self.logger.warning(f'robot {name!r} is spawned overlapping world model'
-                                f'{"s" if len(overlapping) > 1 else ""} '
-                                f'{", ".join(repr(m) for m in overlapping)}')
-        entity = Entity(name, namespace, robot, description)
-        self.entities[name] = entity
+        entity = place_entity(self.world, self.entities, description, name, pose, namespace,
+                              allow_renaming, self.logger)
+        self.entities[entity.name] = entity
         self._rebind()
         return entity
 

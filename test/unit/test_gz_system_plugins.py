@@ -265,7 +265,8 @@ def test_links_of_one_robot_collide_only_with_self_collide(self_collide, touchin
 
 
 def test_self_collide_that_is_not_a_boolean_refuses_the_spawn_in_one_line():
-    from amr_description.sim.simulation import Simulation, SpawnError
+    from amr_description.sim.entity import SpawnError
+    from amr_description.sim.simulation import Simulation
     urdf = ('<robot name="r"><link name="base"><inertial><mass value="1"/><inertia ixx="0.01" '
             'iyy="0.01" izz="0.01" ixy="0" ixz="0" iyz="0"/></inertial></link>'
             '<gazebo reference="base"><selfCollide>often</selfCollide></gazebo></robot>')

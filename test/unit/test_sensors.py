@@ -4,12 +4,12 @@
 
 import math
 
+from amr_description.sim.entity import SpawnError
 from amr_description.sim.sensors import ground_truth
 from amr_description.sim.sensors.base import Sensor
 from amr_description.sim.sensors.registry import make_sensors
 from amr_description.sim.sensors.registry import sensor_factories
 from amr_description.sim.simulation import Simulation
-from amr_description.sim.simulation import SpawnError
 import pytest
 from sim_fixtures import tutorial_urdf
 

@@ -12,7 +12,7 @@ import math
 
 from amr_description.core.description.files import read_description
 from amr_description.core.ros_names import normalize_namespace
-from amr_description.sim.simulation import SpawnError
+from amr_description.sim.entity import SpawnError
 from rclpy.task import Future
 from simulation_interfaces import msg
 from simulation_interfaces import srv
