@@ -158,3 +158,38 @@ def test_test_modules_have_distinct_names():
                 seen.setdefault(name, []).append(os.path.relpath(folder, ROOT))
     twice = {name: where for name, where in seen.items() if len(where) > 1}
     assert not twice, f'test files sharing a name: {twice}'
+
+
+MAX_MODULE_LINES = 500
+"""Largest module (lines): a longer one is split by what its parts do."""
+
+MAX_CORE_MODULES = 20
+"""Most modules directly in core/; groups that belong together get a sub-package."""
+
+
+def test_no_module_is_over_500_lines():
+    long = []
+    for _, module, path in _modules():
+        with open(path) as f:
+            count = sum(1 for _ in f)
+        if count > MAX_MODULE_LINES:
+            long.append(f'{module}: {count} lines')
+    assert not long, 'modules over 500 lines:\n' + '\n'.join(long)
+
+
+def test_core_has_rooms():
+    core = os.path.join(PACKAGE, 'core')
+    modules = [name for name in os.listdir(core) if name.endswith('.py') and name != '__init__.py']
+    assert len(modules) <= MAX_CORE_MODULES, sorted(modules)
+    for room in ('gazebo', 'description', 'model_check', 'message_yaml'):
+        assert os.path.isfile(os.path.join(core, room, '__init__.py')), room
+
+
+def test_one_xml_library():
+    users = {}
+    for _, module, path in _modules():
+        for name in _external_imports(path):
+            if name in ('xml', 'lxml', 'defusedxml'):
+                users.setdefault(name, []).append(module)
+    assert set(users) <= {'lxml'}, users
+    assert users.get('lxml') == ['amr_description.core.xml_document'], users
