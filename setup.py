@@ -70,6 +70,20 @@ setup(
             'diff_drive_controller/DiffDriveController = '
             'amr_description.control.diff_drive_controller:DiffDriveController',
         ],
+        'amr_description.displays': [
+            'world = amr_description.web.displays.world:WorldDisplay',
+            'robot_model = amr_description.web.displays.robot_model:RobotModelDisplay',
+            'tf_axes = amr_description.web.displays.tf_axes:TfAxesDisplay',
+            'trails = amr_description.web.displays.trails:TrailsDisplay',
+            'laser_scan = amr_description.web.displays.laser_scan:LaserScanDisplay',
+            'point_cloud = amr_description.web.displays.point_cloud:PointCloudDisplay',
+            'imu = amr_description.web.displays.imu:ImuDisplay',
+            'image = amr_description.web.displays.image:ImageDisplay',
+            'navsat = amr_description.web.displays.navsat:NavSatDisplay',
+            'contacts = amr_description.web.displays.contacts:ContactsDisplay',
+            'teleop_pad = amr_description.web.displays.teleop_pad:TeleopPadDisplay',
+            'status = amr_description.web.displays.status:StatusDisplay',
+        ],
         'amr_description.sensors': [
             'camera = amr_description.sim.sensors.camera:create',
             'contact = amr_description.sim.sensors.contact:create',

@@ -6,25 +6,15 @@ An RViz 2 display configuration (``.rviz``, YAML) as the viewer can show it.
 ``rviz2 -d FILE`` reads ``Visualization Manager``: ``Global Options`` ``Fixed Frame`` and the
 ``Displays`` list (``rviz_common/Group`` entries hold their own ``Displays``), each with
 ``Class``, ``Name``, ``Enabled`` and, per class, its topic (``Topic: {Value: ...}``;
-RobotModel's ``Description Topic``). The viewer shows the displays it has
-(:data:`TOPIC_PARAMETERS`: the viewer parameter each class's topic goes to; Grid, TF and
-Axes need none); an enabled display of any other class is listed as not shown. A disabled
+RobotModel's ``Description Topic``). The viewer shows the displays it has (the
+``topic_parameters`` it passes: the viewer parameter each class's topic goes to, from its
+registered displays; Grid, TF and Axes need none); an enabled display of any other class is
+listed as not shown. A disabled
 display subscribes nothing, as in RViz.
 """
 
 from dataclasses import dataclass
 from dataclasses import field
-
-TOPIC_PARAMETERS = {
-    'rviz_default_plugins/RobotModel': 'robot_description_topics',
-    'rviz_default_plugins/LaserScan': 'scan_topics',
-    'rviz_default_plugins/PointCloud2': 'point_cloud_topics',
-    'rviz_default_plugins/Image': 'image_topics',
-    'rviz_default_plugins/Camera': 'image_topics',
-    'rviz_default_plugins/Odometry': 'odometry_topics',
-    'rviz_imu_plugin/Imu': 'imu_topics',
-}
-"""RViz display classes the viewer shows -> the viewer parameter (a topic list) they set."""
 
 WITHOUT_TOPIC = ('rviz_default_plugins/Grid', 'rviz_default_plugins/TF',
                  'rviz_default_plugins/Axes', 'rviz_common/Group')
@@ -38,9 +28,9 @@ class RvizConfig:
 
     :param path: the file.
     :param fixed_frame: ``Global Options`` ``Fixed Frame`` ('' when absent).
-    :param topics: dict viewer parameter -> list of topics, for every parameter of
-        :data:`TOPIC_PARAMETERS` (an empty list when the file has no such display: RViz would
-        show none).
+    :param topics: dict viewer parameter -> list of topics, for every parameter of the
+        ``topic_parameters`` read with (an empty list when the file has no such display: RViz
+        would show none).
     :param tf: True when an enabled TF display is present.
     :param not_shown: ``'Name (Class)'`` of each enabled display the viewer does not have.
     """
@@ -62,7 +52,7 @@ def _topic(display, cls):
     return value.strip() if isinstance(value, str) and value.strip() else None
 
 
-def _walk(displays, config, where):
+def _walk(displays, config, where, topic_parameters):
     if not isinstance(displays, list):
         raise ValueError(f'{where}: expected a list of displays')
     for display in displays:
@@ -73,12 +63,12 @@ def _walk(displays, config, where):
         if display.get('Enabled', True) is False:
             continue
         if cls == 'rviz_common/Group':
-            _walk(display.get('Displays', []), config, f'{where} {name!r}')
+            _walk(display.get('Displays', []), config, f'{where} {name!r}', topic_parameters)
         elif cls == 'rviz_default_plugins/TF':
             config.tf = True
-        elif cls in TOPIC_PARAMETERS:
+        elif cls in topic_parameters:
             topic = _topic(display, cls)
-            topics = config.topics[TOPIC_PARAMETERS[cls]]
+            topics = config.topics[topic_parameters[cls]]
             if topic is None:
                 config.not_shown.append(f'{name} ({cls}, no topic)')
             elif topic not in topics:
@@ -87,10 +77,13 @@ def _walk(displays, config, where):
             config.not_shown.append(f'{name} ({cls})')
 
 
-def read_rviz_config(path):
+def read_rviz_config(path, topic_parameters):
     """
     Return the :class:`RvizConfig` of an ``.rviz`` file.
 
+    :param path: the file.
+    :param topic_parameters: dict RViz display class -> viewer parameter (a topic list) that
+        its topic sets: the classes the viewer shows (its registered displays').
     :raises ValueError: one line naming the file and what is wrong (missing, not YAML, no
         ``Visualization Manager``, a malformed display list).
     """
@@ -107,12 +100,12 @@ def read_rviz_config(path):
     manager = document.get('Visualization Manager') if isinstance(document, dict) else None
     if not isinstance(manager, dict):
         raise ValueError(f'{path}: no "Visualization Manager" mapping: not an RViz 2 config')
-    config = RvizConfig(path, topics={p: [] for p in sorted(set(TOPIC_PARAMETERS.values()))})
+    config = RvizConfig(path, topics={p: [] for p in sorted(set(topic_parameters.values()))})
     options = manager.get('Global Options') or {}
     if isinstance(options, dict):
         config.fixed_frame = str(options.get('Fixed Frame', '') or '').strip()
     try:
-        _walk(manager.get('Displays', []) or [], config, f'{path}: Displays')
+        _walk(manager.get('Displays', []) or [], config, f'{path}: Displays', topic_parameters)
     except ValueError as exc:
         raise ValueError(str(exc)) from None
     return config

@@ -45,8 +45,10 @@ What RViz's displays of the tutorial show, on a web page served by this node:
   turn rate (rad/s) are set on the page (``speed`` 0.5, ``turn`` 1.0 to start, as
   teleop_twist_keyboard). Shown only while something subscribes to ``cmd_vel_topic``.
 
-Each display is a module of :mod:`amr_description.web.displays` (RViz's display plugins);
-this node declares the parameters, serves the page and composes them.
+Each display is a module of :mod:`amr_description.web.displays` registered in the entry-point
+group ``amr_description.displays`` (RViz's display plugins,
+:mod:`amr_description.web.displays.registry`); this node declares the parameters they read,
+serves the page and composes them in their order.
 
 Parameters ``host`` (127.0.0.1: only this machine can open the page; use ``ssh -L`` from
 another one) and ``port`` (not set: 8080, or the next free port when 8080 is taken; the
@@ -69,18 +71,9 @@ from amr_description.core.rviz_config import read_rviz_config
 from amr_description.ros.node import Node
 from amr_description.web.displays.base import DrawContext
 from amr_description.web.displays.base import FrameManager
-from amr_description.web.displays.contacts import ContactsDisplay
-from amr_description.web.displays.image import ImageDisplay
-from amr_description.web.displays.imu import ImuDisplay
-from amr_description.web.displays.laser_scan import LaserScanDisplay
-from amr_description.web.displays.navsat import NavSatDisplay
-from amr_description.web.displays.point_cloud import PointCloudDisplay
-from amr_description.web.displays.robot_model import RobotModelDisplay
-from amr_description.web.displays.status import StatusDisplay
-from amr_description.web.displays.teleop_pad import TeleopPadDisplay
-from amr_description.web.displays.tf_axes import TfAxesDisplay
-from amr_description.web.displays.trails import TrailsDisplay
-from amr_description.web.displays.world import WorldDisplay
+from amr_description.web.displays.registry import display_classes
+from amr_description.web.displays.registry import display_parameters
+from amr_description.web.displays.registry import rviz_topic_parameters
 from amr_description.web.server import run_web_node
 from amr_description.web.server import serve_page
 from amr_description.web.server import stop_server
@@ -102,28 +95,23 @@ class Viewer(Node):
         """
         Declare parameters, start the web page, compose the displays, start the timer.
 
+        The displays are the registered ones (:mod:`amr_description.web.displays.registry`):
+        their parameters are declared, an ``.rviz`` file sets their topics, and they are
+        made and drawn in their ``order``.
+
         :raises PortInUse: when the port cannot be bound (one line).
         :raises ValueError: on a bad parameter (one line).
         """
         super().__init__(NODE_NAME)
+        classes = display_classes()
         string_array = ParameterDescriptor(type=ParameterType.PARAMETER_STRING_ARRAY)
         self.declare_parameter('fixed_frame', 'odom')
-        self.declare_parameter('robot_description_topics', ['/robot_description'],
-                               string_array)
-        self.declare_parameter('odometry_topics', ['/odom', '/ground_truth/odom'],
-                               string_array)
-        self.declare_parameter('cmd_vel_topic', '/diff_drive_controller/cmd_vel')
-        self.declare_parameter('frame_id', 'base_link')
-        self.declare_parameter('speed', 0.5)
-        self.declare_parameter('turn', 1.0)
+        for name, default in display_parameters(classes).items():
+            if isinstance(default, list):
+                self.declare_parameter(name, default, string_array)
+            else:
+                self.declare_parameter(name, default)
         self.declare_parameter('update_rate', 30.0)
-        self.declare_parameter('world', '')
-        self.declare_parameter('scan_topics', ['/scan'], string_array)
-        self.declare_parameter('point_cloud_topics', ['/scan/points'], string_array)
-        self.declare_parameter('imu_topics', ['/imu'], string_array)
-        self.declare_parameter('image_topics', ['/camera/image'], string_array)
-        self.declare_parameter('navsat_topics', ['/gps/fix', '/navsat'], string_array)
-        self.declare_parameter('contact_topics', ['/bumper'], string_array)
         self.declare_parameter('rviz_config', '')
         update_rate = float(self.get_parameter('update_rate').value)
         if not update_rate > 0.0:
@@ -132,51 +120,27 @@ class Viewer(Node):
 
         rviz = None
         if self.get_parameter('rviz_config').value:  # ValueError: one line, exit 1
-            rviz = read_rviz_config(str(self.get_parameter('rviz_config').value))
-        settings = {name: self.get_parameter(name).value for name in (
-            'fixed_frame', 'robot_description_topics', 'odometry_topics', 'scan_topics',
-            'point_cloud_topics', 'imu_topics', 'image_topics', 'navsat_topics',
-            'contact_topics', 'world',
-            'cmd_vel_topic', 'frame_id', 'speed', 'turn')}
+            rviz = read_rviz_config(str(self.get_parameter('rviz_config').value),
+                                    rviz_topic_parameters(classes))
+        settings = {name: self.get_parameter(name).value
+                    for name in ('fixed_frame', *display_parameters(classes))}
         if rviz is not None:  # the config's displays replace the defaults, as in RViz
             settings.update(rviz.topics)
             if rviz.fixed_frame:
                 settings['fixed_frame'] = rviz.fixed_frame
             self.set_parameters([Parameter(name, value=settings[name])
                                  for name in ('fixed_frame', *rviz.topics) if settings[name]])
+        settings['rviz'] = rviz
         self._fixed_frame_default = str(settings['fixed_frame'])
-        server = self._server
+        self.server = self._server
         self.frames = FrameManager(self)
-        self.world = WorldDisplay(self, server, self.frames, settings['world'])
-        self.robot_model = RobotModelDisplay(self, server, self.frames,
-                                             settings['robot_description_topics'])
-        self.tf_axes = TfAxesDisplay(self, server, self.frames)
-        self.tf_axes.enabled = rviz is None or rviz.tf
-        self.trails = TrailsDisplay(self, server, self.frames, settings['odometry_topics'])
-        self.laser_scan = LaserScanDisplay(self, server, self.frames,
-                                           settings['scan_topics'])
-        self.point_cloud = PointCloudDisplay(self, server, self.frames,
-                                             settings['point_cloud_topics'])
-        self.imu = ImuDisplay(self, server, self.frames, settings['imu_topics'])
-        self.image = ImageDisplay(self, server, self.frames, settings['image_topics'])
-        self.navsat = NavSatDisplay(self, server, self.frames, settings['navsat_topics'])
-        self.contacts = ContactsDisplay(self, server, self.frames, settings['contact_topics'])
-        sensors = (self.laser_scan, self.point_cloud, self.imu, self.image, self.navsat,
-                   self.contacts)
-        self.status = StatusDisplay(self, server, self.frames, self.robot_model, self.trails,
-                                    *sensors)
-        if rviz is not None:
-            self.status.notes.append(
-                f'RViz config `{os.path.basename(rviz.path)}`'
-                + (f': not shown: {", ".join(rviz.not_shown)}' if rviz.not_shown
-                   else ': every display shown'))
-        self.teleop_pad = TeleopPadDisplay(
-            self, server, self.frames, str(settings['cmd_vel_topic']),
-            str(settings['frame_id']), float(settings['speed']),
-            float(settings['turn']))
-        # drawn in this order in every update (the status last: it reports what others saw)
-        self.displays = [self.world, self.robot_model, self.tf_axes, self.trails, *sensors,
-                         self.teleop_pad, self.status]
+        # made and drawn in their order (the status last: it reports what others saw)
+        self.displays = []
+        self.display_named = {}
+        for name, cls in classes.items():
+            display = cls.create(self, settings)
+            self.displays.append(display)
+            self.display_named[name] = display
         self._build_page()
         self.create_timer(1.0 / update_rate, self._update_scene,
                           clock=Clock(clock_type=ClockType.STEADY_TIME))
@@ -191,26 +155,24 @@ class Viewer(Node):
         server.initial_camera.look_at = (0.6, -0.6, 0.0)
         server.scene.add_grid('/grid', width=10.0, height=10.0, cell_size=0.5,
                               section_size=1.0)
-        self.status.build(gui)
-        self.image.build_panel(gui)
-        self.navsat.build(gui)
+        panels = sorted(self.displays, key=lambda d: d.order if d.panel_order is None
+                        else d.panel_order)
+        for display in panels:
+            display.build_panel(gui)
         with gui.add_folder('Displays'):
             self._fixed_frame = gui.add_text('Fixed Frame', self._fixed_frame_default)
-            self.tf_axes.build(gui)
-            self.trails.build(gui)
-            self.laser_scan.build(gui)
-            self.point_cloud.build(gui)
-            self.imu.build(gui)
-            self.image.build(gui)
-            self.contacts.build(gui)
-        self.teleop_pad.build(gui)
+            for display in self.displays:
+                display.build(gui)
+        for display in self.displays:
+            display.build_footer(gui)
 
     def _choose_fixed_frame(self):
         """Return (frame used, note for the status or '')."""
         wanted = self._fixed_frame.value.strip().lstrip('/')
         if wanted and wanted in self.frames.buffer.frames():
             return wanted, ''
-        root = self.robot_model.root_frame()
+        robot_model = self.display_named.get('robot_model')
+        root = robot_model.root_frame() if robot_model is not None else None
         if root is not None:
             return root, (f'Fixed Frame [{wanted}] does not exist; showing the robot root '
                           f'[{root}]')

@@ -5,6 +5,7 @@
 import os
 
 from amr_description.core.rviz_config import read_rviz_config
+from amr_description.web.displays.registry import rviz_topic_parameters
 import pytest
 
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -12,7 +13,7 @@ VIEW = os.path.join(os.path.dirname(HERE), 'data', 'sensor_course', 'view.rviz')
 
 
 def test_a_saved_rviz_config_gives_the_fixed_frame_topics_and_the_displays_not_shown():
-    config = read_rviz_config(VIEW)
+    config = read_rviz_config(VIEW, rviz_topic_parameters())
     assert config.fixed_frame == 'odom' and config.tf
     assert config.topics == {
         'image_topics': ['/camera/image_raw'], 'imu_topics': [],
@@ -38,7 +39,7 @@ def test_groups_are_walked_and_a_description_file_source_is_not_a_topic(tmp_path
       Description Source: File
       Description File: robot.urdf
 """)
-    config = read_rviz_config(str(path))
+    config = read_rviz_config(str(path), rviz_topic_parameters())
     assert config.topics['point_cloud_topics'] == ['/points']
     assert config.topics['image_topics'] == ['/front/image']
     assert config.topics['robot_description_topics'] == [] and not config.tf
@@ -57,7 +58,7 @@ def test_a_config_that_cannot_be_read_is_one_line_naming_the_file(tmp_path, text
     if text is not None:
         path.write_text(text)
     with pytest.raises(ValueError) as error:
-        read_rviz_config(str(path))
+        read_rviz_config(str(path), rviz_topic_parameters())
     assert str(error.value).startswith(str(path)) and message in str(error.value)
     assert '\n' not in str(error.value)
 
@@ -68,3 +69,39 @@ def test_viewer_d_becomes_the_rviz_config_parameter():
         ['viewer', '--ros-args', '-p', 'rviz_config:=/x/view.rviz']
     assert display_config_args(['viewer', '--ros-args', '-d', 'x']) == \
         ['viewer', '--ros-args', '-d', 'x']  # inside ROS arguments: left to rclpy
+
+
+def test_displays_are_plug_ins_found_through_their_entry_point_group():
+    import ast
+    from amr_description.web.displays import registry
+    from amr_description.web.displays.base import Display
+    classes = registry.display_classes()
+    assert list(classes) == ['world', 'robot_model', 'tf_axes', 'trails', 'laser_scan',
+                             'point_cloud', 'imu', 'image', 'navsat', 'contacts', 'teleop_pad',
+                             'status']
+    assert all(issubclass(cls, Display) for cls in classes.values())
+    # every display module's Display subclass is registered: one module, one registration
+    folder = os.path.join(os.path.dirname(HERE), '..', 'amr_description', 'web', 'displays')
+    defined = set()
+    for name in os.listdir(folder):
+        if name.endswith('.py') and name not in ('base.py', 'registry.py', 'sensor_topics.py'):
+            with open(os.path.join(folder, name)) as f:
+                tree = ast.parse(f.read())
+            defined |= {node.name for node in tree.body if isinstance(node, ast.ClassDef)
+                        and node.name.endswith('Display')}
+    assert defined == {cls.__name__ for cls in classes.values()}
+    # the viewer's parameters and the .rviz reader's classes come from the displays
+    parameters = registry.display_parameters()
+    assert parameters['scan_topics'] == ['/scan'] and parameters['world'] == ''
+    assert parameters['cmd_vel_topic'] == '/diff_drive_controller/cmd_vel'
+    assert registry.rviz_topic_parameters()['rviz_default_plugins/LaserScan'] == 'scan_topics'
+
+    class RangeDisplay(Display):
+        order = 56
+        parameters = (('range_topics', ['/range']),)
+        topics_parameter = 'range_topics'
+        rviz_classes = {'rviz_default_plugins/Range': 'range_topics'}
+
+    more = dict(classes, range=RangeDisplay)
+    assert registry.display_parameters(more)['range_topics'] == ['/range']
+    assert registry.rviz_topic_parameters(more)['rviz_default_plugins/Range'] == 'range_topics'

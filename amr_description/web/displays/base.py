@@ -156,10 +156,29 @@ class Display:
     """
     A display of the viewer: controls on the page, subscriptions, drawing.
 
+    A display is found through the entry-point group ``amr_description.displays``
+    (:mod:`amr_description.web.displays.registry`); its class says what the viewer needs:
+
+    :cvar order: its place in every scene update (and in the page's Displays folder);
+        lower first.
+    :cvar panel_order: its place among the controls above the Displays folder (None: as
+        ``order``).
+    :cvar parameters: ``((name, default), ...)``: the viewer parameters it reads (a list
+        default declares a string array).
+    :cvar topics_parameter: the parameter of ``parameters`` holding its topic list, handed to
+        the constructor by :meth:`create` (None: the constructor takes no topics).
+    :cvar rviz_classes: ``{RViz display class: parameter}``: an enabled display of that class
+        in an ``.rviz`` file sets that topic-list parameter.
     :param node: the viewer node (subscriptions, parameters, logger).
     :param server: the viser server (``scene``, ``gui``).
     :param frames: the shared :class:`FrameManager`.
     """
+
+    order = 50
+    panel_order = None
+    parameters = ()
+    topics_parameter = None
+    rviz_classes = {}
 
     def __init__(self, node, server, frames):
         """Keep the shared parts; a subclass subscribes here."""
@@ -167,8 +186,26 @@ class Display:
         self.server = server
         self.frames = frames
 
+    @classmethod
+    def create(cls, viewer, settings):
+        """
+        Make the display for a viewer (override when the constructor takes more).
+
+        :param viewer: the viewer node (``server``, ``frames``, ``displays`` made so far).
+        :param settings: dict parameter -> value (an ``.rviz`` file's topics applied).
+        """
+        if cls.topics_parameter is not None:
+            return cls(viewer, viewer.server, viewer.frames, settings[cls.topics_parameter])
+        return cls(viewer, viewer.server, viewer.frames)
+
+    def build_panel(self, gui):
+        """Add controls at the top of the page's panel, above the Displays folder."""
+
     def build(self, gui):
-        """Add this display's controls to the page (in the panel the viewer opened)."""
+        """Add this display's controls to the page's Displays folder."""
+
+    def build_footer(self, gui):
+        """Add controls below the Displays folder."""
 
     def draw(self, context):
         """Bring the scene up to date for one :class:`DrawContext` (inside the batch)."""

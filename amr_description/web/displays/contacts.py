@@ -37,6 +37,9 @@ class ContactsDisplay(SensorTopicsDisplay):
     message_type = Contacts
     label = 'Contacts'
     default_frame = 'world'
+    order = 55
+    parameters = (('contact_topics', ['/bumper']),)
+    topics_parameter = 'contact_topics'
 
     def rates(self):
         """Return ``[(topic, Rate)]`` of the topics heard so far (a bumper is optional)."""

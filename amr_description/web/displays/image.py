@@ -138,6 +138,11 @@ class ImageDisplay(Display):
     """The images of ``topics`` in the panel and their cameras in the scene."""
 
     label = 'Image'
+    order = 53
+    parameters = (('image_topics', ['/camera/image']),)
+    topics_parameter = 'image_topics'
+    rviz_classes = {'rviz_default_plugins/Image': 'image_topics',
+                    'rviz_default_plugins/Camera': 'image_topics'}
 
     def __init__(self, node, server, frames, topics):
         """Keep the topics; they are subscribed when a page opens (module docstring)."""

@@ -43,6 +43,10 @@ class ImuDisplay(SensorTopicsDisplay):
 
     message_type = Imu
     label = 'Imu'
+    order = 52
+    parameters = (('imu_topics', ['/imu']),)
+    topics_parameter = 'imu_topics'
+    rviz_classes = {'rviz_imu_plugin/Imu': 'imu_topics'}
 
     def render(self, name, msg, T, node):
         """Draw the two arrows of the newest sample (module docstring)."""

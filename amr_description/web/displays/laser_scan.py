@@ -43,6 +43,10 @@ class LaserScanDisplay(SensorTopicsDisplay):
 
     message_type = LaserScan
     label = 'LaserScan'
+    order = 50
+    parameters = (('scan_topics', ['/scan']),)
+    topics_parameter = 'scan_topics'
+    rviz_classes = {'rviz_default_plugins/LaserScan': 'scan_topics'}
 
     def render(self, name, msg, T, node):
         """Draw the scan's valid points in the fixed frame, coloured by range."""

@@ -32,6 +32,10 @@ def fix_text(topic, msg):
 class NavSatDisplay(Display):
     """The fixes of ``topics`` as text (module docstring)."""
 
+    order = 54
+    parameters = (('navsat_topics', ['/gps/fix', '/navsat']),)
+    topics_parameter = 'navsat_topics'
+
     def __init__(self, node, server, frames, topics):
         """Subscribe every topic (sensor-data QoS)."""
         super().__init__(node, server, frames)
@@ -55,7 +59,7 @@ class NavSatDisplay(Display):
         """Return ``[(topic, Rate)]`` of the topics that have had a fix (for the status)."""
         return [(topic, rate) for topic, rate in self._rates.items() if topic in self._fixes]
 
-    def build(self, gui):
+    def build_panel(self, gui):
         """Add the (hidden) text."""
         self._text = gui.add_markdown('', visible=False)
 

@@ -49,6 +49,10 @@ class PointCloudDisplay(SensorTopicsDisplay):
 
     message_type = PointCloud2
     label = 'PointCloud2'
+    order = 51
+    parameters = (('point_cloud_topics', ['/scan/points']),)
+    topics_parameter = 'point_cloud_topics'
+    rviz_classes = {'rviz_default_plugins/PointCloud2': 'point_cloud_topics'}
 
     def render(self, name, msg, T, node):
         """Draw the cloud's finite points in the fixed frame, coloured by height."""

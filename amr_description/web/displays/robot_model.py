@@ -33,6 +33,11 @@ class RobotModelDisplay(Display):
     :ivar errors: topic -> the one-line error of its last description.
     """
 
+    order = 20
+    parameters = (('robot_description_topics', ['/robot_description']),)
+    topics_parameter = 'robot_description_topics'
+    rviz_classes = {'rviz_default_plugins/RobotModel': 'robot_description_topics'}
+
     def __init__(self, node, server, frames, topics):
         """Subscribe every description topic (transient local, depth 1)."""
         super().__init__(node, server, frames)

@@ -10,6 +10,7 @@ topic, the sensor topics and ``/tf``.
 Refreshed every :data:`PERIOD` s, and at once when a robot description arrives.
 """
 
+import os
 import time
 
 from amr_description.web.displays.base import Display
@@ -35,6 +36,33 @@ class StatusDisplay(Display):
     :param sensors: displays with ``rates()`` -> ``[(topic, Rate)]`` of their sensor topics.
     """
 
+    order = 100
+    panel_order = 0  # its text tops the panel; drawn last: it reports what others saw
+
+    @classmethod
+    def create(cls, viewer, settings):
+        """
+        Make the status of the displays made before it.
+
+        The robot model, the odometry trails and every display with ``rates()``; an
+        ``.rviz`` file (``settings['rviz']``) is named with the displays it has that no
+        registered display shows.
+        """
+        from amr_description.web.displays.robot_model import RobotModelDisplay
+        from amr_description.web.displays.trails import TrailsDisplay
+        made = list(viewer.displays)
+        robot_model = next((d for d in made if isinstance(d, RobotModelDisplay)), None)
+        trails = next((d for d in made if isinstance(d, TrailsDisplay)), None)
+        sensors = [d for d in made if callable(getattr(d, 'rates', None))]
+        display = cls(viewer, viewer.server, viewer.frames, robot_model, trails, *sensors)
+        rviz = settings.get('rviz')
+        if rviz is not None:
+            display.notes.append(
+                f'RViz config `{os.path.basename(rviz.path)}`'
+                + (f': not shown: {", ".join(rviz.not_shown)}' if rviz.not_shown
+                   else ': every display shown'))
+        return display
+
     def __init__(self, node, server, frames, robot_model, trails, *sensors):
         """Count ``/joint_states`` (taken raw, never converted to a Python message)."""
         super().__init__(node, server, frames)
@@ -50,7 +78,7 @@ class StatusDisplay(Display):
         self.notes = []  # lines shown under the rates (the RViz config's displays not shown)
         self._next = 0.0
 
-    def build(self, gui):
+    def build_panel(self, gui):
         """Add the status text (at the top of the panel)."""
         self._text = gui.add_markdown('Waiting for data...')
 

@@ -44,6 +44,17 @@ class TeleopPadDisplay(Display):
     :param turn: initial turn rate, rad/s.
     """
 
+    order = 90
+    parameters = (('cmd_vel_topic', '/diff_drive_controller/cmd_vel'), ('frame_id', 'base_link'),
+                  ('speed', 0.5), ('turn', 1.0))
+
+    @classmethod
+    def create(cls, viewer, settings):
+        """Make the pad of the viewer's ``cmd_vel_topic``, ``frame_id``, ``speed``, ``turn``."""
+        return cls(viewer, viewer.server, viewer.frames, str(settings['cmd_vel_topic']),
+                   str(settings['frame_id']), float(settings['speed']),
+                   float(settings['turn']))
+
     def __init__(self, node, server, frames, cmd_vel_topic, frame_id, speed, turn):
         """Create the publisher (the :data:`RATE` Hz timer starts with the page)."""
         super().__init__(node, server, frames)
@@ -53,7 +64,7 @@ class TeleopPadDisplay(Display):
         self._initial = (speed, turn)
         self._publisher = node.create_publisher(TwistStamped, cmd_vel_topic, 10)
 
-    def build(self, gui):
+    def build_footer(self, gui):
         """Add the ``Teleop`` folder and the hotkeys; a disconnected page releases all."""
         self._folder = gui.add_folder('Teleop', visible=self._heard())
         self._next_look = time.monotonic() + VISIBILITY_PERIOD

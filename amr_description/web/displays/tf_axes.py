@@ -18,6 +18,16 @@ class TfAxesDisplay(Display):
     drawn changes. A checkbox shows or hides it.
     """
 
+    order = 30
+
+    @classmethod
+    def create(cls, viewer, settings):
+        """Make the display, enabled unless an ``.rviz`` file (``settings['rviz']``) has no TF."""
+        display = cls(viewer, viewer.server, viewer.frames)
+        rviz = settings.get('rviz')
+        display.enabled = rviz is None or rviz.tf
+        return display
+
     def __init__(self, node, server, frames):
         """Start with no axes drawn."""
         super().__init__(node, server, frames)

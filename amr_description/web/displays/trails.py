@@ -58,6 +58,11 @@ class TrailsDisplay(Display):
     :ivar rate: its :class:`~amr_description.web.displays.base.Rate`.
     """
 
+    order = 40
+    parameters = (('odometry_topics', ['/odom', '/ground_truth/odom']),)
+    topics_parameter = 'odometry_topics'
+    rviz_classes = {'rviz_default_plugins/Odometry': 'odometry_topics'}
+
     def __init__(self, node, server, frames, topics):
         """Subscribe every odometry topic."""
         super().__init__(node, server, frames)

@@ -142,6 +142,14 @@ class WorldDisplay(Display):
     :ivar topic: the moving links' pose topic, '' without moving links.
     """
 
+    order = 10
+    parameters = (('world', ''),)
+
+    @classmethod
+    def create(cls, viewer, settings):
+        """Make the display of the viewer's ``world``."""
+        return cls(viewer, viewer.server, viewer.frames, settings['world'])
+
     def __init__(self, node, server, frames, world_value):
         """Read the world and build its meshes (once); an unreadable world is an error line."""
         super().__init__(node, server, frames)
