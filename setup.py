@@ -58,6 +58,98 @@ setup(
             'static_transform_publisher = '
             'amr_description.nodes.static_transform_publisher:main',
         ],
+        'amr_description.command': [
+            'action = amr_description.cli.action:COMMAND',
+            'bag = amr_description.cli.bag:COMMAND',
+            'control = amr_description.cli.control:COMMAND',
+            'daemon = amr_description.cli.daemon:COMMAND',
+            'doctor = amr_description.cli.doctor:COMMAND',
+            'interface = amr_description.cli.interface:COMMAND',
+            'launch = amr_description.cli.launch:COMMAND',
+            'node = amr_description.cli.node:COMMAND',
+            'param = amr_description.cli.param:COMMAND',
+            'pkg = amr_description.cli.pkg:COMMAND',
+            'run = amr_description.cli.run:COMMAND',
+            'service = amr_description.cli.service:COMMAND',
+            'topic = amr_description.cli.topic:COMMAND',
+            'wtf = amr_description.cli.doctor:COMMAND',
+        ],
+        'amr_description.action.verb': [
+            'list = amr_description.cli.action:VERB_LIST',
+        ],
+        'amr_description.bag.verb': [
+            'info = amr_description.cli.bag.info:VERB_INFO',
+            'play = amr_description.cli.bag.play:VERB_PLAY',
+            'record = amr_description.cli.bag.record:VERB_RECORD',
+        ],
+        'amr_description.control.verb': [
+            'cleanup_controller = amr_description.cli.control.lifecycle:VERB_CLEANUP_CONTROLLER',
+            'list_controller_types = '
+            'amr_description.cli.control.listing:VERB_LIST_CONTROLLER_TYPES',
+            'list_controllers = amr_description.cli.control.listing:VERB_LIST_CONTROLLERS',
+            'list_hardware_components = '
+            'amr_description.cli.control.listing:VERB_LIST_HARDWARE_COMPONENTS',
+            'list_hardware_interfaces = '
+            'amr_description.cli.control.listing:VERB_LIST_HARDWARE_INTERFACES',
+            'load_controller = amr_description.cli.control.lifecycle:VERB_LOAD_CONTROLLER',
+            'reload_controller_libraries = '
+            'amr_description.cli.control.lifecycle:VERB_RELOAD_CONTROLLER_LIBRARIES',
+            'set_controller_state = '
+            'amr_description.cli.control.lifecycle:VERB_SET_CONTROLLER_STATE',
+            'set_hardware_component_state = '
+            'amr_description.cli.control.hardware:VERB_SET_HARDWARE_COMPONENT_STATE',
+            'switch_controllers = amr_description.cli.control.lifecycle:VERB_SWITCH_CONTROLLERS',
+            'unload_controller = amr_description.cli.control.lifecycle:VERB_UNLOAD_CONTROLLER',
+            'view_controller_chains = '
+            'amr_description.cli.control.chains:VERB_VIEW_CONTROLLER_CHAINS',
+        ],
+        'amr_description.daemon.verb': [
+            'start = amr_description.cli.daemon:VERB_START',
+            'status = amr_description.cli.daemon:VERB_STATUS',
+            'stop = amr_description.cli.daemon:VERB_STOP',
+        ],
+        'amr_description.interface.verb': [
+            'list = amr_description.cli.interface:VERB_LIST',
+            'package = amr_description.cli.interface:VERB_PACKAGE',
+            'packages = amr_description.cli.interface:VERB_PACKAGES',
+            'show = amr_description.cli.interface:VERB_SHOW',
+        ],
+        'amr_description.node.verb': [
+            'info = amr_description.cli.node:VERB_INFO',
+            'list = amr_description.cli.node:VERB_LIST',
+        ],
+        'amr_description.param.verb': [
+            'delete = amr_description.cli.param.change:VERB_DELETE',
+            'describe = amr_description.cli.param.query:VERB_DESCRIBE',
+            'dump = amr_description.cli.param.change:VERB_DUMP',
+            'get = amr_description.cli.param.query:VERB_GET',
+            'list = amr_description.cli.param.query:VERB_LIST',
+            'load = amr_description.cli.param.change:VERB_LOAD',
+            'set = amr_description.cli.param.change:VERB_SET',
+        ],
+        'amr_description.pkg.verb': [
+            'executables = amr_description.cli.pkg:VERB_EXECUTABLES',
+            'list = amr_description.cli.pkg:VERB_LIST',
+            'prefix = amr_description.cli.pkg:VERB_PREFIX',
+            'xml = amr_description.cli.pkg:VERB_XML',
+        ],
+        'amr_description.service.verb': [
+            'call = amr_description.cli.service:VERB_CALL',
+            'find = amr_description.cli.service:VERB_FIND',
+            'list = amr_description.cli.service:VERB_LIST',
+            'type = amr_description.cli.service:VERB_TYPE',
+        ],
+        'amr_description.topic.verb': [
+            'bw = amr_description.cli.topic.rates:VERB_BW',
+            'delay = amr_description.cli.topic.rates:VERB_DELAY',
+            'echo = amr_description.cli.topic.echo:VERB_ECHO',
+            'find = amr_description.cli.topic.listing:VERB_FIND',
+            'hz = amr_description.cli.topic.rates:VERB_HZ',
+            'info = amr_description.cli.topic.listing:VERB_INFO',
+            'list = amr_description.cli.topic.listing:VERB_LIST',
+            'pub = amr_description.cli.topic.pub:VERB_PUB',
+            'type = amr_description.cli.topic.listing:VERB_TYPE',
+        ],
         'amr_description.components': [
             'amr_description::RobotStatePublisher = '
             'amr_description.nodes.robot_state_publisher:RobotStatePublisher',

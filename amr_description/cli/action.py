@@ -15,6 +15,8 @@ from amr_description.cli.common import add_spin_time_argument
 from amr_description.cli.common import default_node_name
 from amr_description.cli.common import wait_for_graph
 from amr_description.cli.daemon import graph_node
+from amr_description.cli.extension import Command
+from amr_description.cli.extension import Verb
 
 SEND_GOAL = '/_action/send_goal'
 SEND_GOAL_TYPE = '_SendGoal'
@@ -49,19 +51,18 @@ def _list(args):
     return 0
 
 
-def add_command(subparsers):
-    """
-    Add the ``action`` command and its verbs to the ``ros2`` parser.
-
-    :param subparsers: the top-level ``add_subparsers()`` object.
-    """
-    parser = subparsers.add_parser('action', help='Various action related sub-commands')
-    parser.set_defaults(_command_parser=parser)
-    verbs = parser.add_subparsers(title='Commands', dest='verb')
-    p = verbs.add_parser('list', help='Output a list of action names')
+def _arguments_list(p):
+    """Add the arguments of ``ros2 action list``."""
     p.add_argument('-t', '--show-types', action='store_true',
                    help='Additionally show the action type')
     p.add_argument('-c', '--count-actions', action='store_true',
                    help='Only display the number of actions discovered')
     add_spin_time_argument(p)
-    p.set_defaults(main=_list)
+
+
+VERB_LIST = Verb('Output a list of action names', _list, _arguments_list)
+"""``ros2 action list``."""
+
+
+COMMAND = Command('Various action related sub-commands')
+"""``ros2 action``: its verbs are registered in ``amr_description.action.verb``."""

@@ -27,6 +27,10 @@ import subprocess
 import sys
 import time
 
+from amr_description.cli.extension import Command
+from amr_description.cli.extension import Verb
+
+
 BASE_PORT = 11511
 """ros2cli's daemon port for ROS_DOMAIN_ID 0; domain N listens on ``BASE_PORT + N``."""
 IDLE_TIMEOUT = 2 * 60 * 60
@@ -321,14 +325,15 @@ def _stop(args):
     return 0
 
 
-def add_command(subparsers):
-    """Register ``ros2 daemon`` and its verbs."""
-    parser = subparsers.add_parser('daemon', help='Various daemon related sub-commands')
-    parser.set_defaults(_command_parser=parser)
-    verbs = parser.add_subparsers(title='Commands', dest='verb',
-                                  metavar='Call `ros2 daemon <command> -h` for more detailed '
-                                          'usage.')
-    for verb, func, text in (('start', _start, "Start the daemon if it isn't running"),
-                             ('status', _status, 'Output the status of the daemon'),
-                             ('stop', _stop, 'Stop the daemon if it is running')):
-        verbs.add_parser(verb, help=text).set_defaults(main=func)
+VERB_START = Verb("Start the daemon if it isn't running", _start)
+"""``ros2 daemon start``."""
+
+VERB_STATUS = Verb('Output the status of the daemon', _status)
+"""``ros2 daemon status``."""
+
+VERB_STOP = Verb('Stop the daemon if it is running', _stop)
+"""``ros2 daemon stop``."""
+
+COMMAND = Command('Various daemon related sub-commands',
+                  verbs_metavar='Call `ros2 daemon <command> -h` for more detailed usage.')
+"""``ros2 daemon``: its verbs are registered in ``amr_description.daemon.verb``."""

@@ -35,6 +35,7 @@ import warnings
 from amr_description.cli.common import cli_node
 from amr_description.cli.common import default_node_name
 from amr_description.cli.common import wait_for_graph
+from amr_description.cli.extension import Command
 
 STACK_TOPICS = ('/clock', '/joint_states', '/odom', '/tf')
 DISCOVERY_RANGES = ('SUBNET', 'LOCALHOST', 'OFF', 'SYSTEM_DEFAULT')
@@ -270,21 +271,18 @@ def _main(args):
     return 0
 
 
-def add_command(subparsers):
-    """
-    Add the ``doctor`` command (and its alias ``wtf``) to the ``ros2`` parser.
+def _arguments(parser):
+    """Add the arguments of ``ros2 doctor`` (and ``ros2 wtf``)."""
+    group = parser.add_mutually_exclusive_group(required=False)
+    group.add_argument('--report', '-r', action='store_true', help='Print all reports.')
+    group.add_argument('--report-failed', '-rf', action='store_true',
+                       help='Print reports of failed checks only.')
+    parser.add_argument('--include-warnings', '-iw', action='store_true',
+                        help='Include warnings as failed checks. Warnings are ignored by '
+                             'default.')
+    parser.add_argument('--spin-time', type=float, default=2.0, metavar='SECONDS',
+                        help='Spin time in seconds to wait for discovery (default: 2.0)')
 
-    :param subparsers: the top-level ``add_subparsers()`` object.
-    """
-    for name in ('doctor', 'wtf'):
-        parser = subparsers.add_parser(name, help='Check ROS setup and other potential issues')
-        group = parser.add_mutually_exclusive_group(required=False)
-        group.add_argument('--report', '-r', action='store_true', help='Print all reports.')
-        group.add_argument('--report-failed', '-rf', action='store_true',
-                           help='Print reports of failed checks only.')
-        parser.add_argument('--include-warnings', '-iw', action='store_true',
-                            help='Include warnings as failed checks. Warnings are ignored by '
-                                 'default.')
-        parser.add_argument('--spin-time', type=float, default=2.0, metavar='SECONDS',
-                            help='Spin time in seconds to wait for discovery (default: 2.0)')
-        parser.set_defaults(main=_main, _command_parser=parser)
+
+COMMAND = Command('Check ROS setup and other potential issues', _arguments, _main)
+"""``ros2 doctor``, registered also as ``ros2 wtf`` (as ros2doctor)."""

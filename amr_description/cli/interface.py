@@ -13,6 +13,8 @@ unless ``--all-comments``; ``--no-comments`` drops them at the top level too.
 import os
 
 from amr_description.cli.common import fail
+from amr_description.cli.extension import Command
+from amr_description.cli.extension import Verb
 from amr_description.core.message_yaml.utilities import INTERFACE_KINDS
 
 
@@ -176,40 +178,60 @@ def _package(args):
     return 0
 
 
-def add_command(subparsers):
-    """
-    Add the ``interface`` command and its verbs to the ``ros2`` parser.
-
-    :param subparsers: the top-level ``add_subparsers()`` object.
-    """
-    parser = subparsers.add_parser('interface', help='Show information about ROS interfaces')
-    parser.set_defaults(_command_parser=parser)
-    verbs = parser.add_subparsers(title='Commands', dest='verb')
-    p = verbs.add_parser('show', help='Output the interface definition')
+def _arguments_show(p):
+    """Add the arguments of ``ros2 interface show``."""
     group = p.add_mutually_exclusive_group()
     group.add_argument('--all-comments', action='store_true',
                        help='Show all comments, including for nested interface definitions')
     group.add_argument('--no-comments', action='store_true',
                        help='Show no comments or whitespace')
     p.add_argument('type', help="Show an interface definition (e.g. 'std_msgs/msg/String')")
-    p.set_defaults(main=_show)
-    p = verbs.add_parser('list', help='List all interface types available')
+
+
+VERB_SHOW = Verb('Output the interface definition', _show, _arguments_show)
+"""``ros2 interface show``."""
+
+
+def _arguments_list(p):
+    """Add the arguments of ``ros2 interface list``."""
     p.add_argument('-m', '--only-msgs', dest='only_msg', action='store_true',
                    help='Print out only the message types')
     p.add_argument('-s', '--only-srvs', dest='only_srv', action='store_true',
                    help='Print out only the service types')
     p.add_argument('-a', '--only-actions', dest='only_action', action='store_true',
                    help='Print out only the action types')
-    p.set_defaults(main=_list)
-    p = verbs.add_parser('packages', help='Output a list of packages that provide interfaces')
+
+
+VERB_LIST = Verb('List all interface types available', _list, _arguments_list)
+"""``ros2 interface list``."""
+
+
+def _arguments_packages(p):
+    """Add the arguments of ``ros2 interface packages``."""
     p.add_argument('-m', '--only-msgs', action='store_true',
                    help='Only list packages that generate messages')
     p.add_argument('-s', '--only-srvs', action='store_true',
                    help='Only list packages that generate services')
     p.add_argument('-a', '--only-actions', action='store_true',
                    help='Only list packages that generate actions')
-    p.set_defaults(main=_packages)
-    p = verbs.add_parser('package', help='Output a list of available interface types within '
-                         'one package')
+
+
+VERB_PACKAGES = Verb(
+    'Output a list of packages that provide interfaces',
+    _packages, _arguments_packages)
+"""``ros2 interface packages``."""
+
+
+def _arguments_package(p):
+    """Add the arguments of ``ros2 interface package``."""
     p.add_argument('package_name', help="Name of the ROS package (e.g. 'example_interfaces')")
-    p.set_defaults(main=_package)
+
+
+VERB_PACKAGE = Verb(
+    'Output a list of available interface types within one package',
+    _package, _arguments_package)
+"""``ros2 interface package``."""
+
+
+COMMAND = Command('Show information about ROS interfaces')
+"""``ros2 interface``: its verbs are registered in ``amr_description.interface.verb``."""

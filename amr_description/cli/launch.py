@@ -9,6 +9,7 @@ Stands in for ros2launch: the "launch files" are the Python stack descriptions i
 """
 
 from amr_description.cli.common import fail
+from amr_description.cli.extension import Command
 
 
 def _main(args):
@@ -20,15 +21,8 @@ def _main(args):
     return run(args.launch_file_name, args.launch_arguments, args.show_args)
 
 
-def add_command(subparsers):
-    """
-    Add the ``launch`` command to the ``ros2`` parser.
-
-    :param subparsers: the top-level ``add_subparsers()`` object.
-    """
-    parser = subparsers.add_parser(
-        'launch', help='Run a launch file',
-        description='Run a stack (launch file) of a package.')
+def _arguments(parser):
+    """Add the arguments of ``ros2 launch``."""
     parser.add_argument('package_name', help='Name of the ROS package which contains the stack')
     parser.add_argument('launch_file_name',
                         help="Name of the stack, e.g. 'sim' or 'sim.launch.py'")
@@ -37,4 +31,8 @@ def add_command(subparsers):
                              'last one wins)')
     parser.add_argument('-s', '--show-args', '--show-arguments', action='store_true',
                         help='Show arguments that may be given to the launch file.')
-    parser.set_defaults(main=_main, _command_parser=parser)
+
+
+COMMAND = Command('Run a launch file', _arguments, _main,
+                  description='Run a stack (launch file) of a package.')
+"""``ros2 launch``."""

@@ -4,20 +4,18 @@
 """
 Entry point of the ``ros2`` command subset: ``ros2 <command> <verb> [options]``.
 
-Each command lives in ``amr_description.cli.<command>`` and exposes
-``add_command(subparsers)``, which adds its parser and verbs; every verb parser sets
-``main=callable(args) -> int`` with ``set_defaults``. The structure mirrors ros2cli
-(command -> verb) so later commands plug in by adding a module name to ``COMMANDS``.
+Commands and verbs plug in as ros2cli's do (:mod:`amr_description.cli.extension`): a
+:class:`~amr_description.cli.extension.Command` registered in the entry-point group
+``amr_description.command`` and its :class:`~amr_description.cli.extension.Verb` s in
+``amr_description.<command>.verb``; every verb parser gets ``main=callable(args) -> int``.
 """
 
 import argparse
 import contextlib
-import importlib
 import os
 import sys
 
-COMMANDS = ('action', 'bag', 'control', 'daemon', 'doctor', 'interface', 'launch', 'node',
-            'param', 'pkg', 'run', 'service', 'topic')
+from amr_description.cli.extension import add_commands
 
 
 def build_parser():
@@ -32,14 +30,7 @@ def build_parser():
     subparsers = parser.add_subparsers(
         title='Commands', dest='command',
         metavar='Call `ros2 <command> -h` for more detailed usage.')
-    for name in COMMANDS:
-        try:
-            module = importlib.import_module(f'amr_description.cli.{name}')
-        except ModuleNotFoundError as exc:
-            if exc.name != f'amr_description.cli.{name}':
-                raise
-            continue
-        module.add_command(subparsers)
+    add_commands(subparsers)
     return parser
 
 

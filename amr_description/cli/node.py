@@ -21,6 +21,8 @@ from amr_description.cli.common import is_hidden_name
 from amr_description.cli.common import wait_for_graph
 from amr_description.cli.daemon import graph_node
 from amr_description.cli.daemon import node_endpoints
+from amr_description.cli.extension import Command
+from amr_description.cli.extension import Verb
 
 
 def fully_qualified(name, namespace):
@@ -103,25 +105,30 @@ def _info(args):
     return 0
 
 
-def add_command(subparsers):
-    """
-    Add the ``node`` command and its verbs to the ``ros2`` parser.
-
-    :param subparsers: the top-level ``add_subparsers()`` object.
-    """
-    parser = subparsers.add_parser('node', help='Various node related sub-commands')
-    parser.set_defaults(_command_parser=parser)
-    verbs = parser.add_subparsers(title='Commands', dest='verb')
-    p = verbs.add_parser('list', help='Output a list of available nodes')
+def _arguments_list(p):
+    """Add the arguments of ``ros2 node list``."""
     p.add_argument('-a', '--all', action='store_true',
                    help='Display all nodes even hidden ones')
     p.add_argument('-c', '--count-nodes', action='store_true',
                    help='Only display the number of nodes discovered')
     add_spin_time_argument(p)
-    p.set_defaults(main=_list)
-    p = verbs.add_parser('info', help='Output information about a node')
+
+
+VERB_LIST = Verb('Output a list of available nodes', _list, _arguments_list)
+"""``ros2 node list``."""
+
+
+def _arguments_info(p):
+    """Add the arguments of ``ros2 node info``."""
     p.add_argument('node_name', help='Node name to request information')
     p.add_argument('--include-hidden', action='store_true', help='Display hidden topics, '
                    'services, and actions as well')
     add_spin_time_argument(p, default=10.0)  # the longest wait: it ends when the node is seen
-    p.set_defaults(main=_info)
+
+
+VERB_INFO = Verb('Output information about a node', _info, _arguments_info)
+"""``ros2 node info``."""
+
+
+COMMAND = Command('Various node related sub-commands')
+"""``ros2 node``: its verbs are registered in ``amr_description.node.verb``."""

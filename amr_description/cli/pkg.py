@@ -10,6 +10,8 @@ The index is the one ament_index_python reads: every prefix of ``AMENT_PREFIX_PA
 import os
 
 from amr_description.cli.common import fail
+from amr_description.cli.extension import Command
+from amr_description.cli.extension import Verb
 
 
 def package_prefixes():
@@ -98,28 +100,43 @@ def _xml(args):
     return 0
 
 
-def add_command(subparsers):
-    """
-    Add the ``pkg`` command and its verbs to the ``ros2`` parser.
+VERB_LIST = Verb('Output a list of available packages', _list)
+"""``ros2 pkg list``."""
 
-    :param subparsers: the top-level ``add_subparsers()`` object.
-    """
-    parser = subparsers.add_parser('pkg', help='Various package related sub-commands')
-    parser.set_defaults(_command_parser=parser)
-    verbs = parser.add_subparsers(title='Commands', dest='verb')
-    p = verbs.add_parser('list', help='Output a list of available packages')
-    p.set_defaults(main=_list)
-    p = verbs.add_parser('prefix', help='Output the prefix path of a package')
+
+def _arguments_prefix(p):
+    """Add the arguments of ``ros2 pkg prefix``."""
     p.add_argument('package_name', help='The package name')
     p.add_argument('--share', action='store_true',
                    help='Show share directory for the package')
-    p.set_defaults(main=_prefix)
-    p = verbs.add_parser('executables', help='Output a list of package specific executables')
+
+
+VERB_PREFIX = Verb('Output the prefix path of a package', _prefix, _arguments_prefix)
+"""``ros2 pkg prefix``."""
+
+
+def _arguments_executables(p):
+    """Add the arguments of ``ros2 pkg executables``."""
     p.add_argument('package_name', nargs='?', help='The package name')
     p.add_argument('--full-path', action='store_true',
                    help='Show the full path of each executable')
-    p.set_defaults(main=_executables)
-    p = verbs.add_parser('xml', help='Output the XML of the package manifest or a specific tag')
+
+
+VERB_EXECUTABLES = Verb(
+    'Output a list of package specific executables',
+    _executables, _arguments_executables)
+"""``ros2 pkg executables``."""
+
+
+def _arguments_xml(p):
+    """Add the arguments of ``ros2 pkg xml``."""
     p.add_argument('package_name', help='The package name')
     p.add_argument('-t', '--tag', help='The XML tag to output (e.g. version)')
-    p.set_defaults(main=_xml)
+
+
+VERB_XML = Verb('Output the XML of the package manifest or a specific tag', _xml, _arguments_xml)
+"""``ros2 pkg xml``."""
+
+
+COMMAND = Command('Various package related sub-commands')
+"""``ros2 pkg``: its verbs are registered in ``amr_description.pkg.verb``."""

@@ -19,6 +19,7 @@ import signal
 import subprocess
 
 from amr_description.cli.common import fail
+from amr_description.cli.extension import Command
 from amr_description.cli.pkg import executable_paths
 from amr_description.cli.pkg import package_prefixes
 from amr_description.launch.child_process import tie_to_parent
@@ -95,13 +96,8 @@ def _main(args):
     return code if code >= 0 else 128 - code
 
 
-def add_command(subparsers):
-    """
-    Add the ``run`` command to the ``ros2`` parser.
-
-    :param subparsers: the top-level ``add_subparsers()`` object.
-    """
-    parser = subparsers.add_parser('run', help='Run a package specific executable')
+def _arguments(parser):
+    """Add the arguments of ``ros2 run``."""
     parser.add_argument('--prefix', help='Prefix command, which should go before the '
                         'executable. Command must be wrapped in quotes if it contains spaces '
                         "(e.g. --prefix 'gdb -ex run --args').")
@@ -109,4 +105,7 @@ def add_command(subparsers):
     parser.add_argument('executable_name', help='Name of the executable')
     parser.add_argument('argv', nargs=argparse.REMAINDER,
                         help='Pass arbitrary arguments to the executable')
-    parser.set_defaults(main=_main, _command_parser=parser)
+
+
+COMMAND = Command('Run a package specific executable', _arguments, _main)
+"""``ros2 run``."""

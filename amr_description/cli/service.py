@@ -18,6 +18,8 @@ from amr_description.cli.common import is_hidden_name
 from amr_description.cli.common import spin_once
 from amr_description.cli.common import wait_for_graph
 from amr_description.cli.daemon import graph_node
+from amr_description.cli.extension import Command
+from amr_description.cli.extension import Verb
 
 
 def _service_types(node, name):
@@ -117,16 +119,8 @@ def _call(args):
             time.sleep(max(0.0, period - (time.monotonic() - started)))
 
 
-def add_command(subparsers):
-    """
-    Add the ``service`` command and its verbs to the ``ros2`` parser.
-
-    :param subparsers: the top-level ``add_subparsers()`` object.
-    """
-    parser = subparsers.add_parser('service', help='Various service related sub-commands')
-    parser.set_defaults(_command_parser=parser)
-    verbs = parser.add_subparsers(title='Commands', dest='verb')
-    p = verbs.add_parser('list', help='Output a list of available services')
+def _arguments_list(p):
+    """Add the arguments of ``ros2 service list``."""
     p.add_argument('-t', '--show-types', action='store_true',
                    help='Additionally show the service type')
     p.add_argument('-c', '--count-services', action='store_true',
@@ -134,8 +128,14 @@ def add_command(subparsers):
     p.add_argument('--include-hidden-services', action='store_true',
                    help='Consider hidden services as well')
     add_spin_time_argument(p)
-    p.set_defaults(main=_list)
-    p = verbs.add_parser('find', help='Output a list of available services of a given type')
+
+
+VERB_LIST = Verb('Output a list of available services', _list, _arguments_list)
+"""``ros2 service list``."""
+
+
+def _arguments_find(p):
+    """Add the arguments of ``ros2 service find``."""
     p.add_argument('service_type',
                    help="Name of the ROS service type to filter for (e.g. 'rcl_interfaces/srv/"
                         "ListParameters')")
@@ -144,12 +144,24 @@ def add_command(subparsers):
     p.add_argument('--include-hidden-services', action='store_true',
                    help='Consider hidden services as well')
     add_spin_time_argument(p)
-    p.set_defaults(main=_find)
-    p = verbs.add_parser('type', help="Output a service's type")
+
+
+VERB_FIND = Verb('Output a list of available services of a given type', _find, _arguments_find)
+"""``ros2 service find``."""
+
+
+def _arguments_type(p):
+    """Add the arguments of ``ros2 service type``."""
     p.add_argument('service_name', help="Name of the ROS service (e.g. '/add_two_ints')")
     add_spin_time_argument(p)
-    p.set_defaults(main=_type)
-    p = verbs.add_parser('call', help='Call a service')
+
+
+VERB_TYPE = Verb("Output a service's type", _type, _arguments_type)
+"""``ros2 service type``."""
+
+
+def _arguments_call(p):
+    """Add the arguments of ``ros2 service call``."""
     p.add_argument('service_name', help="Name of the ROS service to call (e.g. '/add_two_ints')")
     p.add_argument('service_type', help="Type of the ROS service (e.g. 'std_srvs/srv/Empty')")
     p.add_argument('values', nargs='?', default='{}',
@@ -160,4 +172,11 @@ def add_command(subparsers):
     p.add_argument('--timeout', type=float, default=None,
                    help='Give up when the service is not available after this many seconds '
                         '(default: wait forever)')
-    p.set_defaults(main=_call)
+
+
+VERB_CALL = Verb('Call a service', _call, _arguments_call)
+"""``ros2 service call``."""
+
+
+COMMAND = Command('Various service related sub-commands')
+"""``ros2 service``: its verbs are registered in ``amr_description.service.verb``."""

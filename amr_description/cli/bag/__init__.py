@@ -8,19 +8,7 @@ One module per verb, each adding its own arguments, as ros2bag does; shared help
 ``api``.
 """
 
-from amr_description.cli.bag import info
-from amr_description.cli.bag import play
-from amr_description.cli.bag import record
+from amr_description.cli.extension import Command
 
-
-def add_command(subparsers):
-    """
-    Add the ``bag`` command and its verbs to the ``ros2`` parser.
-
-    :param subparsers: the top-level ``add_subparsers()`` object.
-    """
-    parser = subparsers.add_parser('bag', help='Various rosbag related sub-commands')
-    parser.set_defaults(_command_parser=parser)
-    verbs = parser.add_subparsers(title='Commands', dest='verb')
-    for module in (info, play, record):
-        module.add_verbs(verbs)
+COMMAND = Command('Various rosbag related sub-commands')
+"""``ros2 bag``: its verbs are registered in ``amr_description.bag.verb``."""

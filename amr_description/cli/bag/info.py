@@ -17,6 +17,7 @@ import sys
 import time
 
 from amr_description.cli.bag.api import open_reader
+from amr_description.cli.extension import Verb
 
 _INDENT = ' ' * 19
 
@@ -122,14 +123,12 @@ def _main(args):
     return 0
 
 
-def add_verbs(verbs):
-    """
-    Add ``info`` to the ``bag`` verb parsers.
-
-    :param verbs: the ``bag`` command's ``add_subparsers()`` object.
-    """
-    p = verbs.add_parser('info', help='Print information about a bag to the screen')
+def _arguments_info(p):
+    """Add the arguments of ``ros2 bag info``."""
     p.add_argument('bag_path', help='Bag to open')
     p.add_argument('-s', '--storage', default='', help='Storage implementation of bag (read '
                    'from the bag by default)')
-    p.set_defaults(main=_main)
+
+
+VERB_INFO = Verb('Print information about a bag to the screen', _main, _arguments_info)
+"""``ros2 bag info``."""

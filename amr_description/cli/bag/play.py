@@ -20,6 +20,7 @@ from amr_description.cli.bag import api
 from amr_description.cli.common import cli_node
 from amr_description.cli.common import CliError
 from amr_description.cli.common import spin_once
+from amr_description.cli.extension import Verb
 
 DEFAULT_CLOCK_HZ = 40.0
 
@@ -110,13 +111,8 @@ def _play_once(node, reader, connections, publishers, start, args, clock, stop):
     sys.stdout.flush()
 
 
-def add_verbs(verbs):
-    """
-    Add ``play`` to the ``bag`` verb parsers.
-
-    :param verbs: the ``bag`` command's ``add_subparsers()`` object.
-    """
-    p = verbs.add_parser('play', help='Play back ROS data from a bag')
+def _arguments_play(p):
+    """Add the arguments of ``ros2 bag play``."""
     p.add_argument('bag_path', help='Bag to open')
     p.add_argument('-r', '--rate', type=float, default=1.0,
                    help='rate at which to play back messages. Valid range > 0.0.')
@@ -136,4 +132,7 @@ def add_verbs(verbs):
     p.add_argument('-d', '--delay', type=float, default=1.0, metavar='SECONDS',
                    help='Sleep duration before play (each loop), in seconds (default: 1.0, '
                         'for discovery).')
-    p.set_defaults(main=_play)
+
+
+VERB_PLAY = Verb('Play back ROS data from a bag', _play, _arguments_play)
+"""``ros2 bag play``."""

@@ -32,6 +32,7 @@ from amr_description.cli.common import cli_node
 from amr_description.cli.common import CliError
 from amr_description.cli.common import is_hidden_name
 from amr_description.cli.common import spin_once
+from amr_description.cli.extension import Verb
 
 FLUSH_PERIOD = 1.0
 """Seconds between writes of the pending data and of a provisional metadata.yaml."""
@@ -288,13 +289,8 @@ def _record(args):
     return 0
 
 
-def add_verbs(verbs):
-    """
-    Add ``record`` to the ``bag`` verb parsers.
-
-    :param verbs: the ``bag`` command's ``add_subparsers()`` object.
-    """
-    p = verbs.add_parser('record', help='Record ROS data to a bag')
+def _arguments_record(p):
+    """Add the arguments of ``ros2 bag record``."""
     p.add_argument('topics', nargs='*', default=[], metavar='topics',
                    help='List of topics to record.')
     p.add_argument('-a', '--all', '--all-topics', action='store_true',
@@ -321,4 +317,7 @@ def add_verbs(verbs):
                         'will be written to bag.')
     p.add_argument('-p', '--polling-interval', type=int, default=100, metavar='MS',
                    help='Time in ms to wait between querying available topics for recording.')
-    p.set_defaults(main=_record)
+
+
+VERB_RECORD = Verb('Record ROS data to a bag', _record, _arguments_record)
+"""``ros2 bag record``."""

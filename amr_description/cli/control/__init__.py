@@ -15,26 +15,9 @@ verbs, as ros2controlcli: ``listing``, ``lifecycle``, ``hardware``, ``chains``; 
 arguments are added by the ``_args_<verb>`` function right above it; shared parts in ``api``.
 """
 
-from amr_description.cli.control import chains
-from amr_description.cli.control import hardware
-from amr_description.cli.control import lifecycle
-from amr_description.cli.control import listing
 from amr_description.cli.control.api import common_arguments
+from amr_description.cli.extension import Command
 
-
-def add_command(subparsers):
-    """
-    Add the ``control`` command and its verbs to the ``ros2`` parser.
-
-    :param subparsers: the top-level ``add_subparsers()`` object.
-    """
-    parser = subparsers.add_parser('control', help='Various control related sub-commands')
-    parser.set_defaults(_command_parser=parser)
-    verbs = parser.add_subparsers(title='Commands', dest='verb')
-    for name, text, add_arguments, main in sorted(
-            listing.VERBS + lifecycle.VERBS + hardware.VERBS + chains.VERBS):
-        p = verbs.add_parser(name, help=text, description=text)
-        if add_arguments is not None:
-            add_arguments(p)
-        common_arguments(p)
-        p.set_defaults(main=main)
+COMMAND = Command('Various control related sub-commands', verb_arguments=common_arguments)
+"""``ros2 control``: its verbs (registered in ``amr_description.control.verb``) all take the
+controller manager options of :func:`~amr_description.cli.control.api.common_arguments`."""

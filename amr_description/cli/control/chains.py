@@ -3,6 +3,7 @@
 """The ``ros2 control`` verb ``view_controller_chains`` (the diagram: :mod:`.chains_diagram`)."""
 
 from amr_description.cli.control.api import run
+from amr_description.cli.extension import Verb
 from amr_description.control import controller_manager_services as cms
 
 
@@ -22,8 +23,8 @@ def _view_controller_chains(args):
     return run(args, body)
 
 
-VERBS = (
-    ('view_controller_chains', 'Generates a diagram of the loaded chained controllers',
-     _args_view_controller_chains, _view_controller_chains),
-)
-"""``(verb, help, add_arguments, main)`` of each verb of this module."""
+VERB_VIEW_CONTROLLER_CHAINS = Verb(
+    'Generates a diagram of the loaded chained controllers',
+    _view_controller_chains, _args_view_controller_chains,
+    description='Generates a diagram of the loaded chained controllers')
+"""``ros2 control view_controller_chains``."""

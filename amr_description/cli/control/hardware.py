@@ -3,6 +3,7 @@
 """The ``ros2 control`` verb ``set_hardware_component_state``."""
 
 from amr_description.cli.control.api import run
+from amr_description.cli.extension import Verb
 from amr_description.control import controller_manager_services as cms
 
 
@@ -50,8 +51,8 @@ def _set_hardware_component_state(args):
     return run(args, body)
 
 
-VERBS = (
-    ('set_hardware_component_state', 'Adjust the state of the hardware component',
-     _args_set_hardware_component_state, _set_hardware_component_state),
-)
-"""``(verb, help, add_arguments, main)`` of each verb of this module."""
+VERB_SET_HARDWARE_COMPONENT_STATE = Verb(
+    'Adjust the state of the hardware component',
+    _set_hardware_component_state, _args_set_hardware_component_state,
+    description='Adjust the state of the hardware component')
+"""``ros2 control set_hardware_component_state``."""

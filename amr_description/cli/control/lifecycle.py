@@ -11,6 +11,7 @@ import sys
 
 from amr_description.cli.control.api import error
 from amr_description.cli.control.api import run
+from amr_description.cli.extension import Verb
 from amr_description.control import controller_manager_services as cms
 
 
@@ -133,18 +134,38 @@ def _reload_controller_libraries(args):
     return run(args, body)
 
 
-VERBS = (
-    ('cleanup_controller', 'Cleanup a controller in a controller manager', _args_named,
-     _cleanup_controller),
-    ('load_controller', 'Load a controller in a controller manager', _args_load_controller,
-     _load_controller),
-    ('reload_controller_libraries', 'Reload controller libraries',
-     _args_reload_controller_libraries, _reload_controller_libraries),
-    ('set_controller_state', 'Adjust the state of the controller', _args_set_controller_state,
-     _set_controller_state),
-    ('switch_controllers', 'Switch controllers in a controller manager',
-     _args_switch_controllers, _switch_controllers),
-    ('unload_controller', 'Unload a controller in a controller manager', _args_named,
-     _unload_controller),
-)
-"""``(verb, help, add_arguments, main)`` of each verb of this module."""
+VERB_CLEANUP_CONTROLLER = Verb(
+    'Cleanup a controller in a controller manager',
+    _cleanup_controller, _args_named,
+    description='Cleanup a controller in a controller manager')
+"""``ros2 control cleanup_controller``."""
+
+VERB_LOAD_CONTROLLER = Verb(
+    'Load a controller in a controller manager',
+    _load_controller, _args_load_controller,
+    description='Load a controller in a controller manager')
+"""``ros2 control load_controller``."""
+
+VERB_RELOAD_CONTROLLER_LIBRARIES = Verb(
+    'Reload controller libraries',
+    _reload_controller_libraries, _args_reload_controller_libraries,
+    description='Reload controller libraries')
+"""``ros2 control reload_controller_libraries``."""
+
+VERB_SET_CONTROLLER_STATE = Verb(
+    'Adjust the state of the controller',
+    _set_controller_state, _args_set_controller_state,
+    description='Adjust the state of the controller')
+"""``ros2 control set_controller_state``."""
+
+VERB_SWITCH_CONTROLLERS = Verb(
+    'Switch controllers in a controller manager',
+    _switch_controllers, _args_switch_controllers,
+    description='Switch controllers in a controller manager')
+"""``ros2 control switch_controllers``."""
+
+VERB_UNLOAD_CONTROLLER = Verb(
+    'Unload a controller in a controller manager',
+    _unload_controller, _args_named,
+    description='Unload a controller in a controller manager')
+"""``ros2 control unload_controller``."""

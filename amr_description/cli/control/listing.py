@@ -8,6 +8,7 @@ The ``ros2 control`` verbs that list.
 """
 
 from amr_description.cli.control.api import run
+from amr_description.cli.extension import Verb
 from amr_description.control import controller_manager_services as cms
 
 
@@ -145,14 +146,26 @@ def _list_hardware_components(args):
     return run(args, body)
 
 
-VERBS = (
-    ('list_controller_types', 'Output the available controller types and their base classes',
-     None, _list_controller_types),
-    ('list_controllers', 'Output the list of loaded controllers, their type and status',
-     _args_list_controllers, _list_controllers),
-    ('list_hardware_components', 'Output the list of available hardware components',
-     _args_list_hardware_components, _list_hardware_components),
-    ('list_hardware_interfaces', 'Output the list of available command and state interfaces',
-     _args_list_hardware_interfaces, _list_hardware_interfaces),
-)
-"""``(verb, help, add_arguments, main)`` of each verb of this module."""
+VERB_LIST_CONTROLLER_TYPES = Verb(
+    'Output the available controller types and their base classes',
+    _list_controller_types,
+    description='Output the available controller types and their base classes')
+"""``ros2 control list_controller_types``."""
+
+VERB_LIST_CONTROLLERS = Verb(
+    'Output the list of loaded controllers, their type and status',
+    _list_controllers, _args_list_controllers,
+    description='Output the list of loaded controllers, their type and status')
+"""``ros2 control list_controllers``."""
+
+VERB_LIST_HARDWARE_COMPONENTS = Verb(
+    'Output the list of available hardware components',
+    _list_hardware_components, _args_list_hardware_components,
+    description='Output the list of available hardware components')
+"""``ros2 control list_hardware_components``."""
+
+VERB_LIST_HARDWARE_INTERFACES = Verb(
+    'Output the list of available command and state interfaces',
+    _list_hardware_interfaces, _args_list_hardware_interfaces,
+    description='Output the list of available command and state interfaces')
+"""``ros2 control list_hardware_interfaces``."""

@@ -9,18 +9,7 @@ Verbs talk to any node's parameter services (``~/list_parameters``, ``~/get_para
 are one line on stderr and exit code 1, as ros2cli does with a verb's returned string.
 """
 
-from amr_description.cli.param import change
-from amr_description.cli.param import query
+from amr_description.cli.extension import Command
 
-
-def add_command(subparsers):
-    """
-    Add the ``param`` command and its verbs to the ``ros2`` parser.
-
-    :param subparsers: the top-level ``add_subparsers()`` object.
-    """
-    parser = subparsers.add_parser('param', help='Various param related sub-commands')
-    parser.set_defaults(_command_parser=parser)
-    verbs = parser.add_subparsers(title='Commands', dest='verb')
-    query.add_verbs(verbs)
-    change.add_verbs(verbs)
+COMMAND = Command('Various param related sub-commands')
+"""``ros2 param``: its verbs are registered in ``amr_description.param.verb``."""

@@ -16,6 +16,7 @@
 import sys
 
 from amr_description.cli.common import CliError
+from amr_description.cli.extension import Verb
 from amr_description.cli.param import api
 import yaml
 
@@ -143,35 +144,49 @@ def _dump(args):
     return 0
 
 
-def add_verbs(verbs):
-    """
-    Add ``set``, ``delete``, ``load`` and ``dump`` to the ``param`` verb parsers.
-
-    :param verbs: the ``param`` command's ``add_subparsers()`` object.
-    """
-    p = verbs.add_parser('set', help='Set parameter')
+def _arguments_set(p):
+    """Add the arguments of ``ros2 param set``."""
     api.add_node_arguments(p)
     p.add_argument('params_and_values', nargs='+', metavar='name value',
                    help='Parameter name and value pair(s): name value [name value ...]')
     api.add_timeout_arguments(p)
-    p.set_defaults(main=_set)
 
-    p = verbs.add_parser('delete', help='Delete parameter')
+
+VERB_SET = Verb('Set parameter', _set, _arguments_set)
+"""``ros2 param set``."""
+
+
+def _arguments_delete(p):
+    """Add the arguments of ``ros2 param delete``."""
     api.add_node_arguments(p)
     p.add_argument('parameter_name', help='Name of the parameter')
     api.add_timeout_arguments(p)
-    p.set_defaults(main=_delete)
 
-    p = verbs.add_parser('load', help='Load parameter file for a node')
+
+VERB_DELETE = Verb('Delete parameter', _delete, _arguments_delete)
+"""``ros2 param delete``."""
+
+
+def _arguments_load(p):
+    """Add the arguments of ``ros2 param load``."""
     api.add_node_arguments(p)
     p.add_argument('parameter_file', help='Parameter file')
     p.add_argument('--use-wildcard', action='store_true',
                    help="Load parameters in the '/**' namespace into the node")
     api.add_timeout_arguments(p)
-    p.set_defaults(main=_load)
 
-    p = verbs.add_parser('dump',
-                         help='Show all of the parameters of a node in a YAML file format')
+
+VERB_LOAD = Verb('Load parameter file for a node', _load, _arguments_load)
+"""``ros2 param load``."""
+
+
+def _arguments_dump(p):
+    """Add the arguments of ``ros2 param dump``."""
     api.add_node_arguments(p)
     api.add_timeout_arguments(p)
-    p.set_defaults(main=_dump)
+
+
+VERB_DUMP = Verb(
+    'Show all of the parameters of a node in a YAML file format',
+    _dump, _arguments_dump)
+"""``ros2 param dump``."""

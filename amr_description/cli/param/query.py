@@ -18,6 +18,7 @@
 import sys
 
 from amr_description.cli.common import CliError
+from amr_description.cli.extension import Verb
 from amr_description.cli.param import api
 
 _GET_LABELS = (None, 'Boolean value is:', 'Integer value is:', 'Double value is:',
@@ -119,13 +120,8 @@ def _describe(args):
     return 0
 
 
-def add_verbs(verbs):
-    """
-    Add ``list``, ``get`` and ``describe`` to the ``param`` verb parsers.
-
-    :param verbs: the ``param`` command's ``add_subparsers()`` object.
-    """
-    p = verbs.add_parser('list', help='Output a list of available parameters')
+def _arguments_list(p):
+    """Add the arguments of ``ros2 param list``."""
     api.add_node_arguments(p, optional=True)
     p.add_argument('--param-prefixes', nargs='+', default=[],
                    help='Only list parameters with the provided prefixes')
@@ -137,18 +133,32 @@ def add_verbs(verbs):
     p.add_argument('--timeout', metavar='N', type=float, default=10.0,
                    help='Wait for N seconds until the named node becomes available (default '
                         '10.0 sec; there is no daemon)')
-    p.set_defaults(main=_list)
 
-    p = verbs.add_parser('get', help='Get parameter')
+
+VERB_LIST = Verb('Output a list of available parameters', _list, _arguments_list)
+"""``ros2 param list``."""
+
+
+def _arguments_get(p):
+    """Add the arguments of ``ros2 param get``."""
     api.add_node_arguments(p)
     p.add_argument('parameter_name', help='Name of the parameter')
     p.add_argument('--hide-type', action='store_true', help='Hide the type information')
     api.add_timeout_arguments(p)
-    p.set_defaults(main=_get)
 
-    p = verbs.add_parser('describe',
-                         help='Show descriptive information about declared parameters')
+
+VERB_GET = Verb('Get parameter', _get, _arguments_get)
+"""``ros2 param get``."""
+
+
+def _arguments_describe(p):
+    """Add the arguments of ``ros2 param describe``."""
     api.add_node_arguments(p)
     p.add_argument('parameter_names', nargs='+', help='Names of the parameters')
     api.add_timeout_arguments(p)
-    p.set_defaults(main=_describe)
+
+
+VERB_DESCRIBE = Verb(
+    'Show descriptive information about declared parameters',
+    _describe, _arguments_describe)
+"""``ros2 param describe``."""

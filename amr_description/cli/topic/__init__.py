@@ -8,20 +8,7 @@
 helpers in ``api``.
 """
 
-from amr_description.cli.topic import echo
-from amr_description.cli.topic import listing
-from amr_description.cli.topic import pub
-from amr_description.cli.topic import rates
+from amr_description.cli.extension import Command
 
-
-def add_command(subparsers):
-    """
-    Add the ``topic`` command and its verbs to the ``ros2`` parser.
-
-    :param subparsers: the top-level ``add_subparsers()`` object.
-    """
-    parser = subparsers.add_parser('topic', help='Various topic related sub-commands')
-    parser.set_defaults(_command_parser=parser)
-    verbs = parser.add_subparsers(title='Commands', dest='verb')
-    for module in (listing, echo, pub, rates):
-        module.add_verbs(verbs)
+COMMAND = Command('Various topic related sub-commands')
+"""``ros2 topic``: its verbs are registered in ``amr_description.topic.verb``."""

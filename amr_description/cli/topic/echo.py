@@ -20,6 +20,7 @@ from amr_description.cli.common import default_node_name
 from amr_description.cli.common import fail
 from amr_description.cli.common import spin_once
 from amr_description.cli.common import wait_for_graph
+from amr_description.cli.extension import Verb
 from amr_description.cli.topic.api import add_qos_arguments
 from amr_description.cli.topic.api import daemon_topic_type
 from amr_description.cli.topic.api import expand
@@ -148,13 +149,8 @@ def _echo(args):
     return 0
 
 
-def add_verbs(verbs):
-    """
-    Add ``echo`` to the ``topic`` verb parsers.
-
-    :param verbs: the ``topic`` command's ``add_subparsers()`` object.
-    """
-    p = verbs.add_parser('echo', help='Output messages from a topic')
+def _arguments_echo(p):
+    """Add the arguments of ``ros2 topic echo``."""
     p.add_argument('topic_name', help="Name of the ROS topic to listen to (e.g. '/chatter')")
     p.add_argument('message_type', nargs='?',
                    help="Type of the ROS message (e.g. 'std_msgs/msg/String')")
@@ -179,4 +175,7 @@ def add_verbs(verbs):
                    help='Stop after this many seconds (default: wait forever)')
     add_no_daemon_argument(p)
     add_qos_arguments(p, 'subscribe', 'sensor_data')
-    p.set_defaults(main=_echo)
+
+
+VERB_ECHO = Verb('Output messages from a topic', _echo, _arguments_echo)
+"""``ros2 topic echo``."""

@@ -15,6 +15,7 @@ from amr_description.cli.common import fail
 from amr_description.cli.common import is_hidden_name
 from amr_description.cli.common import wait_for_graph
 from amr_description.cli.daemon import graph_node
+from amr_description.cli.extension import Verb
 from amr_description.cli.topic.api import expand
 from amr_description.cli.topic.api import topic_types
 
@@ -110,13 +111,8 @@ def _info(args):
     return 0
 
 
-def add_verbs(verbs):
-    """
-    Add ``list``, ``type``, ``info`` and ``find`` to the ``topic`` verb parsers.
-
-    :param verbs: the ``topic`` command's ``add_subparsers()`` object.
-    """
-    p = verbs.add_parser('list', help='Output a list of available topics')
+def _arguments_list(p):
+    """Add the arguments of ``ros2 topic list``."""
     p.add_argument('-t', '--show-types', action='store_true',
                    help='Additionally show the topic type')
     p.add_argument('-c', '--count-topics', '--count', action='store_true',
@@ -126,9 +122,14 @@ def add_verbs(verbs):
     p.add_argument('-v', '--verbose', action='store_true',
                    help='List full details about each topic')
     add_spin_time_argument(p)
-    p.set_defaults(main=_list)
 
-    p = verbs.add_parser('find', help='Output a list of available topics of a given type')
+
+VERB_LIST = Verb('Output a list of available topics', _list, _arguments_list)
+"""``ros2 topic list``."""
+
+
+def _arguments_find(p):
+    """Add the arguments of ``ros2 topic find``."""
     p.add_argument('topic_type',
                    help="Name of the ROS topic type to filter for (e.g. 'std_msg/msg/String')")
     p.add_argument('-c', '--count-topics', action='store_true',
@@ -136,17 +137,30 @@ def add_verbs(verbs):
     p.add_argument('--include-hidden-topics', action='store_true',
                    help='Consider hidden topics as well')
     add_spin_time_argument(p)
-    p.set_defaults(main=_find)
 
-    p = verbs.add_parser('type', help="Print a topic's type")
+
+VERB_FIND = Verb('Output a list of available topics of a given type', _find, _arguments_find)
+"""``ros2 topic find``."""
+
+
+def _arguments_type(p):
+    """Add the arguments of ``ros2 topic type``."""
     p.add_argument('topic_name', help="Name of the ROS topic to get type (e.g. '/chatter')")
     add_spin_time_argument(p)
-    p.set_defaults(main=_type)
 
-    p = verbs.add_parser('info', help='Print information about a topic')
+
+VERB_TYPE = Verb("Print a topic's type", _type, _arguments_type)
+"""``ros2 topic type``."""
+
+
+def _arguments_info(p):
+    """Add the arguments of ``ros2 topic info``."""
     p.add_argument('topic_name', help="Name of the ROS topic to get info (e.g. '/chatter')")
     p.add_argument('-v', '--verbose', action='store_true',
                    help='Prints detailed information like the node name, node namespace, '
                         'topic type, GUID and QoS Profile of the publishers and subscribers')
     add_spin_time_argument(p)
-    p.set_defaults(main=_info)
+
+
+VERB_INFO = Verb('Print information about a topic', _info, _arguments_info)
+"""``ros2 topic info``."""

@@ -17,6 +17,7 @@ from amr_description.cli.common import cli_node
 from amr_description.cli.common import default_node_name
 from amr_description.cli.common import fail
 from amr_description.cli.common import spin_once
+from amr_description.cli.extension import Verb
 from amr_description.cli.topic.api import add_qos_arguments
 from amr_description.cli.topic.api import expand
 from amr_description.cli.topic.api import message_class
@@ -92,13 +93,8 @@ def _pub(args):
     return 0
 
 
-def add_verbs(verbs):
-    """
-    Add ``pub`` to the ``topic`` verb parsers.
-
-    :param verbs: the ``topic`` command's ``add_subparsers()`` object.
-    """
-    p = verbs.add_parser('pub', help='Publish a message to a topic')
+def _arguments_pub(p):
+    """Add the arguments of ``ros2 topic pub``."""
     p.add_argument('topic_name', help="Name of the ROS topic to publish to (e.g. '/chatter')")
     p.add_argument('message_type', help="Type of the ROS message (e.g. 'std_msgs/String')")
     p.add_argument('values', nargs='?', default='{}',
@@ -125,4 +121,7 @@ def add_verbs(verbs):
                    help='Spin time in seconds to wait for discovery (and, with -s, for the '
                         'first /clock; default: 2.0)')
     add_qos_arguments(p, 'publish', 'reliable, transient_local, depth 1')
-    p.set_defaults(main=_pub)
+
+
+VERB_PUB = Verb('Publish a message to a topic', _pub, _arguments_pub)
+"""``ros2 topic pub``."""

@@ -23,6 +23,7 @@ from amr_description.cli.common import cli_node
 from amr_description.cli.common import CliError
 from amr_description.cli.common import default_node_name
 from amr_description.cli.common import spin_once
+from amr_description.cli.extension import Verb
 from amr_description.cli.topic.api import daemon_topic_type
 from amr_description.cli.topic.api import expand
 from amr_description.cli.topic.api import message_class
@@ -222,20 +223,20 @@ def _delay(args):
             print(format_delay(delays))
 
 
-def add_verbs(verbs):
-    """
-    Add ``hz``, ``bw`` and ``delay`` to the ``topic`` verb parsers.
-
-    :param verbs: the ``topic`` command's ``add_subparsers()`` object.
-    """
-    p = verbs.add_parser('hz', help='Print the average publishing rate to screen')
+def _arguments_hz(p):
+    """Add the arguments of ``ros2 topic hz``."""
     p.add_argument('topic_name', help="Name of the ROS topic to listen to (e.g. '/chatter')")
     p.add_argument('--window', '-w', type=int, default=10000,
                    help='window size, in # of messages, for calculating rate (default: 10000)')
     add_no_daemon_argument(p)
-    p.set_defaults(main=_hz)
 
-    p = verbs.add_parser('bw', help='Display bandwidth used by topic')
+
+VERB_HZ = Verb('Print the average publishing rate to screen', _hz, _arguments_hz)
+"""``ros2 topic hz``."""
+
+
+def _arguments_bw(p):
+    """Add the arguments of ``ros2 topic bw``."""
     p.add_argument('topic_name', metavar='topic',
                    help='Topic name to monitor for bandwidth utilization')
     p.add_argument('--window', '-w', type=_positive_int, default=DEFAULT_BW_WINDOW,
@@ -244,9 +245,14 @@ def add_verbs(verbs):
     p.add_argument('-s', '--use-sim-time', action='store_true',
                    help='Enable ROS simulation time')
     add_no_daemon_argument(p)
-    p.set_defaults(main=_bw)
 
-    p = verbs.add_parser('delay', help='Display delay of topic from timestamp in header')
+
+VERB_BW = Verb('Display bandwidth used by topic', _bw, _arguments_bw)
+"""``ros2 topic bw``."""
+
+
+def _arguments_delay(p):
+    """Add the arguments of ``ros2 topic delay``."""
     p.add_argument('topic_name', metavar='topic',
                    help='Topic name to be calculated the delay')
     p.add_argument('--window', '-w', type=_positive_int, default=DEFAULT_DELAY_WINDOW,
@@ -255,7 +261,10 @@ def add_verbs(verbs):
     p.add_argument('-s', '--use-sim-time', action='store_true',
                    help='Enable ROS simulation time')
     add_no_daemon_argument(p)
-    p.set_defaults(main=_delay)
+
+
+VERB_DELAY = Verb('Display delay of topic from timestamp in header', _delay, _arguments_delay)
+"""``ros2 topic delay``."""
 
 
 def _positive_int(text):
