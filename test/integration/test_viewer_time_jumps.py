@@ -12,6 +12,7 @@ bag has ended draws the robot again: no "No transform to" stays on the page.
 import re
 import time
 
+from amr_description.nodes.mujoco_sim.clock import CLOCK_WATCH_TIME
 from browser import ensure_chromium  # noqa: I100 - helpers next to this file
 from browser import free_port
 from browser import open_page
@@ -48,6 +49,15 @@ def test_bag_play_clock_beside_the_viewer_leaves_it_with_its_transforms(
         while time.monotonic() < deadline and not posed():
             page.page.wait_for_timeout(500)
         assert posed(), page.page.inner_text('body')
+        # a second /clock publisher in the simulator's first CLOCK_WATCH_TIME s (wall) makes it
+        # refuse to run on (one clock per domain): play once its sim time, which at rtf 1
+        # never runs ahead of the wall time since it started, is past that (a fast machine
+        # records the 3 s bag well within it)
+        deadline = time.monotonic() + 120.0
+        while time.monotonic() < deadline and \
+                (_sim_time(page.page.inner_text('body')) or 0.0) < CLOCK_WATCH_TIME + 1.0:
+            page.page.wait_for_timeout(250)
+        assert (_sim_time(page.page.inner_text('body')) or 0.0) >= CLOCK_WATCH_TIME + 1.0
         # looped until the viewer has said so: on a loaded machine the player's /clock may be
         # discovered only after a 3 s bag has ended
         play = procs.start([exe('ros2'), 'bag', 'play', str(bag), '--clock', '--loop'],
