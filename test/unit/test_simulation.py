@@ -12,6 +12,7 @@ from amr_description.core.ros_names import normalize_namespace
 from amr_description.sim.simulation import Simulation
 import numpy as np
 import pytest
+from sim_fixtures import ListLog
 from sim_fixtures import REPO
 from sim_fixtures import tutorial_urdf
 
@@ -175,27 +176,15 @@ def test_failed_setup_undoes_the_spawn_and_releases_the_controller_manager():
 
 
 def test_driven_wheel_without_collision_spawns_with_one_warning():
-    class Log:
-
-        def __init__(self):
-            self.warnings = []
-
-        def info(self, text):
-            pass
-
-        def warning(self, text):
-            self.warnings.append(text)
-
-        error = info
     urdf = tutorial_urdf()
     start = urdf.index('<link name="wheel_front_left">')
     start = urdf.index('<collision>', start)
     urdf = urdf[:start] + urdf[urdf.index('</collision>', start) + len('</collision>'):]
-    logger = Log()
+    logger = ListLog()
     sim = _simulation({'a': _forward}, [], logger=logger)
     sim.spawn(urdf, 'a', None)  # Gazebo spawns it too
     assert list(sim.entities) == ['a']
-    assert logger.warnings == [
+    assert logger.lines == [
         "entity 'a': link 'wheel_front_left': no <collision> on the link driven by joint "
         "'joint_wheel_front_left' (velocity command interface): it cannot touch the ground"]
 
