@@ -441,7 +441,10 @@ def test_fortress_and_turtlebot_frame_tags_and_sensor_systems_are_understood():
     extra = ('<gazebo><plugin filename="gz-sim-sensors-system" name="gz::sim::systems::Sensors">'
              '<render_engine>ogre2</render_engine></plugin>'
              '<plugin filename="libignition-gazebo-imu-system.so" '
-             'name="ignition::gazebo::systems::Imu"/></gazebo>')
+             'name="ignition::gazebo::systems::Imu"/>'
+             '<plugin filename="gz-sim-navsat-system" name="gz::sim::systems::NavSat"/>'
+             '<plugin filename="gz-sim-contact-system" name="gz::sim::systems::Contact"/>'
+             '</gazebo>')
     xml = _robot(lidar, imu, extra)
     blocks = {b.name: b for b in RobotDescription(xml).sensors.sensors}
     assert (blocks['lidar'].frame_id, blocks['imu'].frame_id) == ('laser', 'imu_frame')

@@ -39,9 +39,12 @@ FILENAMES = {'gz-sim-diff-drive-system': DIFF_DRIVE,
 """Normalised ``filename`` -> class name of the systems the simulator runs."""
 
 SENSOR_SYSTEMS = {'gz-sim-sensors-system': 'gz::sim::systems::Sensors',
-                  'gz-sim-imu-system': 'gz::sim::systems::Imu'}
-"""gz-sim systems that make sensors run (rendering sensors, IMUs): not needed here, where
-every simulated ``<sensor>`` block runs (docs/sensors.md); neither system nor warning."""
+                  'gz-sim-imu-system': 'gz::sim::systems::Imu',
+                  'gz-sim-navsat-system': 'gz::sim::systems::NavSat',
+                  'gz-sim-contact-system': 'gz::sim::systems::Contact'}
+"""gz-sim systems that make sensors run (rendering sensors, IMUs, navsat receivers, contact
+sensors): Gazebo needs them, here every simulated ``<sensor>`` block runs without them
+(docs/sensors.md); neither system nor warning."""
 
 
 def is_sensor_system(plugin):

@@ -64,7 +64,7 @@ def check_gazebo(root):
                 findings += _control_plugin(root, f"{where}<plugin {child.get('name', '')}>")
             elif child.tag == 'plugin' and is_sensor_system(child):
                 findings.append(Finding(INFO, f"{where}<plugin {child.get('name', '')}>",
-                                        'not needed: every lidar and IMU <sensor> runs here '
+                                        'not needed: every simulated <sensor> runs here '
                                         '(docs/sensors.md)'))
             elif child.tag == 'plugin':
                 findings.append(_system(child, where, reference, systems))
