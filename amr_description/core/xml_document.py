@@ -72,8 +72,3 @@ def parse_file(path):
     with open(path, 'rb') as f:
         data = f.read()
     return parse_text(data)
-
-
-def to_text(element):
-    """Return an element (and its children) as XML text, str."""
-    return etree.tostring(element, encoding='unicode')

@@ -106,7 +106,8 @@ class Viewer(Node):
         classes = display_classes()
         string_array = ParameterDescriptor(type=ParameterType.PARAMETER_STRING_ARRAY)
         self.declare_parameter('fixed_frame', 'odom')
-        for name, default in display_parameters(classes).items():
+        parameters = display_parameters(classes)
+        for name, default in parameters.items():
             if isinstance(default, list):
                 self.declare_parameter(name, default, string_array)
             else:
@@ -116,14 +117,14 @@ class Viewer(Node):
         update_rate = float(self.get_parameter('update_rate').value)
         if not update_rate > 0.0:
             raise ValueError(f'update_rate must be > 0 Hz, found {update_rate}')
-        self._server, self.url = serve_page(self, DEFAULT_PORT)
+        self.server, self.url = serve_page(self, DEFAULT_PORT)
 
         rviz = None
         if self.get_parameter('rviz_config').value:  # ValueError: one line, exit 1
             rviz = read_rviz_config(str(self.get_parameter('rviz_config').value),
                                     rviz_topic_parameters(classes))
         settings = {name: self.get_parameter(name).value
-                    for name in ('fixed_frame', *display_parameters(classes))}
+                    for name in ('fixed_frame', *parameters)}
         if rviz is not None:  # the config's displays replace the defaults, as in RViz
             settings.update(rviz.topics)
             if rviz.fixed_frame:
@@ -132,7 +133,6 @@ class Viewer(Node):
                                  for name in ('fixed_frame', *rviz.topics) if settings[name]])
         settings['rviz'] = rviz
         self._fixed_frame_default = str(settings['fixed_frame'])
-        self.server = self._server
         self.frames = FrameManager(self)
         # made and drawn in their order (the status last: it reports what others saw)
         self.displays = []
@@ -146,7 +146,7 @@ class Viewer(Node):
                           clock=Clock(clock_type=ClockType.STEADY_TIME))
 
     def _build_page(self):
-        server = self._server
+        server = self.server
         gui = server.gui
         server.scene.set_up_direction('+z')
         # behind a robot at the origin facing +x, looking past its right side: it appears
@@ -179,22 +179,22 @@ class Viewer(Node):
         return wanted, f'Fixed Frame [{wanted}] does not exist'
 
     def _update_scene(self):
-        if not self._server.get_clients():
+        if not self.server.get_clients():
             for display in self.displays:  # nobody looks: the scene is brought up to date
                 display.hidden()  # when a page connects
             return
         # one batch of messages per update: viser wakes its event loop once per batch, not
         # once per changed value (that wake-up was the largest single cost of an update)
-        with self._server.atomic():
+        with self.server.atomic():
             context = DrawContext(self.frames, *self._choose_fixed_frame())
             for display in self.displays:
                 display.draw(context)
 
     def stop_server(self):
         """Stop the web server (closes the port)."""
-        if self._server is not None:
-            stop_server(self._server)
-            self._server = None
+        if self.server is not None:
+            stop_server(self.server)
+            self.server = None
 
 
 def main(args=None):

@@ -61,18 +61,17 @@ def check_model(model, urdf_xml, controllers=None):
     :returns: list of :class:`Finding`.
     """
     base = 'base_link'
-    wheel_names = []
     for params in diff_drive_params(controllers or {}).values():
         base = params.get('base_frame_id', base)
-        for key in ('left_wheel_names', 'right_wheel_names'):
-            wheel_names.extend(params.get(key) or [])
+    wheels = wheel_joints(model, controllers)
     root = model.element if model.element is not None else parse_text(urdf_xml)
     try:
         infos = parse_ros2_control(root)
     except ValueError:
         infos = []  # check_ros2_control reports it
-    findings = check_links(model, driven_joints(model, infos, wheel_names))
-    findings += check_wheels(model, wheel_joints(model, controllers), base)
+    # the YAML's wheels are driven; without a YAML, wheel_joints guesses by shape: not them
+    findings = check_links(model, driven_joints(model, infos, wheels if controllers else ()))
+    findings += check_wheels(model, wheels, base)
     findings += check_ros2_control(model, root, controllers)
     findings += check_mujoco_block(model, root)
     findings += check_gazebo(root)
