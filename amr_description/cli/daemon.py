@@ -133,7 +133,7 @@ class DaemonNode:
     The graph questions of an rclpy node, answered by the daemon (ros2cli's ``DaemonNode``).
 
     Only what the graph verbs ask: names, namespaces, topic and service names and types,
-    publisher and subscriber counts. Its own name is the daemon's (a hidden name).
+    publisher and subscriber counts and endpoint details (as text). Its own name is the daemon's (a hidden name).
 
     :param proxy: the daemon's XML-RPC proxy.
     """
@@ -182,6 +182,14 @@ class DaemonNode:
     def count_subscribers(self, topic):
         """Return the number of subscriptions of ``topic``."""
         return int(self._proxy.count_subscribers(topic))
+
+    def get_publishers_info_by_topic(self, topic):
+        """Return the publishers of ``topic``, each as the text of rclpy's TopicEndpointInfo."""
+        return list(self._proxy.publishers_info(topic))
+
+    def get_subscriptions_info_by_topic(self, topic):
+        """Return the subscriptions of ``topic``, each as the text of TopicEndpointInfo."""
+        return list(self._proxy.subscriptions_info(topic))
 
 
 NODE_SECTIONS = ('Subscribers', 'Publishers', 'Service Servers', 'Service Clients',

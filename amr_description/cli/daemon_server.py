@@ -78,6 +78,10 @@ def _functions(node, stop):
             [name, list(types)] for name, types in node.get_service_names_and_types()],
         'count_publishers': endpoints_count(node.count_publishers),
         'count_subscribers': endpoints_count(node.count_subscribers),
+        'publishers_info': lambda topic: [
+            str(info) for info in node.get_publishers_info_by_topic(topic)],
+        'subscriptions_info': lambda topic: [
+            str(info) for info in node.get_subscriptions_info_by_topic(topic)],
         'node_endpoints': lambda name, namespace: [
             [title, [[n, t] for n, t in items]]
             for title, items in node_endpoints(node, name, namespace)],

@@ -17,6 +17,7 @@ publisher(s)``; bw ``<bw>/s from N messages`` + ``\tMessage size mean: ...``; de
 
 import re
 import subprocess
+import time
 
 
 def _ros2(exe, env, *argv, timeout=60):
@@ -155,3 +156,31 @@ def test_action_list_shows_an_action_server(ros_env, procs, exe):
     assert result.stdout == '/lookup [tf2_msgs/action/LookupTransform]\n', result.stdout
     assert _ros2(exe, ros_env, 'action', 'list').stdout == '/lookup\n'
     assert _ros2(exe, ros_env, 'action', 'list', '-c').stdout == '1\n'
+
+
+def test_topic_info_counts_are_the_graphs_every_time(ros_env, procs, exe):
+    """Issue 33: ``topic info`` said ``Publisher count: 0`` in one call of three."""
+    import xmlrpc.client
+    procs.start([exe('talker')], ros_env)
+    procs.start([exe('listener')], ros_env)
+    assert _ros2(exe, ros_env, 'daemon', 'start').returncode == 0
+    proxy = xmlrpc.client.ServerProxy(f'http://127.0.0.1:{11511 + int(ros_env["ROS_DOMAIN_ID"])}/')
+    deadline = time.monotonic() + 90.0
+    while (proxy.count_publishers('/topic'), proxy.count_subscribers('/topic')) != (1, 1):
+        assert time.monotonic() < deadline, 'the daemon never saw the talker and the listener'
+        time.sleep(0.2)
+    # the daemon is warm: each call answers from the graph it follows (and the type is known
+    # from the listener alone, which made the old answer race the talker's discovery)
+    for _ in range(3):
+        info = _ros2(exe, ros_env, 'topic', 'info', '/topic')
+        assert info.stdout == ('Type: std_msgs/msg/String\nPublisher count: 1\n'
+                               'Subscription count: 1\n'), info.stdout + info.stderr
+    verbose = _ros2(exe, ros_env, 'topic', 'info', '-v', '/topic')
+    assert 'Node name: minimal_publisher\n' in verbose.stdout, verbose.stdout + verbose.stderr
+    assert 'Endpoint type: PUBLISHER\n' in verbose.stdout
+    assert 'Endpoint type: SUBSCRIPTION\n' in verbose.stdout
+    # its own node listens to discovery for the whole spin time before it counts
+    direct = _ros2(exe, ros_env, 'topic', 'info', '/topic', '--no-daemon', '-s', '8')
+    assert 'Publisher count: 1\nSubscription count: 1\n' in direct.stdout, \
+        direct.stdout + direct.stderr
+    assert _ros2(exe, ros_env, 'daemon', 'stop').returncode == 0

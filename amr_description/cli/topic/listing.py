@@ -9,7 +9,6 @@
 """
 
 from amr_description.cli.common import add_spin_time_argument
-from amr_description.cli.common import cli_node
 from amr_description.cli.common import default_node_name
 from amr_description.cli.common import fail
 from amr_description.cli.common import is_hidden_name
@@ -86,14 +85,12 @@ def _type(args):
 
 
 def _info(args):
-    with cli_node(default_node_name()) as node:
+    # The counts are the graph's: the warm daemon's, or this node's after the whole spin time
+    # (a snapshot taken as soon as the type is known can miss a publisher not yet discovered).
+    with graph_node(args, default_node_name()) as node:
         topic = expand(node, args.topic_name)
-
-        def snapshot(n):
-            return (topic_types(n, topic), n.count_publishers(topic),
-                    n.count_subscribers(topic))
-        types, _, _ = wait_for_graph(node, snapshot, settle=0.3, minimum=0.0,
-                                     maximum=args.spin_time, ready=lambda v: bool(v[0]))
+        types = wait_for_graph(node, lambda n: topic_types(n, topic), settle=args.spin_time,
+                               minimum=args.spin_time, maximum=args.spin_time)
         if not types:
             return fail(f"Unknown topic '{args.topic_name}'")
         publishers = node.get_publishers_info_by_topic(topic)
