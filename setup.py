@@ -27,7 +27,8 @@ setup(
         ('share/' + package_name + '/urdf', _data('urdf')),
         ('share/' + package_name + '/config', _data('config')),
         ('share/' + package_name + '/worlds', _data('worlds')),
-    ],
+    ] + [('share/' + package_name + '/' + folder, _data(folder))
+         for folder in sorted(glob('worlds/models/*')) if os.path.isdir(folder)],
     install_requires=['setuptools'],
     zip_safe=True,
     maintainer='amr_description maintainers',

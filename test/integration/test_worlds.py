@@ -119,3 +119,32 @@ def test_the_sim_stack_shows_the_robot_among_the_shelves(procs, exe, ros_env, tm
                         os.path.join(ROOT, 'docs', 'img', 'warehouse.png'))
     assert stack.interrupt(timeout=30.0) == 0, stack.output[-3000:]
     assert 'Traceback' not in stack.output, stack.output[-3000:]
+
+
+def test_a_world_with_gazebos_ground_plane_and_sun_holds_the_robot_up(
+        procs, exe, ros_env, gz_peer, tmp_path):  # noqa: F811 - the imported fixture
+    """Issue 33: ``model://ground_plane`` / Fuel's "Ground Plane" loaded no ground."""
+    peer = gz_peer
+    world = tmp_path / 'everyday.sdf'
+    world.write_text(
+        '<?xml version="1.0"?>\n<sdf version="1.9"><world name="everyday">\n'
+        '<include><uri>https://fuel.gazebosim.org/1.0/OpenRobotics/models/Sun</uri>'
+        '</include>\n'
+        '<include><uri>model://ground_plane</uri></include>\n</world></sdf>\n')
+    env = dict(ros_env, GZ_SIM_RESOURCE_PATH='')
+    sim = procs.start([exe('mujoco_sim'), '--ros-args', '-p', f'world:={world}',
+                       '-p', 'real_time_factor:=0.0'], env)
+    assert peer.spin_until(lambda: peer.now is not None, 60), sim.output
+    assert "world 'everyday': 1 models from " in sim.output, sim.output
+    assert 'not found' not in sim.output and 'Fuel' not in sim.output, sim.output
+    create = procs.start([exe('create'), '-world', 'everyday', '-file', XACRO, '-z', '0.05'],
+                         env)
+    assert create.wait(60) == 0, create.output + sim.output
+    assert peer.set_state(peer.msg.SimulationState.STATE_PAUSED).result == \
+        peer.msg.Result.RESULT_OK
+    peer.step(2000)  # 2 s: a robot with no ground falls 19.6 m
+    now = peer.now
+    assert peer.spin_until(lambda: peer.odom and _stamp(peer.odom[-1]) > now - 0.021, 10)
+    z = peer.odom[-1].pose.pose.position.z
+    print(f'everyday world: base_footprint at z = {z:.4f} m after 2 s')
+    assert abs(z) < 0.05, sim.output[-2000:]

@@ -5,6 +5,7 @@
 import math
 import os
 
+from amr_description.core.gazebo.sdf_world import fuel_model_name
 from amr_description.core.gazebo.sdf_world import load_world
 from amr_description.core.gazebo.sdf_world import read_world
 from amr_description.core.gazebo.sdf_world import WorldError
@@ -347,3 +348,33 @@ def test_the_fleet_grid_keeps_clear_of_every_world_model_wheels_included(name, r
         world.spawn(urdf_to_spec(urdf, name=f'r{index}', pose=(x, y, 0.0, 0, 0, 0)), f'r{index}')
     assert {r: world.overlapping_models(r) for r in world.robots} == \
         {r: [] for r in world.robots}
+
+
+def test_gazebos_ground_plane_and_sun_are_shipped_and_fuels_names_find_them(tmp_path):
+    world_file = tmp_path / 'everyday.sdf'
+    world_file.write_text(
+        '<sdf version="1.9"><world name="everyday">'
+        '<include><uri>model://sun</uri></include>'
+        '<include><uri>model://ground_plane</uri></include>'
+        '<include><name>fuel_ground</name><pose>0 0 -1 0 0 0</pose>'
+        '<uri>https://fuel.gazebosim.org/1.0/OpenRobotics/models/Ground%20Plane/1</uri>'
+        '</include>'
+        '<include><uri>https://fuel.gazebosim.org/1.0/OpenRobotics/models/Sun</uri></include>'
+        '</world></sdf>')
+    world = load_world(str(world_file))
+    assert world.messages == []
+    assert [m.name for m in world.models] == ['ground_plane', 'fuel_ground']
+    ground = world.model('ground_plane')
+    plane = ground.links[0].collisions[0]
+    assert ground.static and (plane.kind, plane.size) == ('plane', (0, 0, 1, 100, 100))
+    assert world.model('fuel_ground').pose[2, 3] == -1.0
+    assert world.not_simulated == ['light']  # the included suns
+
+
+def test_fuel_model_names_are_read_from_the_uri():
+    assert fuel_model_name('https://fuel.gazebosim.org/1.0/OpenRobotics/models/Sun') == 'Sun'
+    assert fuel_model_name(
+        'https://fuel.ignitionrobotics.org/1.0/openrobotics/models/ground plane/2') == \
+        'ground plane'
+    assert fuel_model_name('model://sun') is None
+    assert fuel_model_name('https://example.com/a.sdf') is None

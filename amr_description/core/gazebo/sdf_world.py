@@ -21,8 +21,10 @@ roll-pitch-yaw (the URDF convention, :func:`~amr_description.core.kinematics.rpy
 
 URIs: ``model://NAME/...`` resolves through ``GZ_SIM_RESOURCE_PATH`` (then the older
 ``IGN_GAZEBO_RESOURCE_PATH`` and ``SDF_PATH``) and the extra folders given (the package's own
-``worlds/models``); a model folder's ``model.config`` names its SDF file (``model.sdf`` when it
-has none). ``package://`` resolves through the ament index; ``file://`` and relative paths
+``worlds/models``, with Gazebo's ``ground_plane`` and ``sun``: Fuel's "Ground Plane" and
+"Sun" resolve to them, :data:`FUEL_SHIPPED`); a model folder's ``model.config`` names its SDF
+file (``model.sdf`` when it has none). An included ``<light>`` (``model://sun``) is listed
+with the world's elements that are not simulated. ``package://`` resolves through the ament index; ``file://`` and relative paths
 against the file that names them. An ``http(s)`` (Fuel) URI, a ``model://`` that is not found,
 a bad included model, a model with joints (articulated models are not simulated yet): one line
 each in :attr:`World.messages` and the world loads without that model, as gz-sim carries on
@@ -57,6 +59,30 @@ SIMULATED_WORLD_ELEMENTS = ('physics', 'gravity', 'model', 'include', 'state', '
 
 RESOURCE_PATH_VARIABLES = ('GZ_SIM_RESOURCE_PATH', 'IGN_GAZEBO_RESOURCE_PATH', 'SDF_PATH')
 """Environment variables searched for ``model://`` URIs, in this order (gz-sim 8 reads all)."""
+
+FUEL_SHIPPED = {'ground plane': 'ground_plane', 'sun': 'sun'}
+"""Fuel model names (lower case) read as the package's own ``model://`` folders of the same
+models: Gazebo's "Ground Plane" and "Sun", included by most worlds, are not downloaded here."""
+
+
+def fuel_model_name(uri):
+    """
+    Return the model name of a Fuel model URI, or None when ``uri`` names no Fuel model.
+
+    Fuel's form is ``https://fuel.gazebosim.org/1.0/OWNER/models/NAME[/VERSION[/...]]``
+    (also ``fuel.ignitionrobotics.org``); the name may be URL-encoded (``Ground%20Plane``).
+
+    :param uri: an ``<include><uri>`` text.
+    :returns: the name as written in the URI, decoded (``'Ground Plane'``), or None.
+    """
+    from urllib.parse import unquote
+    from urllib.parse import urlparse
+    parsed = urlparse(uri.strip())
+    parts = [unquote(p) for p in parsed.path.split('/') if p]
+    if parsed.scheme not in ('http', 'https') or 'models' not in parts:
+        return None
+    index = parts.index('models')
+    return parts[index + 1] if index + 1 < len(parts) else None
 
 
 class WorldError(ValueError):
@@ -106,6 +132,7 @@ class _Reader:
         self.model_paths = list(model_paths)
         self.messages = []
         self.stack = [os.path.abspath(source)]
+        self.included_tags = set()  # world elements that came through an <include>
 
     # ------------------------------------------------------------------ URIs
     def search_path(self):
@@ -117,6 +144,9 @@ class _Reader:
     def resolve(self, uri, base):
         """Return the file or folder of ``uri`` named in file ``base``; raise PartError."""
         uri = uri.strip()
+        shipped = FUEL_SHIPPED.get((fuel_model_name(uri) or '').lower())
+        if shipped is not None:
+            uri = f'model://{shipped}'
         if uri.startswith(('http://', 'https://')):
             raise PartError(f'{uri}: Fuel models are not downloaded here (put the model in a '
                             'folder of GZ_SIM_RESOURCE_PATH)')
@@ -181,7 +211,8 @@ class _Reader:
         world.models = [m for _, m in models]
         self._state(element, world)
         world.not_simulated = sorted({c.tag for c in element
-                                      if c.tag not in SIMULATED_WORLD_ELEMENTS})
+                                      if c.tag not in SIMULATED_WORLD_ELEMENTS} |
+                                     self.included_tags)
         world.messages = self.messages
         return world
 
@@ -282,6 +313,9 @@ class _Reader:
             raise PartError(f'{uri}: an include cycle ({" -> ".join(self.stack + [target])})')
         root = _parse_file(target, 'the model')
         inner = root.find('model')
+        if inner is None and root.find('light') is not None:
+            self.included_tags.add('light')  # a light (model://sun): not simulated
+            return None
         if inner is None:
             raise PartError(f'{uri} ({target}): no <model> in it')
         self.stack.append(os.path.abspath(target))
