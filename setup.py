@@ -53,6 +53,7 @@ setup(
             'bringup = amr_description.launch.bringup:main',
             'drive_square = amr_description.nodes.drive_square.main:main',
             'physics_report = amr_description.tools.physics_report:main',
+            'screenshot = amr_description.tools.screenshot:main',
             'ros2 = amr_description.cli.main:main',
             'ros2_control_node = amr_description.nodes.ros2_control_node:main',
             'component_container = amr_description.nodes.component_container:main',

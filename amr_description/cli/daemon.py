@@ -133,7 +133,8 @@ class DaemonNode:
     The graph questions of an rclpy node, answered by the daemon (ros2cli's ``DaemonNode``).
 
     Only what the graph verbs ask: names, namespaces, topic and service names and types,
-    publisher and subscriber counts and endpoint details (as text). Its own name is the daemon's (a hidden name).
+    publisher and subscriber counts, endpoint details (as text). Its own name is the daemon's
+    (a hidden name).
 
     :param proxy: the daemon's XML-RPC proxy.
     """

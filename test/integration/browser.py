@@ -6,23 +6,21 @@ Helpers of the browser tests: Debian's chromium driven headless by playwright, p
 
 playwright's own browser download cannot work on these machines; it drives the
 ``chromium`` Debian package (installed by scripts/setup) through ``executable_path``, with a
-fresh profile per test and software WebGL (SwiftShader). Every request the page makes is
+fresh profile per test and software WebGL (SwiftShader), as the package's ``screenshot`` tool
+(amr_description/tools/screenshot.py, whose launch this shares). Every request the page makes is
 recorded, to check that nothing leaves the machine.
 """
 
 import contextlib
 import os
-import shutil
 import socket
-import tempfile
 import time
 
+from amr_description.tools.screenshot import browser_page
+from amr_description.tools.screenshot import CHROMIUM
+from amr_description.tools.screenshot import close_notifications
 import numpy as np
 
-CHROMIUM = shutil.which('chromium') or '/usr/bin/chromium'
-FLAGS = ['--no-sandbox', '--disable-gpu', '--disable-quic', '--no-first-run',
-         '--disable-background-networking', '--disable-component-update', '--disable-sync',
-         '--use-gl=angle', '--use-angle=swiftshader', '--enable-unsafe-swiftshader']
 VIEWPORT = {'width': 800, 'height': 520}
 TIMEOUT_MS = 240000  # software WebGL on a loaded 2-core machine: a frame can take a minute
 
@@ -80,12 +78,7 @@ class Page:
 
     def close_notifications(self):
         """Close the page's notifications (e.g. 'Software WebGL rendering detected')."""
-        buttons = self.page.locator('.mantine-Notification-closeButton')
-        for index in range(buttons.count()):
-            try:
-                buttons.nth(index).click(timeout=10000)
-            except Exception:  # noqa: B902 - cosmetic: a notification may close itself
-                pass
+        close_notifications(self.page)
 
     def wait_for_text(self, text, timeout=60.0):
         """Wait until ``text`` is in the page's visible text; return True when seen."""
@@ -104,25 +97,9 @@ def open_page(url):
 
     :param url: the page to open.
     """
-    from playwright.sync_api import sync_playwright
-    profile = tempfile.mkdtemp(prefix='amr_chromium_')
     requests = []
-    try:
-        with sync_playwright() as playwright:
-            context = playwright.chromium.launch_persistent_context(
-                profile, executable_path=CHROMIUM, headless=True, args=FLAGS,
-                viewport=VIEWPORT)
-            try:
-                context.on('request', lambda request: requests.append(request.url))
-                page = context.pages[0] if context.pages else context.new_page()
-                page.on('websocket', lambda ws: requests.append(ws.url))
-                page.set_default_timeout(TIMEOUT_MS)
-                page.goto(url, wait_until='load', timeout=TIMEOUT_MS)
-                yield Page(page, requests)
-            finally:
-                context.close()
-    finally:
-        shutil.rmtree(profile, ignore_errors=True)
+    with browser_page(url, VIEWPORT, TIMEOUT_MS, requests.append) as page:
+        yield Page(page, requests)
 
 
 def colour_mask(image, rgb, tolerance):

@@ -136,6 +136,20 @@ def test_viewer_drives_the_robot_from_the_page(ros_env, procs, exe, tmp_path):
             if os.environ.get('AMR_UPDATE_SCREENSHOTS'):
                 shutil.copy(shot, os.path.join(ROOT, 'docs', 'img', 'viewer.png'))
 
+            # the screenshot tool, run as a user does (chromium --headless --screenshot is
+            # blank: the page draws after its websocket delivered the scene)
+            tool = tmp_path / 'tool.png'
+            taken = subprocess.run([exe('screenshot'), f'http://127.0.0.1:{port}/', '-o',
+                                    str(tool), '--size', '800x520', '--timeout', '240',
+                                    '--delay', '10'],
+                                   env=ros_env, capture_output=True, text=True, timeout=300)
+            assert taken.returncode == 0, taken.stdout + taken.stderr
+            assert taken.stdout == f'screenshot: wrote {tool} (800x520)\n', taken.stdout
+            from PIL import Image
+            picture = np.asarray(Image.open(tool).convert('RGB'))
+            assert picture.shape == (520, 800, 3)
+            assert colour_mask(picture, CHASSIS_RGB, 40)[:400, 100:].sum() > 200, \
+                "no chassis pixels in the screenshot tool's picture"
             # a description that does not parse: shown on the page, logged, node keeps running
             peer.description_pub.publish(peer.String(data='<robot name="broken"><link/>'))
             assert page.wait_for_text('Robot description error', 60.0), \

@@ -5,7 +5,7 @@
 import math
 import os
 
-from amr_description.core.gazebo.sdf_world import fuel_model_name
+from amr_description.core.gazebo.sdf_resources import fuel_model_name
 from amr_description.core.gazebo.sdf_world import load_world
 from amr_description.core.gazebo.sdf_world import read_world
 from amr_description.core.gazebo.sdf_world import WorldError

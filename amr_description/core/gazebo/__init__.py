@@ -3,7 +3,8 @@
 """
 The Gazebo dialect, read without Gazebo: SDF worlds, sensor blocks, gz-sim systems, tags.
 
-- :mod:`.sdf_world`: SDF worlds and models (``<include>``, ``model://``, Fuel names);
+- :mod:`.sdf_world`: SDF worlds and models (``<include>``, ``model://``);
+- :mod:`.sdf_resources`: where includes are found (resource path variables, Fuel names);
 - :mod:`.sensors`: ``<gazebo reference><sensor>`` blocks, one reader per kind;
 - :mod:`.systems`: the gz-sim system plugins a description names;
 - :mod:`.tags`: ``<gazebo>`` reference tags (materials, friction, gravity, gz_ros2_control);

@@ -24,8 +24,9 @@ URIs: ``model://NAME/...`` resolves through ``GZ_SIM_RESOURCE_PATH`` (then the o
 ``worlds/models``, with Gazebo's ``ground_plane`` and ``sun``: Fuel's "Ground Plane" and
 "Sun" resolve to them, :data:`FUEL_SHIPPED`); a model folder's ``model.config`` names its SDF
 file (``model.sdf`` when it has none). An included ``<light>`` (``model://sun``) is listed
-with the world's elements that are not simulated. ``package://`` resolves through the ament index; ``file://`` and relative paths
-against the file that names them. An ``http(s)`` (Fuel) URI, a ``model://`` that is not found,
+with the world's elements that are not simulated. ``package://`` resolves through the ament
+index; ``file://`` and relative paths against the file that names them. An ``http(s)`` (Fuel)
+URI other than those two, a ``model://`` that is not found,
 a bad included model, a model with joints (articulated models are not simulated yet): one line
 each in :attr:`World.messages` and the world loads without that model, as gz-sim carries on
 past a missing model. A world that cannot be read at all raises :class:`WorldError` (one line,
@@ -45,6 +46,9 @@ from amr_description.core.gazebo.sdf_elements import sdf_bool
 from amr_description.core.gazebo.sdf_elements import sdf_floats
 from amr_description.core.gazebo.sdf_elements import Shape
 from amr_description.core.gazebo.sdf_elements import World
+from amr_description.core.gazebo.sdf_resources import fuel_model_name
+from amr_description.core.gazebo.sdf_resources import FUEL_SHIPPED
+from amr_description.core.gazebo.sdf_resources import RESOURCE_PATH_VARIABLES
 from amr_description.core.geodesy import SphericalCoordinates
 from amr_description.core.xml_document import parse_file
 from amr_description.core.xml_document import XMLError
@@ -56,33 +60,6 @@ NEWEST_VERSION = (1, 11)
 SIMULATED_WORLD_ELEMENTS = ('physics', 'gravity', 'model', 'include', 'state', 'frame',
                             'spherical_coordinates')
 """``<world>`` children read; every other one is listed once as not simulated."""
-
-RESOURCE_PATH_VARIABLES = ('GZ_SIM_RESOURCE_PATH', 'IGN_GAZEBO_RESOURCE_PATH', 'SDF_PATH')
-"""Environment variables searched for ``model://`` URIs, in this order (gz-sim 8 reads all)."""
-
-FUEL_SHIPPED = {'ground plane': 'ground_plane', 'sun': 'sun'}
-"""Fuel model names (lower case) read as the package's own ``model://`` folders of the same
-models: Gazebo's "Ground Plane" and "Sun", included by most worlds, are not downloaded here."""
-
-
-def fuel_model_name(uri):
-    """
-    Return the model name of a Fuel model URI, or None when ``uri`` names no Fuel model.
-
-    Fuel's form is ``https://fuel.gazebosim.org/1.0/OWNER/models/NAME[/VERSION[/...]]``
-    (also ``fuel.ignitionrobotics.org``); the name may be URL-encoded (``Ground%20Plane``).
-
-    :param uri: an ``<include><uri>`` text.
-    :returns: the name as written in the URI, decoded (``'Ground Plane'``), or None.
-    """
-    from urllib.parse import unquote
-    from urllib.parse import urlparse
-    parsed = urlparse(uri.strip())
-    parts = [unquote(p) for p in parsed.path.split('/') if p]
-    if parsed.scheme not in ('http', 'https') or 'models' not in parts:
-        return None
-    index = parts.index('models')
-    return parts[index + 1] if index + 1 < len(parts) else None
 
 
 class WorldError(ValueError):
