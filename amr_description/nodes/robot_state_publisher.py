@@ -19,7 +19,10 @@ Reproduces the behaviour of upstream ``robot_state_publisher`` (ROS 2 Jazzy):
   joints following them (``multiplier * parent + offset``), stamped with the message stamp and
   rate-limited per joint to ``publish_frequency`` (by message stamps; ``ignore_timestamp``
   turns the limit off). A message whose ``name`` and ``position`` lengths differ is rejected
-  with an error; a joint missing from a message gets no transform;
+  with an error; a joint missing from a message gets no transform; a stamp older than the
+  last one re-publishes every joint, with upstream's warning ``Moved backwards in time,
+  re-publishing joint transforms!`` at most once per :data:`BACKWARDS_WARNING_PERIOD` s (two
+  interleaved sources, e.g. a bag played beside the simulator, would print it per message);
 - setting ``robot_description`` at runtime re-parses the model (an invalid one is rejected and
   the old one kept) and republishes the description and the static transforms.
 
@@ -46,6 +49,9 @@ from rclpy.qos import ReliabilityPolicy
 from sensor_msgs.msg import JointState
 from std_msgs.msg import String
 from tf2_msgs.msg import TFMessage
+
+BACKWARDS_WARNING_PERIOD = 10.0
+"""Seconds (wall) between two ``Moved backwards in time`` warnings."""
 
 LATCHED_QOS = QoSProfile(depth=1, durability=DurabilityPolicy.TRANSIENT_LOCAL,
                          reliability=ReliabilityPolicy.RELIABLE)
@@ -146,7 +152,8 @@ class RobotStatePublisher(Node):
             return
         stamp_ns = msg.header.stamp.sec * 1_000_000_000 + msg.header.stamp.nanosec
         if stamp_ns < self._last_callback_ns:
-            self.get_logger().warning('Moved backwards in time, re-publishing joint transforms!')
+            self.get_logger().warning('Moved backwards in time, re-publishing joint transforms!',
+                                      throttle_duration_sec=BACKWARDS_WARNING_PERIOD)
             self._last_publish.clear()
         self._last_callback_ns = stamp_ns
         frequency = self.get_parameter('publish_frequency').value

@@ -214,7 +214,7 @@ def render_scene(urdf_xml, pose, path=(), width=800, height=600, markers=150, ot
     renderer = mujoco.Renderer(model, height=int(height), width=int(width))
     try:
         camera = frame_camera(model, data, azimuth=-120.0, elevation=-55.0,
-                              scale=2.2 if world is None else 1.2)
+                              scale=2.2 if world is None else 1.35)
         camera.distance *= 1.2
         renderer.update_scene(data, camera=camera)
         return renderer.render().copy()

@@ -116,6 +116,24 @@ def test_sim_stack_round_trip_is_byte_identical(ros_env, procs, exe, tmp_path):
                for t in meta['topics_with_message_count']}
     assert by_name['/tf_static']['offered_qos_profiles'][0]['durability'] == 'transient_local'
     assert by_name['/odom']['type_description_hash'].startswith('RIHS01_')
+    # README's recipe: `ros2 bag record -a` (receive times are wall-clock times) holds /clock
+    everything = tmp_path / 'everything'
+    rec_all = procs.start([exe('ros2'), 'bag', 'record', '-a', '-o', str(everything),
+                           '--max-duration', '3'], ros_env)
+    assert rec_all.wait(240.0) == 0, rec_all.output + sim.output
+    recorded_clock = [d.clock.sec * 10 ** 9 + d.clock.nanosec
+                      for t, _, _, _, d in _mcap_messages(everything) if t == '/clock']
+    assert len(recorded_clock) > 50, len(recorded_clock)
+    # played beside the running stack without --clock: as rosbag2 (its /clock too), with one
+    # warning; robot_state_publisher meets two /joint_states sources stepping back and forth
+    # and says so at most once per 10 s (it said it per message)
+    before = sim.output.count('Moved backwards in time')
+    beside = _ros2(exe, ros_env, 'bag', 'play', str(everything), timeout=120)
+    assert beside.returncode == 0, beside.stderr
+    assert "The bag's recorded /clock is played beside 1 other publisher(s) of it (a running " \
+        'simulator?): time will jump back and forth; leave it out with --exclude-topics ' \
+        '/clock' in beside.stderr, beside.stderr
+    assert sim.output.count('Moved backwards in time') - before <= 2, sim.output[-3000:]
     sim.interrupt(timeout=30.0)
 
     # replay into an empty domain with --clock while a second recorder listens there
@@ -139,6 +157,29 @@ def test_sim_stack_round_trip_is_byte_identical(ros_env, procs, exe, tmp_path):
              for t, _, _, _, d in _mcap_messages(second) if t == '/clock']
     assert clock and clock == sorted(clock)
     assert stamps[0] - 1 <= clock[0] and clock[-1] <= stamps[-1]
+    # the -a bag with --clock: its recorded /clock (sim time) is the one clock; the bag's
+    # wall-clock receive times are not published beside it (two clocks jumped at each message)
+    other = dict(ros_env, ROS_DOMAIN_ID=str(next_domain_id()))
+    try:
+        third = tmp_path / 'third'
+        rec3 = procs.start([exe('ros2'), 'bag', 'record', '-o', str(third), '/clock',
+                            '/joint_states'], other)
+        assert rec3.wait_for_output('Listening for topics', timeout=30.0), rec3.output
+        play = _ros2(exe, other, 'bag', 'play', str(everything), '--clock', '-d', '5',
+                     timeout=120)
+        assert play.returncode == 0, play.stderr
+        assert 'The bag holds /clock: played as recorded (the time its messages were ' \
+            'stamped with) instead of a second clock from --clock' in play.stderr, play.stderr
+        assert rec3.interrupt(timeout=30.0) == 0, rec3.output
+    finally:
+        release_domain_id(int(other['ROS_DOMAIN_ID']))
+    played = _by_topic(_rosbags_messages(third))
+    replayed_clock = [d.clock.sec * 10 ** 9 + d.clock.nanosec
+                      for t, _, _, _, d in _mcap_messages(third) if t == '/clock']
+    assert replayed_clock == recorded_clock[-len(replayed_clock):], \
+        (len(replayed_clock), len(recorded_clock))
+    assert len(replayed_clock) >= len(recorded_clock) - 5  # reliable: all but discovery's
+    assert played.get('/joint_states'), 'no /joint_states replayed'
 
 
 def test_info_format_and_sqlite3(ros_env, procs, exe, tmp_path):

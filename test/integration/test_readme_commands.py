@@ -27,6 +27,7 @@ ROOT = os.path.abspath(os.path.join(os.path.dirname(os.path.abspath(__file__)), 
 TELEOP = ('ros2 run amr_description teleop_twist_keyboard --ros-args -p stamped:=true '
           '-p use_sim_time:=true -r /cmd_vel:=/diff_drive_controller/cmd_vel')
 ACTIVE = 'Configured and activated diff_drive_controller'
+STOP_STACK = 'Ctrl-C in every terminal'  # kind 'stop-serving': not a README command
 
 # scene -> [(command as in README.md, kind, expected text or None)], run in this order
 PLAYBOOK = {
@@ -58,6 +59,8 @@ PLAYBOOK = {
     ],
     'sim': [
         ('ros2 launch amr_description sim', 'serve', ACTIVE),
+        ('ros2 run amr_description screenshot http://127.0.0.1:8080/ -o viewer.png '
+         '--size 1280x800', 'once', 'screenshot: wrote viewer.png (1280x800)'),
         ('ros2 control list_controllers', 'once', 'diff_drive_controller'),
         ('ros2 control list_hardware_interfaces', 'once', 'command interfaces'),
         ('ros2 topic pub --once /diff_drive_controller/cmd_vel geometry_msgs/msg/TwistStamped '
@@ -75,6 +78,11 @@ PLAYBOOK = {
         ('ros2 bag play run1', 'once', None),
         ('ros2 doctor', 'once', None),
         ('ros2 daemon status', 'once', 'The daemon is'),
+        (STOP_STACK, 'stop-serving', None),
+        ('ros2 run amr_description viewer --ros-args -p use_sim_time:=true', 'serve',
+         'viewer: open http://'),
+        ('ros2 bag play run1 --clock', 'once',
+         'The bag holds /clock: played as recorded'),
     ],
     'sim fast': [
         ('ros2 launch amr_description sim rtf:=0', 'serve', ACTIVE),
@@ -108,7 +116,8 @@ def readme_commands():
 
 
 def test_the_playbook_knows_every_command_of_the_readme():
-    known = [command for scene in PLAYBOOK.values() for command, _, _ in scene]
+    known = [command for scene in PLAYBOOK.values() for command, kind, _ in scene
+             if kind != 'stop-serving']
     unknown = [c for c in readme_commands() if c not in known]
     assert not unknown, f'README.md commands missing from the playbook: {unknown}'
     missing = [c for c in known if c not in readme_commands()]
@@ -138,6 +147,13 @@ def test_a_scene_of_the_readme_runs_as_printed(scene, procs, ros_env, tmp_path):
     try:
         for command, kind, expected in PLAYBOOK[scene]:
             if kind == 'skip':
+                continue
+            if kind == 'stop-serving':  # the user stops what runs (Ctrl-C in each terminal)
+                for proc, served, master in reversed(serving):
+                    _check(proc, served, None, proc.interrupt(timeout=60.0))
+                    if master is not None:
+                        os.close(master)
+                serving = []
                 continue
             stdin = subprocess.DEVNULL
             master = None

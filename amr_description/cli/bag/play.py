@@ -10,9 +10,20 @@ the bag; ``--topics`` plays only those; ``-l`` loops. Each topic is published wi
 reliability and durability its recorded publishers offered (``/tf_static`` reliable and
 transient local, so late joiners get it). ``--clock [HZ]`` publishes ``/clock`` at HZ
 (default 40, as upstream) with the bag time being played, so nodes with ``use_sim_time``
-follow the replay.
+follow the replay. ``--exclude-topics`` and ``-x/--exclude-regex`` leave topics out, as
+rosbag2's (jazzy).
+
+A bag recorded with ``-a`` beside a simulator holds its ``/clock``. rosbag2 plays those like any
+topic, and with ``--clock`` adds its own from the bag's receive times: two interleaved clocks,
+time jumping back and forth at every message, and without ``--use-sim-time`` at recording the
+receive times are wall-clock times far from the messages' sim-time stamps. Here ``--clock``
+with such a bag plays the recorded ``/clock`` (the time the messages were stamped with) and
+publishes no second one (one info line). Without ``--clock`` the recorded ``/clock`` is played
+as rosbag2 does; when another node publishes ``/clock`` too (a running simulator) one warning
+says that time will jump and how to leave it out.
 """
 
+import re
 import sys
 import time
 
@@ -23,19 +34,43 @@ from amr_description.cli.common import spin_once
 from amr_description.cli.extension import Verb
 
 DEFAULT_CLOCK_HZ = 40.0
+CLOCK_TOPIC = '/clock'
+
+
+def _warn_other_clocks(node, publishers):
+    """Warn once when the bag's recorded /clock will meet another node's (time jumps)."""
+    if CLOCK_TOPIC not in publishers:
+        return
+    others = node.count_publishers(CLOCK_TOPIC) - 1
+    if others > 0:
+        node.get_logger().warning(
+            f"The bag's recorded {CLOCK_TOPIC} is played beside {others} other "
+            f'publisher(s) of it (a running simulator?): time will jump back and forth; '
+            f'leave it out with --exclude-topics {CLOCK_TOPIC}')
 
 
 def _play(args):
     from amr_description.core.message_yaml.utilities import get_message
     if args.rate <= 0.0:
         raise CliError('Invalid rate: must be positive')
+    try:
+        excluded = re.compile(args.exclude_regex) if args.exclude_regex else None
+    except re.error as exc:
+        raise CliError(f'--exclude-regex {args.exclude_regex!r}: {exc}') from None
     with api.open_reader(args.bag_path) as reader:
         connections = [c for c in reader.connections
-                       if not args.topics or c.topic in args.topics]
+                       if (not args.topics or c.topic in args.topics) and
+                       c.topic not in args.exclude_topics and
+                       not (excluded and excluded.search(c.topic))]
+        recorded_clock = any(c.topic == CLOCK_TOPIC for c in connections)
         if not connections:
             raise CliError(f"'{args.bag_path}': no topic to play")
         start = reader.start_time + int(args.start_offset * 1e9)
         with cli_node('rosbag2_player') as node:
+            if args.clock is not None and recorded_clock:
+                node.get_logger().info(
+                    f'The bag holds {CLOCK_TOPIC}: played as recorded (the time its messages '
+                    'were stamped with) instead of a second clock from --clock')
             publishers = {}
             for connection in connections:
                 if connection.topic in publishers:
@@ -52,7 +87,7 @@ def _play(args):
                 publishers[connection.topic] = node.create_publisher(
                     msg_class, connection.topic, qos)
             clock = None
-            if args.clock is not None:
+            if args.clock is not None and not recorded_clock:
                 from rosgraph_msgs.msg import Clock
                 clock = node.create_publisher(Clock, '/clock', 10)
             # let subscriptions match before the first message, as a user starting a
@@ -60,6 +95,8 @@ def _play(args):
             give_up = time.monotonic() + args.delay
             while time.monotonic() < give_up and node.context.ok():
                 spin_once(node, timeout_sec=0.05)
+            if args.clock is None:
+                _warn_other_clocks(node, publishers)
             stop = api.StopRequest()
             while not stop:
                 _play_once(node, reader, connections, publishers, start, args, clock, stop)
@@ -122,6 +159,10 @@ def _arguments_play(p):
     p.add_argument('--topics', nargs='+', default=[], metavar='topic',
                    help='topics to replay, separated by space. If none specified, all topics '
                         'will be replayed.')
+    p.add_argument('--exclude-topics', nargs='+', default=[], metavar='topic',
+                   help='topics not to be replayed, separated by space.')
+    p.add_argument('-x', '--exclude-regex', default='', metavar='REGEX',
+                   help='regular expressions to exclude topics from replay.')
     p.add_argument('--clock', type=float, nargs='?', const=DEFAULT_CLOCK_HZ, default=None,
                    metavar='HZ',
                    help='Publish to /clock at a specific frequency in Hz, to act as a ROS '
