@@ -66,11 +66,13 @@ cannot be read: one line, exit code 1.
 
 import os
 import sys
+import time
 
 from amr_description.core.rviz_config import read_rviz_config
 from amr_description.ros.node import Node
 from amr_description.web.displays.base import DrawContext
 from amr_description.web.displays.base import FrameManager
+from amr_description.web.displays.discovery import DISCOVERY_PERIOD
 from amr_description.web.displays.registry import display_classes
 from amr_description.web.displays.registry import display_parameters
 from amr_description.web.displays.registry import rviz_topic_parameters
@@ -142,6 +144,7 @@ class Viewer(Node):
             self.displays.append(display)
             self.display_named[name] = display
         self._build_page()
+        self._next_discovery = 0.0
         self.create_timer(1.0 / update_rate, self._update_scene,
                           clock=Clock(clock_type=ClockType.STEADY_TIME))
 
@@ -179,6 +182,12 @@ class Viewer(Node):
         return wanted, f'Fixed Frame [{wanted}] does not exist'
 
     def _update_scene(self):
+        now = time.monotonic()
+        if now >= self._next_discovery:  # topics found by type (displays/discovery.py)
+            self._next_discovery = now + DISCOVERY_PERIOD
+            graph = self.get_topic_names_and_types()
+            for display in self.displays:
+                display.discover(graph)
         if not self.server.get_clients():
             for display in self.displays:  # nobody looks: the scene is brought up to date
                 display.hidden()  # when a page connects

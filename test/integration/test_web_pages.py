@@ -222,6 +222,25 @@ def test_fleet_viewer_shows_every_robot(ros_env, procs, exe, tmp_path):
         assert '/r1/ground_truth/odom' in text and '/r2/ground_truth/odom' in text, text
         # the status counts r1's topics (the fleet has no /joint_states or /odom)
         assert re.search(r'/r1/joint_states\s+[1-9][\d.]* Hz', text), text
+        # the sensors are found by type in the robots' namespaces (issue 33: it listened to
+        # /scan and /imu, which no robot of a fleet publishes)
+        deadline = time.monotonic() + 120.0
+        while time.monotonic() < deadline and not all(
+                re.search(rf'/r{i}/{t}\s+[1-9][\d.]* Hz', text)
+                for i in (1, 2) for t in ('scan', 'imu')):
+            page.page.wait_for_timeout(500)
+            text = page.page.inner_text('body')
+        for i in (1, 2):
+            for topic in ('scan', 'imu'):
+                assert re.search(rf'/r{i}/{topic}\s+[1-9][\d.]* Hz', text), text
+        assert not re.search(r'(^|\s)/scan\s', text), text
+    # the viewer subscribes only to what exists: no topic of its own in the graph
+    listed = subprocess.run([exe('ros2'), 'topic', 'list', '--no-daemon', '-s', '5'],
+                            env=ros_env, capture_output=True, text=True, timeout=60)
+    topics = listed.stdout.split()
+    assert '/r1/scan' in topics and '/r2/imu' in topics, listed.stdout + listed.stderr
+    phantoms = {'/scan', '/imu', '/gps/fix', '/navsat', '/bumper', '/camera/image', '/odom'}
+    assert not phantoms & set(topics), listed.stdout
     assert stack.interrupt(timeout=30.0) == 0, stack.output[-3000:]
     assert 'Traceback' not in stack.output, stack.output[-3000:]
 
@@ -365,7 +384,8 @@ def test_a_page_without_a_port_takes_the_next_free_one_and_a_launch_names_its_ar
         holder.close()
 
 
-def test_the_teleop_pad_is_shown_only_while_its_cmd_vel_topic_is_heard(ros_env, procs, exe):
+def test_the_teleop_pad_finds_the_controllers_cmd_vel_and_shows_only_while_heard(
+        ros_env, procs, exe):
     port = free_port()
     viewer = procs.start([exe('viewer'), '--ros-args', '-p', f'port:={port}'], ros_env)
     assert viewer.wait_for_output('in a browser', 60.0), viewer.output
@@ -375,14 +395,32 @@ def test_the_teleop_pad_is_shown_only_while_its_cmd_vel_topic_is_heard(ros_env, 
             assert page.wait_for_text('Fixed Frame', 120.0), page.page.inner_text('body')
             forward = page.page.get_by_role('button', name='Forward', exact=True)
             assert forward.count() == 0 or not forward.is_visible()  # nothing would move
+            # a controller named as in gz_ros2_control_demos, beside a bare gz-style /cmd_vel:
+            # the pad drives the controller's, with its type
+            from geometry_msgs.msg import Twist
             from geometry_msgs.msg import TwistStamped
-            peer.node.create_subscription(TwistStamped, '/diff_drive_controller/cmd_vel',
-                                          lambda msg: None, 10)
+            stamped, bare = [], []
+            peer.node.create_subscription(TwistStamped, '/diff_drive_base_controller/cmd_vel',
+                                          stamped.append, 10)
+            peer.node.create_subscription(Twist, '/cmd_vel', bare.append, 10)
             deadline = time.monotonic() + 60.0
             while time.monotonic() < deadline and not (forward.count() and
                                                        forward.is_visible()):
                 peer.spin_until(lambda: False, 0.2)
             assert forward.count() and forward.is_visible(), page.page.inner_text('body')
+            assert viewer.wait_for_output(
+                'teleop pad: publishing geometry_msgs/msg/TwistStamped on '
+                '/diff_drive_base_controller/cmd_vel', 10.0), viewer.output
+            box = forward.bounding_box()
+            page.page.mouse.move(box['x'] + box['width'] / 2, box['y'] + box['height'] / 2)
+            page.page.mouse.down()
+            try:
+                moving = peer.spin_until(
+                    lambda: any(m.twist.linear.x > 0.0 for m in stamped), 60.0)
+            finally:
+                page.page.mouse.up()
+            assert moving, f'{len(stamped)} TwistStamped, none forward'
+            assert not bare, 'the pad also drove /cmd_vel'
     finally:
         peer.close()
     assert viewer.interrupt(timeout=30.0) == 0, viewer.output

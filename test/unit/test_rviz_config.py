@@ -92,8 +92,8 @@ def test_displays_are_plug_ins_found_through_their_entry_point_group():
     assert defined == {cls.__name__ for cls in classes.values()}
     # the viewer's parameters and the .rviz reader's classes come from the displays
     parameters = registry.display_parameters()
-    assert parameters['scan_topics'] == ['/scan'] and parameters['world'] == ''
-    assert parameters['cmd_vel_topic'] == '/diff_drive_controller/cmd_vel'
+    assert parameters['scan_topics'] == ['*'] and parameters['world'] == ''
+    assert parameters['cmd_vel_topic'] == ''  # found in the graph
     assert registry.rviz_topic_parameters()['rviz_default_plugins/LaserScan'] == 'scan_topics'
 
     class RangeDisplay(Display):

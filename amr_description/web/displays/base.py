@@ -12,6 +12,8 @@ import time
 
 from amr_description.core.tf_buffer import TransformBuffer
 from amr_description.core.tf_buffer import TransformException
+from amr_description.web.displays.discovery import split_topics
+from amr_description.web.displays.discovery import TopicFinder
 import numpy as np
 from rclpy.qos import DurabilityPolicy
 from rclpy.qos import QoSProfile
@@ -179,12 +181,38 @@ class Display:
     parameters = ()
     topics_parameter = None
     rviz_classes = {}
+    finder = None
 
     def __init__(self, node, server, frames):
         """Keep the shared parts; a subclass subscribes here."""
         self.node = node
         self.server = server
         self.frames = frames
+
+    def take_topics(self, topics, types, suffix=''):
+        """
+        Return the named topics of a topic list; with :data:`.discovery.AUTO` in it, find more.
+
+        The display's :meth:`add_topic` is then called for each topic of ``types`` that gains
+        a publisher (:class:`~amr_description.web.displays.discovery.TopicFinder`).
+
+        :param topics: the topic-list parameter's value.
+        :param types: message classes looked for.
+        :param suffix: only topic names ending with it.
+        """
+        named, auto = split_topics(topics)
+        if auto:
+            self.finder = TopicFinder(types, suffix, named)
+        return named
+
+    def discover(self, graph):
+        """Take the topics that gained a publisher (viewer's timer, every few seconds)."""
+        if self.finder is not None:
+            for topic in self.finder.new_topics(graph, self.node.count_publishers):
+                self.add_topic(topic)
+
+    def add_topic(self, topic):
+        """Subscribe a topic found in the graph (displays that use :meth:`take_topics`)."""
 
     @classmethod
     def create(cls, viewer, settings):

@@ -10,6 +10,7 @@ simulator's ground truth). Each contact point is a red 0.04 m square, and its no
 red line. Topics, QoS and rates: :mod:`~amr_description.web.displays.sensor_topics`.
 """
 
+from amr_description.web.displays.discovery import AUTO
 from amr_description.web.displays.sensor_topics import draw_points
 from amr_description.web.displays.sensor_topics import SensorTopicsDisplay
 import numpy as np
@@ -38,7 +39,7 @@ class ContactsDisplay(SensorTopicsDisplay):
     label = 'Contacts'
     default_frame = 'world'
     order = 55
-    parameters = (('contact_topics', ['/bumper']),)
+    parameters = (('contact_topics', [AUTO]),)
     topics_parameter = 'contact_topics'
 
     def rates(self):

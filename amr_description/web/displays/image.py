@@ -24,6 +24,7 @@ import time
 
 from amr_description.web.displays.base import Display
 from amr_description.web.displays.base import Rate
+from amr_description.web.displays.discovery import AUTO
 from amr_description.web.robot_scene import wxyz_position
 import numpy as np
 from rclpy.qos import qos_profile_sensor_data
@@ -139,7 +140,7 @@ class ImageDisplay(Display):
 
     label = 'Image'
     order = 53
-    parameters = (('image_topics', ['/camera/image']),)
+    parameters = (('image_topics', [AUTO]),)
     topics_parameter = 'image_topics'
     rviz_classes = {'rviz_default_plugins/Image': 'image_topics',
                     'rviz_default_plugins/Camera': 'image_topics'}
@@ -148,10 +149,14 @@ class ImageDisplay(Display):
         """Keep the topics; they are subscribed when a page opens (module docstring)."""
         super().__init__(node, server, frames)
         self._lock = threading.Lock()
-        self._cameras = {topic: _Camera() for topic in topics if topic}
+        self._cameras = {topic: _Camera() for topic in self.take_topics(topics, [Image])}
         self._next = 0.0
         self._show = None
         self._folder = None
+
+    def add_topic(self, topic):
+        """Add a camera (subscribed with the others while a page is open)."""
+        self._cameras[topic] = _Camera()
 
     def build_panel(self, gui):
         """Add the folder the pictures go in (hidden until the first picture)."""
@@ -163,7 +168,7 @@ class ImageDisplay(Display):
 
     def rates(self):
         """Return ``[(topic, Rate)]`` of the image topics (for the status)."""
-        return [(topic, camera.rate) for topic, camera in self._cameras.items()]
+        return [(topic, camera.rate) for topic, camera in list(self._cameras.items())]
 
     def _on_image(self, topic, msg):
         camera = self._cameras[topic]
@@ -177,7 +182,7 @@ class ImageDisplay(Display):
 
     def _subscribe(self, on):
         """Create or destroy the subscriptions (executor thread)."""
-        for topic, camera in self._cameras.items():
+        for topic, camera in list(self._cameras.items()):
             if on and not camera.subscriptions:
                 kind = CompressedImage if topic.endswith('/compressed') else Image
                 camera.subscriptions = [

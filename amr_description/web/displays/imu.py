@@ -11,6 +11,7 @@ IMU frame and drawn in the fixed frame. Topics, QoS, rates and frames:
 """
 
 
+from amr_description.web.displays.discovery import AUTO
 from amr_description.web.displays.sensor_topics import SensorTopicsDisplay
 import numpy as np
 from sensor_msgs.msg import Imu
@@ -44,7 +45,7 @@ class ImuDisplay(SensorTopicsDisplay):
     message_type = Imu
     label = 'Imu'
     order = 52
-    parameters = (('imu_topics', ['/imu']),)
+    parameters = (('imu_topics', [AUTO]),)
     topics_parameter = 'imu_topics'
     rviz_classes = {'rviz_imu_plugin/Imu': 'imu_topics'}
 

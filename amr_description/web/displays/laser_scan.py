@@ -12,6 +12,7 @@ coloured by range from red (near) through green to blue (at ``range_max``), as R
 
 import math
 
+from amr_description.web.displays.discovery import AUTO
 from amr_description.web.displays.sensor_topics import draw_points
 from amr_description.web.displays.sensor_topics import rainbow
 from amr_description.web.displays.sensor_topics import SensorTopicsDisplay
@@ -44,7 +45,7 @@ class LaserScanDisplay(SensorTopicsDisplay):
     message_type = LaserScan
     label = 'LaserScan'
     order = 50
-    parameters = (('scan_topics', ['/scan']),)
+    parameters = (('scan_topics', [AUTO]),)
     topics_parameter = 'scan_topics'
     rviz_classes = {'rviz_default_plugins/LaserScan': 'scan_topics'}
 

@@ -13,6 +13,7 @@ import time
 
 from amr_description.web.displays.base import Display
 from amr_description.web.displays.base import Rate
+from amr_description.web.displays.discovery import AUTO
 from rclpy.qos import qos_profile_sensor_data
 from sensor_msgs.msg import NavSatFix
 
@@ -33,7 +34,7 @@ class NavSatDisplay(Display):
     """The fixes of ``topics`` as text (module docstring)."""
 
     order = 54
-    parameters = (('navsat_topics', ['/gps/fix', '/navsat']),)
+    parameters = (('navsat_topics', [AUTO]),)
     topics_parameter = 'navsat_topics'
 
     def __init__(self, node, server, frames, topics):
@@ -44,11 +45,15 @@ class NavSatDisplay(Display):
         self._rates = {}
         self._text = None
         self._next = 0.0
-        for topic in (t for t in topics if t):
-            self._rates[topic] = Rate()
-            node.create_subscription(NavSatFix, topic,
-                                     lambda msg, topic=topic: self._on_fix(topic, msg),
-                                     qos_profile_sensor_data)
+        for topic in self.take_topics(topics, [NavSatFix]):
+            self.add_topic(topic)
+
+    def add_topic(self, topic):
+        """Subscribe ``topic`` (sensor-data QoS)."""
+        self._rates[topic] = Rate()
+        self.node.create_subscription(NavSatFix, topic,
+                                      lambda msg, topic=topic: self._on_fix(topic, msg),
+                                      qos_profile_sensor_data)
 
     def _on_fix(self, topic, msg):
         self._rates[topic].tick(time.monotonic())
@@ -57,7 +62,8 @@ class NavSatDisplay(Display):
 
     def rates(self):
         """Return ``[(topic, Rate)]`` of the topics that have had a fix (for the status)."""
-        return [(topic, rate) for topic, rate in self._rates.items() if topic in self._fixes]
+        return [(topic, rate) for topic, rate in list(self._rates.items())
+                if topic in self._fixes]
 
     def build_panel(self, gui):
         """Add the (hidden) text."""

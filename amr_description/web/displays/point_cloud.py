@@ -9,6 +9,7 @@ fixed frame, Rainbow from the lowest to the highest point); points that are not 
 not drawn. Topics, QoS, rates and frames: :mod:`~amr_description.web.displays.sensor_topics`.
 """
 
+from amr_description.web.displays.discovery import AUTO
 from amr_description.web.displays.sensor_topics import draw_points
 from amr_description.web.displays.sensor_topics import rainbow
 from amr_description.web.displays.sensor_topics import SensorTopicsDisplay
@@ -50,7 +51,7 @@ class PointCloudDisplay(SensorTopicsDisplay):
     message_type = PointCloud2
     label = 'PointCloud2'
     order = 51
-    parameters = (('point_cloud_topics', ['/scan/points']),)
+    parameters = (('point_cloud_topics', [AUTO]),)
     topics_parameter = 'point_cloud_topics'
     rviz_classes = {'rviz_default_plugins/PointCloud2': 'point_cloud_topics'}
 

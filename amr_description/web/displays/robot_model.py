@@ -3,7 +3,8 @@
 """
 RobotModel: every robot description topic as a robot posed from TF (RViz's RobotModel).
 
-Every ``robot_description_topics`` entry (std_msgs/String, transient local) builds a robot,
+Every ``robot_description_topics`` entry (std_msgs/String, transient local; ``'*'``, the
+default: every ``.../robot_description`` String topic with a publisher) builds a robot,
 rebuilt when a new description arrives; a description under a namespace
 (``/r1/robot_description``) uses frames ``r1/<link>``, as robot_state_publisher's
 ``frame_prefix``. A description that does not parse: the error in the log and the status,
@@ -13,6 +14,7 @@ the viewer keeps running.
 from amr_description.web.displays.base import Display
 from amr_description.web.displays.base import moved
 from amr_description.web.displays.base import POSE_TOLERANCE
+from amr_description.web.displays.discovery import AUTO
 from rclpy.qos import DurabilityPolicy
 from rclpy.qos import QoSProfile
 from std_msgs.msg import String
@@ -34,23 +36,28 @@ class RobotModelDisplay(Display):
     """
 
     order = 20
-    parameters = (('robot_description_topics', ['/robot_description']),)
+    parameters = (('robot_description_topics', [AUTO]),)
     topics_parameter = 'robot_description_topics'
     rviz_classes = {'rviz_default_plugins/RobotModel': 'robot_description_topics'}
 
     def __init__(self, node, server, frames, topics):
         """Subscribe every description topic (transient local, depth 1)."""
         super().__init__(node, server, frames)
-        self.topics = [t for t in topics if t]
+        self.topics = []
         self.robots = {}
         self.errors = {}
         self.changed = False  # set when a robot or an error came (the status refreshes)
         self._link_poses = {}  # (topic, link) -> last pose sent
+        for topic in self.take_topics(topics, [String], suffix='robot_description'):
+            self.add_topic(topic)
+
+    def add_topic(self, topic):
+        """Subscribe a description topic (transient local, depth 1)."""
+        self.topics.append(topic)
+        self.changed = True
         latched = QoSProfile(depth=1, durability=DurabilityPolicy.TRANSIENT_LOCAL)
-        for topic in self.topics:
-            node.create_subscription(
-                String, topic, lambda msg, topic=topic: self._on_description(topic, msg),
-                latched)
+        self.node.create_subscription(
+            String, topic, lambda msg, topic=topic: self._on_description(topic, msg), latched)
 
     def _on_description(self, topic, msg):
         from amr_description.core.description.urdf_model import parse_urdf

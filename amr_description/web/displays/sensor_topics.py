@@ -37,6 +37,9 @@ class SensorTopicsDisplay(Display):
     """
     The newest message of each of ``topics`` ('' entries are ignored), drawn in the fixed frame.
 
+    ``'*'`` among ``topics`` adds every topic of ``message_type`` that gains a publisher
+    (:mod:`~amr_description.web.displays.discovery`).
+
     :cvar message_type: the ROS message class.
     :cvar label: the checkbox label (RViz's display name).
     :cvar default_frame: the frame of messages without ``header.frame_id`` (drawn as the
@@ -48,16 +51,20 @@ class SensorTopicsDisplay(Display):
     default_frame = ''
 
     def __init__(self, node, server, frames, topics):
-        """Subscribe every topic."""
+        """Subscribe every named topic; with ``'*'``, every one found of ``message_type``."""
         super().__init__(node, server, frames)
         self._lock = threading.Lock()
         self._topics = {}
         self._next = 0.0
-        for topic in (t for t in topics if t):
-            self._topics[topic] = _Topic()
-            node.create_subscription(self.message_type, topic,
-                                     lambda msg, topic=topic: self._on_message(topic, msg),
-                                     qos_profile_sensor_data)
+        for topic in self.take_topics(topics, [self.message_type]):
+            self.add_topic(topic)
+
+    def add_topic(self, topic):
+        """Subscribe ``topic`` (sensor-data QoS)."""
+        self._topics[topic] = _Topic()
+        self.node.create_subscription(self.message_type, topic,
+                                      lambda msg, topic=topic: self._on_message(topic, msg),
+                                      qos_profile_sensor_data)
 
     def build(self, gui):
         """Add the display's checkbox."""
@@ -65,7 +72,7 @@ class SensorTopicsDisplay(Display):
 
     def rates(self):
         """Return ``[(topic, Rate)]`` of the topics (for the status)."""
-        return [(topic, item.rate) for topic, item in self._topics.items()]
+        return [(topic, item.rate) for topic, item in list(self._topics.items())]
 
     def _on_message(self, topic, msg):
         item = self._topics[topic]
@@ -80,7 +87,7 @@ class SensorTopicsDisplay(Display):
             return
         self._next = now + 1.0 / RATE
         show = self._show.value
-        for topic, item in self._topics.items():
+        for topic, item in list(self._topics.items()):
             with self._lock:
                 msg = item.msg
             if item.node is not None and item.node.visible != show:

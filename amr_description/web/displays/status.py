@@ -106,8 +106,8 @@ class StatusDisplay(Display):
         lines = [f'**Robot description error** ({topic}): {error}'
                  for topic, error in robot_model.errors.items()]
         if not robot_model.robots:
-            lines.append('Waiting for ' + ', '.join(f'`{t}`' for t in robot_model.topics)
-                         + '...')
+            lines.append('Waiting for ' + (', '.join(f'`{t}`' for t in robot_model.topics)
+                                           or 'a `robot_description` topic') + '...')
         lines.append(f'Fixed Frame: **{context.fixed}**'
                      + (f' ({context.note})' if context.note else ''))
         missing = sorted(set(context.missing))

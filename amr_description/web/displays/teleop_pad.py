@@ -13,6 +13,13 @@ page closed, focus lost, connection dropped) is released within :data:`BUTTON_HO
 delay). Speed (m/s) and turn rate (rad/s) are set on the page. The pad is shown only while
 something subscribes to ``cmd_vel_topic`` (a controller or a simulated robot that would move;
 the display stack has none), checked every :data:`VISIBILITY_PERIOD` s.
+
+``cmd_vel_topic`` '' (the default) finds the topic in the graph: the first topic named
+``.../cmd_vel`` of type ``geometry_msgs/TwistStamped`` or ``Twist`` that something
+subscribes to, a controller's (``/diff_drive_controller/cmd_vel``,
+``/diff_drive_base_controller/cmd_vel`` of gz_ros2_control_demos, ``/r1/...`` in a fleet)
+before a bare ``/cmd_vel`` (gz-sim's DiffDrive), stamped before unstamped, then by name; the
+pad then publishes that topic's type (a ``Twist`` has no header).
 """
 
 import threading
@@ -20,6 +27,9 @@ import time
 
 from amr_description.core import teleop_pad
 from amr_description.web.displays.base import Display
+from amr_description.web.displays.discovery import choose_cmd_vel
+from amr_description.web.displays.discovery import type_name
+from geometry_msgs.msg import Twist
 from geometry_msgs.msg import TwistStamped
 from rclpy.clock import Clock
 from rclpy.clock import ClockType
@@ -45,7 +55,7 @@ class TeleopPadDisplay(Display):
     """
 
     order = 90
-    parameters = (('cmd_vel_topic', '/diff_drive_controller/cmd_vel'), ('frame_id', 'base_link'),
+    parameters = (('cmd_vel_topic', ''), ('frame_id', 'base_link'),
                   ('speed', 0.5), ('turn', 1.0))
 
     @classmethod
@@ -62,7 +72,25 @@ class TeleopPadDisplay(Display):
         self._deadman = teleop_pad.DeadMan(BUTTON_HOLD)
         self._frame_id = frame_id
         self._initial = (speed, turn)
-        self._publisher = node.create_publisher(TwistStamped, cmd_vel_topic, 10)
+        self._publisher = None
+        self.topic = None
+        if cmd_vel_topic:
+            self._publish_on(cmd_vel_topic, TwistStamped)
+
+    def _publish_on(self, topic, msg_class):
+        self.topic, self._type = topic, msg_class
+        self._publisher = self.node.create_publisher(msg_class, topic, 10)
+
+    def discover(self, graph):
+        """Without a ``cmd_vel_topic``, take the one found in ``graph`` (module docstring)."""
+        if self._publisher is not None:
+            return
+        chosen = choose_cmd_vel(graph, self.node.count_subscribers)
+        if chosen is not None:
+            topic, kind = chosen
+            kind = Twist if kind == type_name(Twist) else TwistStamped
+            self._publish_on(topic, kind)
+            self.node.get_logger().info(f'teleop pad: publishing {type_name(kind)} on {topic}')
 
     def build_footer(self, gui):
         """Add the ``Teleop`` folder and the hotkeys; a disconnected page releases all."""
@@ -92,7 +120,7 @@ class TeleopPadDisplay(Display):
                                clock=Clock(clock_type=ClockType.STEADY_TIME))
 
     def _heard(self):
-        return self._publisher.get_subscription_count() > 0
+        return self._publisher is not None and self._publisher.get_subscription_count() > 0
 
     def draw(self, context):
         """Show the pad while ``cmd_vel_topic`` has a subscriber, hide it otherwise."""
@@ -118,10 +146,14 @@ class TeleopPadDisplay(Display):
         with self._lock:
             command = self._deadman.command(time.monotonic(), self._speed.value,
                                             self._turn.value)
-        if command is None:
+        if command is None or self._publisher is None:
             return
-        msg = TwistStamped()
-        msg.header.stamp = self.node.get_clock().now().to_msg()
-        msg.header.frame_id = self._frame_id
-        msg.twist.linear.x, msg.twist.angular.z = command
+        if self._type is Twist:
+            msg = twist = Twist()
+        else:
+            msg = TwistStamped()
+            msg.header.stamp = self.node.get_clock().now().to_msg()
+            msg.header.frame_id = self._frame_id
+            twist = msg.twist
+        twist.linear.x, twist.angular.z = command
         self._publisher.publish(msg)

@@ -16,6 +16,7 @@ from amr_description.core.tf_buffer import TransformException
 from amr_description.web.displays.base import Display
 from amr_description.web.displays.base import moved
 from amr_description.web.displays.base import Rate
+from amr_description.web.displays.discovery import AUTO
 from nav_msgs.msg import Odometry
 import numpy as np
 
@@ -59,7 +60,7 @@ class TrailsDisplay(Display):
     """
 
     order = 40
-    parameters = (('odometry_topics', ['/odom', '/ground_truth/odom']),)
+    parameters = (('odometry_topics', [AUTO]),)
     topics_parameter = 'odometry_topics'
     rviz_classes = {'rviz_default_plugins/Odometry': 'odometry_topics'}
 
@@ -69,14 +70,32 @@ class TrailsDisplay(Display):
         self._lock = threading.Lock()
         self._trails = {}
         self._next = 0.0
-        topics = [t for t in topics if t]
-        self.rated_topic = topics[0] if topics else None
+        self.rated_topic = None
         self.rate = Rate()
-        for topic in topics:
-            rgb, colour = COLOURS[len(self._trails) % len(COLOURS)]
+        for topic in self.take_topics(topics, [Odometry]):
+            self.add_topic(topic, named=True)
+
+    def add_topic(self, topic, named=False):
+        """
+        Subscribe an odometry topic (depth 10) and give it a colour.
+
+        Named topics take the colours in their order. A topic found in the graph takes the
+        first free colour from green on when it is ground truth, from orange on otherwise, so
+        that ``/odom`` is orange and ``/ground_truth/odom`` green whichever is found first.
+        The rated topic is the first one that is not ground truth.
+        """
+        truth = 'ground_truth' in topic
+        with self._lock:
+            used = {trail.colour for trail in self._trails.values()}
+            start = 1 if truth and not named else 0
+            order = [COLOURS[(start + i) % len(COLOURS)] for i in range(len(COLOURS))]
+            rgb, colour = next((c for c in order if c[1] not in used),
+                               COLOURS[len(self._trails) % len(COLOURS)])
             self._trails[topic] = _Trail(rgb, colour)
-            node.create_subscription(
-                Odometry, topic, lambda msg, topic=topic: self._on_odometry(topic, msg), 10)
+        if self.rated_topic is None or ('ground_truth' in self.rated_topic and not truth):
+            self.rated_topic = topic
+        self.node.create_subscription(
+            Odometry, topic, lambda msg, topic=topic: self._on_odometry(topic, msg), 10)
 
     def build(self, gui):
         """Add the ``Odometry trails`` checkbox, the legend and the Clear button."""
