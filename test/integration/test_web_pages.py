@@ -411,6 +411,7 @@ def test_the_teleop_pad_finds_the_controllers_cmd_vel_and_shows_only_while_heard
             assert viewer.wait_for_output(
                 'teleop pad: publishing geometry_msgs/msg/TwistStamped on '
                 '/diff_drive_base_controller/cmd_vel', 10.0), viewer.output
+            forward.scroll_into_view_if_needed()
             box = forward.bounding_box()
             page.page.mouse.move(box['x'] + box['width'] / 2, box['y'] + box['height'] / 2)
             page.page.mouse.down()
