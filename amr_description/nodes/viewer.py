@@ -8,8 +8,8 @@ What RViz's displays of the tutorial show, on a web page served by this node:
 
 - **Grid** in the fixed frame;
 - **RobotModel**: every ``robot_description_topics`` entry (std_msgs/String, transient local;
-  default ``['/robot_description']``) builds a robot, rebuilt when a new description arrives;
-  its links are posed from ``/tf`` + ``/tf_static`` in the **Fixed Frame** (parameter
+  ``*``: every ``.../robot_description``) builds a robot, rebuilt when a new description
+  arrives; its links are posed from ``/tf`` + ``/tf_static`` in the **Fixed Frame** (parameter
   ``fixed_frame``, ``odom``) with a tf2-like buffer
   (:mod:`amr_description.core.tf_buffer`, latest common time per link). A description
   published under a namespace (``/r1/robot_description``) uses frames ``r1/<link>``, as
@@ -19,31 +19,38 @@ What RViz's displays of the tutorial show, on a web page served by this node:
   shipped world, a file or a URI; '' draws none), its models' geometry and colours as one
   mesh under the robots, in frame ``world`` (:mod:`amr_description.web.displays.world`);
 - **TF** axes of every frame (checkbox);
-- **LaserScan**: the newest scan of every ``scan_topics`` entry (``['/scan']``) as points in
+- **LaserScan**: the newest scan of every ``scan_topics`` entry as points in
   the fixed frame, coloured by range (:mod:`amr_description.web.displays.laser_scan`);
-  **PointCloud2** of ``point_cloud_topics`` (``['/scan/points']``), coloured by height;
-  **Imu** arrows (acceleration, angular velocity) of ``imu_topics`` (``['/imu']``);
-  **Image** panels of ``image_topics`` (``['/camera/image']``, subscribed only while a page
-  is open) and each camera's frustum (:mod:`amr_description.web.displays.image`);
-  **NavSatFix** of ``navsat_topics`` (``['/gps/fix', '/navsat']``) as text; **Contacts**
-  (ros_gz_interfaces) of ``contact_topics`` (``['/bumper']``) as red markers;
-- **Odometry** trails of ``odometry_topics`` (``/odom``, ``/ground_truth/odom``), one colour
-  each with a legend and a Clear button. A trail whose ``header.frame_id`` is not in TF (the
-  simulator's ``world``) is drawn as if that frame were the fixed frame, and the legend says
-  so;
+  **PointCloud2** of ``point_cloud_topics``, coloured by height;
+  **Imu** arrows (acceleration, angular velocity) of ``imu_topics``;
+  **Image** panels of ``image_topics`` (subscribed only while a page is open) and each
+  camera's frustum (:mod:`amr_description.web.displays.image`);
+  **NavSatFix** of ``navsat_topics`` as text; **Contacts**
+  (ros_gz_interfaces) of ``contact_topics`` as red markers;
+- **Odometry** trails of ``odometry_topics``, one colour each (``/odom`` orange,
+  ``/ground_truth/odom`` green) with a legend and a Clear button. A trail whose
+  ``header.frame_id`` is not in TF (the simulator's ``world``) is drawn as if that frame were
+  the fixed frame, and the legend says so;
 - a **status** panel: sim time and real-time factor (from ``/clock``), rates of ``/clock``,
   ``/joint_states`` (as remapped), the first of ``odometry_topics``, every scan topic and
   ``/tf``;
 - a **teleop pad** (no RViz peer): hold a button, or a key while the page has focus (arrows or
   ``I J L`` and ``K`` to stop; ``,`` is not available to page hotkeys), to publish
-  ``geometry_msgs/TwistStamped`` on ``cmd_vel_topic`` (``/diff_drive_controller/cmd_vel``)
-  at 20 Hz, stamped with the node clock (``use_sim_time`` aware), ``header.frame_id`` =
-  ``frame_id`` (``base_link``); one zero twist on release. Dead-man
+  ``geometry_msgs/TwistStamped`` on ``cmd_vel_topic`` ('': the first controller's
+  ``.../cmd_vel`` found, else ``/cmd_vel``, a ``Twist`` one as ``Twist``) at 20 Hz, stamped
+  with the node clock (``use_sim_time`` aware), ``header.frame_id`` = ``frame_id``
+  (``base_link``); one zero twist on release. Dead-man
   (:mod:`amr_description.core.teleop_pad`): a control that the page stops refreshing (released,
   page closed, focus lost, connection dropped) is released within 0.25 s (buttons) or
   0.6 s (keys, which repeat only after the keyboard's auto-repeat delay). Speed (m/s) and
   turn rate (rad/s) are set on the page (``speed`` 0.5, ``turn`` 1.0 to start, as
   teleop_twist_keyboard). Shown only while something subscribes to ``cmd_vel_topic``.
+
+Topic lists default to ``['*']``: every topic of the display's message type that has a
+publisher, in any namespace, subscribed as it appears in the graph (looked at every 2 s;
+:mod:`amr_description.web.displays.discovery`), so a fleet's ``/r1/scan`` is drawn and no
+topic the robot lacks is subscribed. Named topics (parameters, an ``.rviz`` file, the stacks)
+are subscribed from the start.
 
 Each display is a module of :mod:`amr_description.web.displays` registered in the entry-point
 group ``amr_description.displays`` (RViz's display plugins,
