@@ -189,7 +189,7 @@ class Display:
         self.server = server
         self.frames = frames
 
-    def take_topics(self, topics, types, suffix=''):
+    def take_topics(self, topics, types, suffix='', key=None):
         """
         Return the named topics of a topic list; with :data:`.discovery.AUTO` in it, find more.
 
@@ -199,10 +199,11 @@ class Display:
         :param topics: the topic-list parameter's value.
         :param types: message classes looked for.
         :param suffix: only topic names ending with it.
+        :param key: sort key of topics found together (default: the name).
         """
         named, auto = split_topics(topics)
         if auto:
-            self.finder = TopicFinder(types, suffix, named)
+            self.finder = TopicFinder(types, suffix, named, key)
         return named
 
     def discover(self, graph):

@@ -43,17 +43,19 @@ class TopicFinder:
     :param types: message classes (a topic of any of them is taken).
     :param suffix: only names ending with it (e.g. ``'robot_description'``); '' for any.
     :param known: topics already taken (never returned).
+    :param key: sort key of the topics found in one look (default: the name).
     """
 
-    def __init__(self, types, suffix='', known=()):
+    def __init__(self, types, suffix='', known=(), key=None):
         """Keep the types; nothing is looked at yet."""
         self.types = {type_name(t) for t in types}
         self.suffix = suffix
         self.known = set(known)
+        self.key = key
 
     def new_topics(self, graph, count_publishers):
         """
-        Return the topics of the types with a publisher not returned before, sorted.
+        Return the topics of the types with a publisher not returned before, sorted by ``key``.
 
         :param graph: ``[(topic, [type names])]`` (``Node.get_topic_names_and_types()``).
         :param count_publishers: callable ``topic -> int`` (``Node.count_publishers``).
@@ -66,7 +68,7 @@ class TopicFinder:
             if count_publishers(topic) > 0:
                 self.known.add(topic)
                 found.append(topic)
-        return sorted(found)
+        return sorted(found, key=self.key)
 
 
 CMD_VEL_TYPES = ('geometry_msgs/msg/TwistStamped', 'geometry_msgs/msg/Twist')

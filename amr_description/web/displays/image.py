@@ -149,7 +149,9 @@ class ImageDisplay(Display):
         """Keep the topics; they are subscribed when a page opens (module docstring)."""
         super().__init__(node, server, frames)
         self._lock = threading.Lock()
-        self._cameras = {topic: _Camera() for topic in self.take_topics(topics, [Image])}
+        # found together, colour pictures come before depth ones (the first is the largest)
+        named = self.take_topics(topics, [Image], key=lambda t: ('depth' in t, t))
+        self._cameras = {topic: _Camera() for topic in named}
         self._next = 0.0
         self._show = None
         self._folder = None
