@@ -128,7 +128,8 @@ def test_sim_stack_round_trip_is_byte_identical(ros_env, procs, exe, tmp_path):
     # warning; robot_state_publisher meets two /joint_states sources stepping back and forth
     # and says so at most once per 10 s (it said it per message)
     before = sim.output.count('Moved backwards in time')
-    beside = _ros2(exe, ros_env, 'bag', 'play', str(everything), timeout=120)
+    # (-d 5: the player looks for other /clock publishers once discovery had time to find them)
+    beside = _ros2(exe, ros_env, 'bag', 'play', str(everything), '-d', '5', timeout=120)
     assert beside.returncode == 0, beside.stderr
     assert "The bag's recorded /clock is played beside 1 other publisher(s) of it (a running " \
         'simulator?): time will jump back and forth; leave it out with --exclude-topics ' \

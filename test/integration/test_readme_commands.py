@@ -81,8 +81,9 @@ PLAYBOOK = {
         (STOP_STACK, 'stop-serving', None),
         ('ros2 run amr_description viewer --ros-args -p use_sim_time:=true', 'serve',
          'viewer: open http://'),
-        ('ros2 bag play run1 --clock', 'once',
-         'The bag holds /clock: played as recorded'),
+        # (whether the short bag holds /clock depends on the recorder's discovery: the
+        # round trip of test_cli_bag.py checks what the player does with it)
+        ('ros2 bag play run1 --clock', 'once', None),
     ],
     'sim fast': [
         ('ros2 launch amr_description sim rtf:=0', 'serve', ACTIVE),
