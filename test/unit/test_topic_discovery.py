@@ -2,9 +2,9 @@
 # Licensed under the Apache License, Version 2.0
 """The viewer's topics found by type in a graph (web/displays/discovery.py)."""
 
+from amr_description.core.message_yaml.utilities import type_name_of
 from amr_description.web.displays.discovery import split_topics
 from amr_description.web.displays.discovery import TopicFinder
-from amr_description.web.displays.discovery import type_name
 import pytest
 from sensor_msgs.msg import Imu
 from sensor_msgs.msg import LaserScan
@@ -23,8 +23,8 @@ PUBLISHERS = {'/r1/scan': 1, '/r2/scan': 2, '/r1/imu': 1, '/r1/robot_description
 
 
 def test_type_names_are_the_graphs():
-    assert type_name(LaserScan) == 'sensor_msgs/msg/LaserScan'
-    assert type_name(String) == 'std_msgs/msg/String'
+    assert type_name_of(LaserScan) == 'sensor_msgs/msg/LaserScan'
+    assert type_name_of(String) == 'std_msgs/msg/String'
 
 
 def test_split_topics_keeps_named_ones_and_reads_the_star():

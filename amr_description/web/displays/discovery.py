@@ -11,19 +11,12 @@ viewer adds no topic of its own to ``ros2 topic list``. Named topics in the same
 subscribed from the start, as before.
 """
 
+from amr_description.core.message_yaml.utilities import type_name_of
+
 AUTO = '*'
 """The topic-list entry meaning "every topic of the display's type that has a publisher"."""
 DISCOVERY_PERIOD = 2.0
 """Seconds (wall) between two looks at the graph."""
-
-
-def type_name(msg_class):
-    """
-    Return the ROS type name of a message class, e.g. ``'sensor_msgs/msg/LaserScan'``.
-
-    :param msg_class: a generated rclpy message class.
-    """
-    return f'{msg_class.__module__.split(".")[0]}/msg/{msg_class.__name__}'
 
 
 def split_topics(topics):
@@ -48,7 +41,7 @@ class TopicFinder:
 
     def __init__(self, types, suffix='', known=(), key=None):
         """Keep the types; nothing is looked at yet."""
-        self.types = {type_name(t) for t in types}
+        self.types = {type_name_of(t) for t in types}
         self.suffix = suffix
         self.known = set(known)
         self.key = key

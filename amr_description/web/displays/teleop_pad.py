@@ -26,9 +26,9 @@ import threading
 import time
 
 from amr_description.core import teleop_pad
+from amr_description.core.message_yaml.utilities import get_message
 from amr_description.web.displays.base import Display
 from amr_description.web.displays.discovery import choose_cmd_vel
-from amr_description.web.displays.discovery import type_name
 from geometry_msgs.msg import Twist
 from geometry_msgs.msg import TwistStamped
 from rclpy.clock import Clock
@@ -88,9 +88,8 @@ class TeleopPadDisplay(Display):
         chosen = choose_cmd_vel(graph, self.node.count_subscribers)
         if chosen is not None:
             topic, kind = chosen
-            kind = Twist if kind == type_name(Twist) else TwistStamped
-            self._publish_on(topic, kind)
-            self.node.get_logger().info(f'teleop pad: publishing {type_name(kind)} on {topic}')
+            self._publish_on(topic, get_message(kind))
+            self.node.get_logger().info(f'teleop pad: publishing {kind} on {topic}')
 
     def build_footer(self, gui):
         """Add the ``Teleop`` folder and the hotkeys; a disconnected page releases all."""
