@@ -44,10 +44,11 @@ def pytest_collection_modifyitems(config, items):
     items.sort(key=lambda item: TIERS.index(tier(item)))
 
 
-os.environ.setdefault('MUJOCO_GL', 'egl')  # cameras render headless (before MuJoCo's import)
-
 # Domain IDs 1..199 are handed out to tests; 200..232 stay free for hand-started stacks.
 _FIRST_DOMAIN, _LAST_DOMAIN = 1, 199
+_SHELL_MUJOCO_GL = os.environ.get('MUJOCO_GL')
+"""``MUJOCO_GL`` as the shell that started pytest had it (the package sets ``egl`` in this
+process when imported; child processes get the shell's, as a user's commands do)."""
 _DOMAIN_IDS = itertools.count((os.getpid() * 7) % _LAST_DOMAIN)
 _DOMAIN_LOCKS = []
 _LOCK_DIR = os.path.join(tempfile.gettempdir(), 'amr_description_domains')
@@ -130,6 +131,8 @@ def ros_env():
     env['ROS_AUTOMATIC_DISCOVERY_RANGE'] = 'LOCALHOST'
     env['PYTHONUNBUFFERED'] = '1'
     env.pop('ROS_LOCALHOST_ONLY', None)
+    if _SHELL_MUJOCO_GL is None:
+        env.pop('MUJOCO_GL', None)
     yield env
     release_domain_id(domain)
 

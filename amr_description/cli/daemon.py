@@ -42,9 +42,22 @@ SETTINGS = ('ROS_DOMAIN_ID', 'ROS_AUTOMATIC_DISCOVERY_RANGE', 'ROS_STATIC_PEERS'
 """Environment a daemon's answers depend on; a daemon with other values is stale."""
 
 
+MAX_DOMAIN_ID = 232
+"""The highest domain ID Fast DDS can open ports for (with its default port base)."""
+
+
 def domain_id():
-    """Return the ``ROS_DOMAIN_ID`` of this process (0 when unset or empty)."""
-    return int(os.environ.get('ROS_DOMAIN_ID') or 0)
+    """
+    Return the ``ROS_DOMAIN_ID`` of this process (0 when unset or empty).
+
+    :raises ValueError: one line naming the variable and its value when it is not an integer
+        from 0 to :data:`MAX_DOMAIN_ID` (rcl refuses a non-integer; Fast DDS a larger one).
+    """
+    text = (os.environ.get('ROS_DOMAIN_ID') or '0').strip()
+    if not text.isdigit() or int(text) > MAX_DOMAIN_ID:
+        raise ValueError(f"ROS_DOMAIN_ID '{os.environ['ROS_DOMAIN_ID']}': expected an integer "
+                         f'from 0 to {MAX_DOMAIN_ID}')
+    return int(text)
 
 
 def daemon_port(domain=None):

@@ -34,6 +34,10 @@ def build_parser():
     return parser
 
 
+OFF_THE_GRAPH = ('doctor', 'interface', 'pkg', 'wtf')
+"""Commands that never join a ROS domain; every other one checks ``ROS_DOMAIN_ID`` first."""
+
+
 def main(argv=None):
     """
     Run ``ros2`` with ``argv`` (default ``sys.argv[1:]``).
@@ -56,7 +60,14 @@ def main(argv=None):
         sub.print_help()
         return 0 if args.command is None else 1
     try:
+        if args.command not in OFF_THE_GRAPH:
+            from amr_description.cli.daemon import domain_id
+            domain_id()
         return int(func(args) or 0)
+    except ValueError as exc:
+        if 'ROS_DOMAIN_ID' not in str(exc):
+            raise
+        return fail(str(exc))
     except CliError as exc:
         return fail(str(exc))
     except BrokenPipeError:

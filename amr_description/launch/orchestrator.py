@@ -58,6 +58,7 @@ class RunningProcess:
         while running / never started.
     :ivar starts: how many times it was started.
     :ivar cmd: the argv of the last start.
+    :ivar last_line: the last non-blank line the process printed ('' before any).
     """
 
     def __init__(self, action, label):
@@ -69,6 +70,7 @@ class RunningProcess:
         self.starts = 0
         self.cmd = None
         self.popen = None
+        self.last_line = ''
 
     @property
     def running(self):
@@ -114,6 +116,7 @@ class Orchestrator:
         self._shutting_down = False
         self._shutdown_requested = 0
         self._error = False
+        self._fatal = None
         self._temp_files = []
         self._pid = os.getpid()
 
@@ -161,7 +164,9 @@ class Orchestrator:
 
         Must be called from the main thread.
 
-        :returns: exit code: 0, or 1 when an action could not be started.
+        :returns: exit code: 0, or 1 when an action could not be started or a required
+            process (``on_exit=Shutdown()``) died with a non-zero code; that process's last
+            line is then printed again as the last line of the stack's output.
         """
         # the handler only records the signal: it runs in the main thread between any two
         # bytecodes, also while that thread holds the event queue's lock (Queue.put is not
@@ -221,6 +226,8 @@ class Orchestrator:
     def _reader(self, record, pipe, to_screen):
         for raw in iter(pipe.readline, b''):
             line = raw.decode(errors='replace').rstrip('\n')
+            if line.strip():
+                record.last_line = line
             if to_screen:
                 self._write(f'[{record.label}] {line}')
             if self.line_callback is not None:
@@ -265,7 +272,10 @@ class Orchestrator:
                     os.unlink(path)
                 except OSError:
                     pass
-            self.exit_code = 1 if self._error else 0
+            if self._fatal is not None and self._fatal.last_line:
+                # the reason the stack stopped, last, after the other processes' goodbyes
+                self._write(f'[{self._fatal.label}] {self._fatal.last_line}')
+            self.exit_code = 1 if self._error or self._fatal is not None else 0
 
     def _idle(self):
         if any(r.running for r in self.processes):
@@ -371,6 +381,8 @@ class Orchestrator:
                       f"{returncode}, cmd '{cmd}'].")
         action = record.action
         if action.required and not self._shutting_down:
+            if returncode != 0:
+                self._fatal = record
             self._on_shutdown(f'required process {record.label} exited', False)
         for handler in list(self._handlers):
             if handler.target_action is not action or self._shutting_down:

@@ -271,7 +271,7 @@ def sim(args):
     description = _description(args)
 
     mujoco_sim = Node(
-        PACKAGE, 'mujoco_sim', output='screen',
+        PACKAGE, 'mujoco_sim', output='screen', required=True,
         parameters=[{'real_time_factor': rtf, 'headless': headless,
                      'bridge_config': args['bridge_config'], 'world': args['world']}],
         remappings=[('/diff_drive_controller/odom', '/odom')])
@@ -371,7 +371,7 @@ def fleet(args):
     names = [f'r{i}' for i in range(1, count + 1)]
     grid = fleet_grid(count, spacing)
     actions = [Node(
-        PACKAGE, 'mujoco_sim', output='screen',
+        PACKAGE, 'mujoco_sim', output='screen', required=True,
         parameters=[{'real_time_factor': rtf, 'headless': headless, 'world': args['world']}],
         remappings=[(f'/{ns}/diff_drive_controller/odom', f'/{ns}/odom') for ns in names])]
 

@@ -7,18 +7,11 @@ Headless picture of a URDF robot with MuJoCo's renderer (no rclpy).
 The robot comes from :func:`amr_description.sim.urdf_to_mjcf.urdf_to_spec` (welded to the
 world, zero joint positions, URDF colours); this module adds a checkered ground plane at z = 0,
 a directional light and a free camera that frames the robot (looking at the centre of its
-bounding box from the front left, above). Set ``MUJOCO_GL=egl`` (done by :func:`render_urdf`
-when unset) to render without a display.
+bounding box from the front left, above). It renders without a display: the package
+chooses EGL unless ``MUJOCO_GL`` says otherwise (:mod:`amr_description`).
 """
 
-import os
-
 import numpy as np
-
-
-def _ensure_gl():
-    """Set ``MUJOCO_GL`` to ``egl`` (headless) when unset, before mujoco is imported."""
-    os.environ.setdefault('MUJOCO_GL', 'egl')
 
 
 def build_scene(urdf_xml, width=640, height=480, pose=(0.0, 0.0, 0.0, 0.0, 0.0, 0.0),
@@ -38,7 +31,6 @@ def build_scene(urdf_xml, width=640, height=480, pose=(0.0, 0.0, 0.0, 0.0, 0.0, 
     :returns: ``(mujoco.MjModel, mujoco.MjData)`` after ``mj_forward``.
     :raises ValueError: one line when the URDF cannot be converted.
     """
-    _ensure_gl()
     import mujoco
     from amr_description.sim.sdf_to_mjcf import add_world
     from amr_description.sim.sdf_to_mjcf import GROUND_BODY
@@ -145,7 +137,6 @@ def _render_in_world(urdf_xml, world, width, height, frames):
     """Spawn the robot at the origin of ``world`` (an engine, no ROS) and render it all."""
     import mujoco
     from amr_description.sim.simulation import Simulation
-    _ensure_gl()
     sim = Simulation(real_time_factor=0.0, world=world,
                      sensor_settings={'publish_ground_truth': False})
     try:

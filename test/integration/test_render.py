@@ -37,7 +37,7 @@ def check_png(path, shape):
 
 def test_render_from_file(procs, exe, ros_env, tmp_path):
     out = tmp_path / 'amr.png'
-    env = dict(ros_env, MUJOCO_GL='egl')
+    env = ros_env
     proc = procs.start([exe('render'), '--urdf', URDF_PATH, '-o', str(out), '--width', '320',
                         '--height', '240', '--frames'], env)
     assert proc.wait(60.0) == 0, proc.output
@@ -53,7 +53,7 @@ def test_render_from_robot_description_topic(procs, exe, ros_env, tmp_path):
                 ros_env)
     out = tmp_path / 'topic.png'
     proc = procs.start([exe('render'), '-o', str(out), '--width', '200', '--height', '150'],
-                       dict(ros_env, MUJOCO_GL='egl'))
+                       ros_env)
     assert proc.wait(60.0) == 0, proc.output
     check_png(out, (150, 200))
 
@@ -71,7 +71,7 @@ def test_bad_urdf_is_one_line_error(procs, exe, ros_env, tmp_path):
 def test_render_in_a_world_draws_the_world_and_the_robot(procs, exe, ros_env, tmp_path):
     import matplotlib.image
     out = tmp_path / 'warehouse.png'
-    env = dict(ros_env, MUJOCO_GL='egl')
+    env = ros_env
     proc = procs.start([exe('render'), '--urdf', URDF_PATH, '--world', 'warehouse', '-o',
                         str(out)], env)
     assert proc.wait(60.0) == 0, proc.output
@@ -90,7 +90,6 @@ def test_render_in_a_world_draws_the_world_and_the_robot(procs, exe, ros_env, tm
 
 @pytest.mark.parametrize('frames', [False, True])
 def test_render_pure(frames):
-    os.environ.setdefault('MUJOCO_GL', 'egl')
     from amr_description.sim.render import render_urdf
     with open(URDF_PATH) as f:
         image = render_urdf(f.read(), 160, 120, frames)

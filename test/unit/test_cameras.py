@@ -321,7 +321,7 @@ print('GL' if any('llvmpipe' in t for t in threads) else 'no GL',
       sim.sensor_settings['camera_renderer'].started)
 sim.close()
 """
-    env = dict(os.environ, MUJOCO_GL='egl')
+    env = dict(os.environ)
     runs = {kind: subprocess.run([sys.executable, '-c', script, kind], env=env,
                                  capture_output=True, text=True, timeout=120)
             for kind in ('none', 'camera')}

@@ -58,9 +58,6 @@ simulation thread publishes /clock and the sensors and sets the controller nodes
 their /clock subscriptions are removed before the executor ever sees them
 (:class:`amr_description.ros.sim_time.SimTimeExecutor`). Cameras render and publish on their
 own thread (``camera_render``, :mod:`amr_description.sim.sensors.camera`), through EGL unless
-``MUJOCO_GL`` says otherwise (set here, before MuJoCo is imported).
+``MUJOCO_GL`` says otherwise (chosen by the package, :mod:`amr_description`).
 """
 
-import os
-
-os.environ.setdefault('MUJOCO_GL', 'egl')

@@ -119,7 +119,6 @@ def main(argv=None):
     parser.add_argument('--memory', action='store_true',
                         help='only print the memory figures (run in a fresh process)')
     opts = parser.parse_args(argv)
-    os.environ.setdefault('MUJOCO_GL', 'egl')
     if opts.memory:
         print(' '.join(f'{value:.1f}' for value in memory()))
         return 0

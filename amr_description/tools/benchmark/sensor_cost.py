@@ -165,7 +165,6 @@ def main(argv=None):
                         help='wall s of each sim stack measurement (10)')
     parser.add_argument('--domain-id', type=int, default=97, help='ROS domain of --stack (97)')
     opts = parser.parse_args(argv)
-    os.environ.setdefault('MUJOCO_GL', 'egl')
     with_sensors = _xacro()
     without = _xacro({'lidar': 'false', 'imu': 'false'})
     best = {}
