@@ -14,6 +14,7 @@ from amr_description.core.model_check.findings import Finding
 from amr_description.core.model_check.findings import INFO
 from amr_description.core.model_check.findings import WARNING
 from amr_description.core.model_check.installed import compare_installed
+from amr_description.core.model_check.meshes import check_meshes
 from amr_description.core.model_check.installed import installed_counterpart
 
 
@@ -87,7 +88,7 @@ def main(argv=None):
         print(f'check_model: {exc}', file=sys.stderr)
         return 2
     if model is not None:
-        findings = check_model(model, urdf_xml, controllers)
+        findings = check_model(model, urdf_xml, controllers) + check_meshes(model)
     for path in (args.urdf, args.controllers):
         installed = installed_counterpart(path) if path else None
         if installed is not None:

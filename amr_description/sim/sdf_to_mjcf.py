@@ -33,8 +33,12 @@ its own hull of at most :data:`MAX_HULL_VERTICES` vertices (docs/worlds.md).
 import logging
 
 from amr_description.core.gazebo.sdf_elements import shape_bounds
+from amr_description.core.description.meshes import prepare_mesh
+from amr_description.core.description.meshes import solid
+from amr_description.core.description.meshes import split_parts
+from amr_description.core.description.meshes import THIN
+from amr_description.sim.urdf_to_mjcf import add_mesh
 from amr_description.sim.urdf_to_mjcf import add_mesh_asset
-from amr_description.sim.urdf_to_mjcf import mesh_triangles
 import mujoco
 import numpy as np
 
@@ -88,23 +92,37 @@ def _z_to(normal):
     return matrix.reshape(3, 3)
 
 
-def _mesh_parts(spec, shape):
-    """Return the meshes of one collision mesh: one per connected part (at most 64)."""
-    import trimesh
-    vertices, faces = mesh_triangles(shape.path)
-    parts = trimesh.Trimesh(vertices, faces, process=False).split(only_watertight=False)
-    if not 1 < len(parts) <= MAX_MESH_PARTS:
-        mesh = add_mesh_asset(spec, shape.path, shape.size)
-        mesh.maxhullvert = MAX_HULL_VERTICES
-        return [mesh]
-    meshes = []
-    for part in parts:
-        mesh = spec.add_mesh(name=f'mesh_{len(spec.meshes)}',
-                             uservert=np.asarray(part.vertices, dtype=float).ravel(),
-                             userface=np.asarray(part.faces, dtype=int).ravel())
-        mesh.scale = np.asarray(shape.size, dtype=float)
-        mesh.maxhullvert = MAX_HULL_VERTICES
-        meshes.append(mesh)
+def _mesh_parts(spec, shape, label, messages):
+    """
+    Return the meshes of one collision mesh: one per connected part (at most 64).
+
+    Each part is its own convex hull; a flat part (a wall made of one quad) is thickened
+    (:func:`amr_description.core.description.meshes.solid`), a part on one line is left out
+    with a line in ``messages``. Parts are only built when there are 2 to 64 of them.
+    """
+    mesh = prepare_mesh(shape.path, shape.size)
+    messages.extend(f'{label}: {note}' for note in mesh.notes)
+    parts = split_parts(mesh.faces, len(mesh.vertices), MAX_MESH_PARTS)
+    groups = [mesh.faces] if parts is None else [mesh.faces[index] for index in parts]
+    meshes, flat = [], []
+    for number, faces in enumerate(groups):
+        part = repr(shape.path) if parts is None else f'{shape.path!r} part {number}'
+        try:
+            vertices, faces, notes = solid(mesh.vertices, faces, part)
+        except ValueError as exc:
+            messages.append(f'{label}: {exc}: that part skipped')
+            continue
+        flat += notes
+        used, faces = np.unique(faces, return_inverse=True)
+        part_mesh = add_mesh(spec, vertices[used], faces.reshape(-1, 3))
+        part_mesh.maxhullvert = MAX_HULL_VERTICES
+        meshes.append(part_mesh)
+    if len(flat) > 1:
+        flat = [f'{shape.path!r}: {len(flat)} of its {len(groups)} parts are flat: each given '
+                f'a thickness of {THIN} m']
+    messages.extend(f'{label}: {note}' for note in flat)
+    if not meshes:
+        raise ValueError(f'{shape.path!r}: no part of it is usable')
     return meshes
 
 
@@ -133,8 +151,12 @@ def _add_shape(spec, body, shape, name, collision, frame, messages):
         sizes = [[size[3] / 2.0, size[4] / 2.0, 0.5]]
     else:
         try:
-            meshes = _mesh_parts(spec, shape) if collision else \
-                [add_mesh_asset(spec, shape.path, shape.size)]
+            if collision:
+                meshes = _mesh_parts(spec, shape, name, messages)
+            else:
+                notes = []
+                meshes = [add_mesh_asset(spec, shape.path, shape.size, notes)]
+                messages.extend(f'{name}: {note}' for note in notes)
         except ValueError as exc:
             messages.append(f'{name}: {exc}: skipped')
             return []

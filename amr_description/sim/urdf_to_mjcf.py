@@ -13,8 +13,8 @@ Mapping (URDF -> MuJoCo, units SI, REP 103 axes):
   terms (rotated by the inertial ``rpy`` into the link frame and given to MuJoCo as
   ``fullinertia``) and the inertial origin (``ipos``). Links without ``<inertial>`` have zero
   mass; inertia is never derived from geoms.
-- ``<collision>`` boxes, cylinders, spheres (and meshes whose file resolves: STL and OBJ read
-  by MuJoCo, COLLADA and the other formats of trimesh as triangles) become
+- ``<collision>`` boxes, cylinders, spheres (and meshes whose file resolves: any format
+  trimesh reads, made usable by :mod:`amr_description.core.description.meshes`) become
   colliding geoms in group 3; ``<visual>`` ones become non-colliding geoms
   (``contype = conaffinity = 0``) in group 2 with the material colour.
 - ``continuous`` -> unlimited hinge, ``revolute`` -> limited hinge, ``prismatic`` -> slide,
@@ -54,6 +54,7 @@ import math
 import os
 
 from amr_description.core.description.files import resolve_uri
+from amr_description.core.description.meshes import usable_mesh
 from amr_description.core.description.mujoco_block import DEFAULT_CONTACT
 from amr_description.core.description.robot_description import MOVING_TYPES
 from amr_description.core.description.robot_description import RobotDescription
@@ -111,46 +112,42 @@ def _set_frame(element, origin):
     element.quat = _mat_to_quat(origin[:3, :3])
 
 
-def mesh_triangles(path):
+def add_mesh(spec, vertices, faces):
     """
-    Return the triangles of a mesh file MuJoCo does not read itself (COLLADA ``.dae``, ...).
+    Add triangles to a spec's assets as the mesh ``mesh_<N>``; return it.
 
-    Read with trimesh (and pycollada for ``.dae``), the scene's parts joined in one mesh in
-    the file's frame.
+    Its inertia is MuJoCo's ``shell`` (surface) model: an open or thin mesh has no volume to
+    refuse, and no geom's inertia is taken from a mesh here (``inertiafromgeom`` false).
 
-    :param path: mesh file path.
-    :returns: ``(vertices (N, 3) float, faces (M, 3) int)``.
-    :raises ValueError: one line when trimesh cannot read it or it holds no triangle.
+    :param spec: the ``mujoco.MjSpec``.
+    :param vertices: ``(N, 3)`` floats, metres.
+    :param faces: ``(M, 3)`` ints.
     """
-    import trimesh
-    try:
-        mesh = trimesh.load(path, force='mesh')
-    except Exception as exc:  # noqa: B902 - trimesh raises many types; one line for all
-        raise ValueError(f'cannot read {path!r}: {exc}'.splitlines()[0]) from None
-    if not len(getattr(mesh, 'faces', ())):
-        raise ValueError(f'{path!r} holds no triangle')
-    return np.asarray(mesh.vertices, dtype=float), np.asarray(mesh.faces, dtype=int)
+    mesh = spec.add_mesh(name=f'mesh_{len(spec.meshes)}',
+                         uservert=np.asarray(vertices, dtype=float).ravel(),
+                         userface=np.asarray(faces, dtype=int).ravel())
+    mesh.inertia = mujoco.mjtMeshInertia.mjMESH_INERTIA_SHELL
+    return mesh
 
 
-def add_mesh_asset(spec, path, scale=None):
+def add_mesh_asset(spec, path, scale=None, notes=None):
     """
-    Add a mesh file to a spec's assets: STL and OBJ read by MuJoCo, others by trimesh.
+    Add a mesh file to a spec's assets, made usable for MuJoCo.
+
+    As :func:`amr_description.core.description.meshes.usable_mesh` does: any format trimesh reads (STL binary or ASCII, OBJ, COLLADA, ...); non-finite and
+    zero-area triangles left out, decimated over 200,000 triangles, a flat mesh thickened.
 
     :param spec: the ``mujoco.MjSpec``.
     :param path: an existing mesh file.
     :param scale: None, a number or 3 numbers (the URDF/SDF mesh ``scale``).
+    :param notes: None, or a list that gets the one-line remarks on what was changed.
     :returns: the spec's mesh (named ``mesh_<N>``).
-    :raises ValueError: one line when trimesh cannot read the file (:func:`mesh_triangles`).
+    :raises ValueError: one line naming the file when it cannot be used.
     """
-    if path.lower().endswith(('.stl', '.obj')):
-        mesh = spec.add_mesh(name=f'mesh_{len(spec.meshes)}', file=os.path.abspath(path))
-    else:
-        vertices, faces = mesh_triangles(path)
-        mesh = spec.add_mesh(name=f'mesh_{len(spec.meshes)}', uservert=vertices.ravel(),
-                             userface=faces.ravel())
-    if scale is not None:
-        mesh.scale = np.broadcast_to(np.asarray(scale, dtype=float), (3,))
-    return mesh
+    mesh = usable_mesh(path, scale)
+    if notes is not None:
+        notes.extend(mesh.notes)
+    return add_mesh(spec, mesh.vertices, mesh.faces)
 
 
 def _add_geometry(spec, body, geometry, origin, where):
@@ -175,11 +172,14 @@ def _add_geometry(spec, body, geometry, origin, where):
         if not os.path.isfile(path):
             _LOG.warning('%s: mesh %r skipped: no file %r', where, filename, path)
             return None
+        notes = []
         try:
-            mesh = add_mesh_asset(spec, path, geometry.mesh.scale)
+            mesh = add_mesh_asset(spec, path, geometry.mesh.scale, notes)
         except ValueError as exc:
             _LOG.warning('%s: mesh %r skipped: %s', where, filename, exc)
             return None
+        for note in notes:
+            _LOG.warning('%s: %s', where, note)
         geom = body.add_geom(type=mujoco.mjtGeom.mjGEOM_MESH, meshname=mesh.name)
     else:
         _LOG.warning('%s: geometry without box/cylinder/sphere/mesh skipped', where)
