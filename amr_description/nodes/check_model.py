@@ -14,8 +14,8 @@ from amr_description.core.model_check.findings import Finding
 from amr_description.core.model_check.findings import INFO
 from amr_description.core.model_check.findings import WARNING
 from amr_description.core.model_check.installed import compare_installed
-from amr_description.core.model_check.meshes import check_meshes
 from amr_description.core.model_check.installed import installed_counterpart
+from amr_description.core.model_check.meshes import check_meshes
 
 
 def _controllers_of(root):

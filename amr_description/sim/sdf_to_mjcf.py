@@ -32,11 +32,11 @@ its own hull of at most :data:`MAX_HULL_VERTICES` vertices (docs/worlds.md).
 
 import logging
 
-from amr_description.core.gazebo.sdf_elements import shape_bounds
 from amr_description.core.description.meshes import prepare_mesh
 from amr_description.core.description.meshes import solid
 from amr_description.core.description.meshes import split_parts
 from amr_description.core.description.meshes import THIN
+from amr_description.core.gazebo.sdf_elements import shape_bounds
 from amr_description.sim.urdf_to_mjcf import add_mesh
 from amr_description.sim.urdf_to_mjcf import add_mesh_asset
 import mujoco

@@ -134,8 +134,9 @@ def add_mesh_asset(spec, path, scale=None, notes=None):
     """
     Add a mesh file to a spec's assets, made usable for MuJoCo.
 
-    As :func:`amr_description.core.description.meshes.usable_mesh` does: any format trimesh reads (STL binary or ASCII, OBJ, COLLADA, ...); non-finite and
-    zero-area triangles left out, decimated over 200,000 triangles, a flat mesh thickened.
+    As :func:`amr_description.core.description.meshes.usable_mesh` does: any format trimesh
+    reads (STL binary or ASCII, OBJ, COLLADA, ...); non-finite and zero-area triangles left
+    out, decimated over 200,000 triangles, a flat mesh thickened.
 
     :param spec: the ``mujoco.MjSpec``.
     :param path: an existing mesh file.

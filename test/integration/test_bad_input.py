@@ -24,7 +24,7 @@ def _no_traceback(output):
 
 
 def test_render_in_a_world_headless_without_mujoco_gl(procs, exe, ros_env, tmp_path):
-    """README's render command works in a shell with only scripts/env.sh sourced."""
+    """Run README's render command in a shell that only sourced scripts/env.sh."""
     env = dict(ros_env)
     env.pop('MUJOCO_GL', None)
     out = tmp_path / 'world.png'

@@ -5,9 +5,8 @@
 import subprocess
 import sys
 
-import pytest
-
 from amr_description.cli.daemon import domain_id
+import pytest
 
 
 @pytest.mark.parametrize('value, expected', [('', 0), ('0', 0), ('232', 232), (' 7', 7)])

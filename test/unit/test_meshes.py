@@ -2,23 +2,22 @@
 # Licensed under the Apache License, Version 2.0
 """Mesh files made usable (core/description/meshes.py): closed-form shapes, every bad kind."""
 
-import numpy as np
-import pytest
-import trimesh
-
 from amr_description.core.description import meshes
 from amr_description.core.description.meshes import clean_triangles
 from amr_description.core.description.meshes import decimate
 from amr_description.core.description.meshes import solid
 from amr_description.core.description.meshes import split_parts
 from amr_description.core.description.meshes import usable_mesh
+import numpy as np
+import pytest
+import trimesh
 
 QUAD = (np.array([[0.0, 0.0, 0.0], [2.0, 0.0, 0.0], [2.0, 0.0, 1.0], [0.0, 0.0, 1.0]]),
         np.array([[0, 1, 2], [0, 2, 3]]))
 
 
 def test_ascii_stl_is_read(tmp_path):
-    """MuJoCo reads binary STL only; an ASCII one is a unit cube: 8 vertices, 12 triangles."""
+    """Read an ASCII STL (MuJoCo reads binary ones only): a unit cube: 8 vertices, 12 triangles."""
     path = tmp_path / 'cube.stl'
     trimesh.creation.box((1.0, 1.0, 1.0)).export(str(path), file_type='stl_ascii')
     assert path.read_text().startswith('solid')

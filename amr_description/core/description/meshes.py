@@ -226,7 +226,7 @@ def apply_scale(vertices, faces, scale):
 
 @functools.lru_cache(maxsize=64)
 def _prepared(path, stamp, scale):
-    """Cached body of :func:`prepare_mesh` (``stamp`` = file size and mtime)."""
+    """Prepare a file as :func:`prepare_mesh` says, once per ``stamp`` (size, mtime)."""
     start = time.monotonic()
     label = repr(path)
     vertices, faces = read_triangles(path)

@@ -60,4 +60,3 @@ their /clock subscriptions are removed before the executor ever sees them
 own thread (``camera_render``, :mod:`amr_description.sim.sensors.camera`), through EGL unless
 ``MUJOCO_GL`` says otherwise (chosen by the package, :mod:`amr_description`).
 """
-
