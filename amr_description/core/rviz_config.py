@@ -16,6 +16,8 @@ display subscribes nothing, as in RViz.
 from dataclasses import dataclass
 from dataclasses import field
 
+from amr_description.core.ros_names import topic_name_problem
+
 WITHOUT_TOPIC = ('rviz_default_plugins/Grid', 'rviz_default_plugins/TF',
                  'rviz_default_plugins/Axes', 'rviz_common/Group')
 """Classes shown (or walked) without a topic."""
@@ -33,6 +35,8 @@ class RvizConfig:
         would show none).
     :param tf: True when an enabled TF display is present.
     :param not_shown: ``'Name (Class)'`` of each enabled display the viewer does not have.
+    :param problems: one line per value left out (a display whose topic is not a valid ROS
+        topic name, a ``Fixed Frame`` that is not text), naming the file and the display.
     """
 
     path: str
@@ -40,6 +44,14 @@ class RvizConfig:
     topics: dict = field(default_factory=dict)
     tf: bool = False
     not_shown: list = field(default_factory=list)
+    problems: list = field(default_factory=list)
+
+
+MAX_DISPLAYS = 10000
+"""More displays than this (groups counted) is refused: a YAML alias bomb, not a config."""
+
+MAX_DEPTH = 64
+"""Groups nested deeper than this are refused (RViz's own configs nest a few levels)."""
 
 
 def _topic(display, cls):
@@ -52,25 +64,38 @@ def _topic(display, cls):
     return value.strip() if isinstance(value, str) and value.strip() else None
 
 
-def _walk(displays, config, where, topic_parameters):
+def _walk(displays, config, where, topic_parameters, depth=0, seen=None):
+    seen = [0] if seen is None else seen
     if not isinstance(displays, list):
         raise ValueError(f'{where}: expected a list of displays')
+    if depth > MAX_DEPTH:
+        raise ValueError(f'{where}: groups nested more than {MAX_DEPTH} deep')
     for display in displays:
+        seen[0] += 1
+        if seen[0] > MAX_DISPLAYS:
+            raise ValueError(f'{config.path}: more than {MAX_DISPLAYS} displays (a YAML alias '
+                             'bomb?)')
         if not isinstance(display, dict):
-            raise ValueError(f'{where}: expected a display (a mapping), found {display!r}')
+            raise ValueError(f'{where}: expected a display (a mapping), found '
+                             f'{str(display)[:80]!r}')
         cls = str(display.get('Class', ''))
         name = str(display.get('Name', cls.rsplit('/', 1)[-1]))
         if display.get('Enabled', True) is False:
             continue
         if cls == 'rviz_common/Group':
-            _walk(display.get('Displays', []), config, f'{where} {name!r}', topic_parameters)
+            _walk(display.get('Displays', []), config, f'{where} {name!r}', topic_parameters,
+                  depth + 1, seen)
         elif cls == 'rviz_default_plugins/TF':
             config.tf = True
         elif cls in topic_parameters:
             topic = _topic(display, cls)
             topics = config.topics[topic_parameters[cls]]
+            problem = topic_name_problem(topic) if topic is not None else ''
             if topic is None:
                 config.not_shown.append(f'{name} ({cls}, no topic)')
+            elif problem:
+                config.problems.append(f'{where} {name!r} ({cls}): topic {topic!r} is not a '
+                                       f'valid ROS topic name: {problem}; display skipped')
             elif topic not in topics:
                 topics.append(topic)
         elif cls not in WITHOUT_TOPIC:
@@ -93,6 +118,11 @@ def read_rviz_config(path, topic_parameters):
             document = yaml.safe_load(stream)
     except OSError as exc:
         raise ValueError(f'{path}: cannot read the RViz config: {exc.strerror}') from None
+    except UnicodeDecodeError as exc:
+        raise ValueError(f'{path}: not UTF-8 text (byte {exc.object[exc.start]:#04x} at offset '
+                         f'{exc.start}): not an RViz config') from None
+    except RecursionError:
+        raise ValueError(f'{path}: YAML nested too deeply to be an RViz config') from None
     except yaml.YAMLError as exc:
         mark = getattr(exc, 'problem_mark', None)
         where = f' (line {mark.line + 1})' if mark is not None else ''
@@ -103,9 +133,16 @@ def read_rviz_config(path, topic_parameters):
     config = RvizConfig(path, topics={p: [] for p in sorted(set(topic_parameters.values()))})
     options = manager.get('Global Options') or {}
     if isinstance(options, dict):
-        config.fixed_frame = str(options.get('Fixed Frame', '') or '').strip()
+        frame = options.get('Fixed Frame', '')
+        if isinstance(frame, str):
+            config.fixed_frame = frame.strip()
+        elif frame is not None:
+            config.problems.append(f'{path}: Global Options: Fixed Frame: expected a frame name '
+                                   f"(text), found {str(frame)[:80]!r}; the viewer's default "
+                                   'is used')
     try:
         _walk(manager.get('Displays', []) or [], config, f'{path}: Displays', topic_parameters)
-    except ValueError as exc:
-        raise ValueError(str(exc)) from None
+    except (ValueError, RecursionError) as exc:
+        raise ValueError(str(exc) if isinstance(exc, ValueError) else
+                         f'{path}: displays nested too deeply') from None
     return config

@@ -135,6 +135,8 @@ class Viewer(Node):
         settings = {name: self.get_parameter(name).value
                     for name in ('fixed_frame', *parameters)}
         if rviz is not None:  # the config's displays replace the defaults, as in RViz
+            for problem in rviz.problems:
+                self.get_logger().warning(problem)
             settings.update(rviz.topics)
             if rviz.fixed_frame:
                 settings['fixed_frame'] = rviz.fixed_frame
@@ -221,8 +223,12 @@ def main(args=None):
     :returns: 0 on a clean shutdown, 1 on a port in use or a bad parameter (one line).
     """
     from rclpy.experimental import EventsExecutor
-    return run_web_node(Viewer, NODE_NAME, display_config_args(args),
-                        executor_class=EventsExecutor)
+    try:
+        args = display_config_args(args)
+    except ValueError as exc:
+        print(f'viewer: {exc}', file=sys.stderr)
+        return 1
+    return run_web_node(Viewer, NODE_NAME, args, executor_class=EventsExecutor)
 
 
 def display_config_args(args=None):
@@ -232,13 +238,16 @@ def display_config_args(args=None):
     ``viewer -d robot.rviz`` is ``viewer --ros-args -p rviz_config:=robot.rviz``.
 
     :param args: command-line arguments (default ``sys.argv``).
+    :raises ValueError: ``-d`` with no file after it (the last argument, or ``--ros-args``
+        next).
     """
     args = list(sys.argv if args is None else args)
     result = []
     i = 0
     while i < len(args):
-        if args[i] in ('-d', '--display-config') and i + 1 < len(args) and \
-                '--ros-args' not in args[:i]:
+        if args[i] in ('-d', '--display-config') and '--ros-args' not in args[:i]:
+            if i + 1 == len(args) or args[i + 1].startswith('-'):
+                raise ValueError(f'{args[i]}: expected an RViz config file after it')
             result += ['--ros-args', '-p', f'rviz_config:={os.path.abspath(args[i + 1])}']
             i += 2
             continue

@@ -458,10 +458,13 @@ def urdf_to_spec(urdf_xml, name='amr', pose=(0.0, 0.0, 0.0, 0.0, 0.0, 0.0), free
             geom.conaffinity = 0
             geom.rgba = list(description.link_colours.get(link_name) or
                              _rgba(visual, materials))
-        for child_joint in children.get(link_name, []):
-            add_link(body, child_joint.child, child_joint)
+        return body
 
-    add_link(spec.worldbody, root_name, None)
+    pending = [(spec.worldbody, root_name, None)]
+    while pending:  # depth first, in the URDF's order, without recursion (a long chain)
+        parent_body, link_name, joint = pending.pop()
+        body = add_link(parent_body, link_name, joint)
+        pending.extend((body, j.child, j) for j in reversed(children.get(link_name, [])))
     _add_mimic_constraints(spec, robot.joints)
     add_mounts(spec, description.sensors.sensors)
     _add_actuators(spec, {j.name: j.type for j in robot.joints}, hardware, config)

@@ -6,6 +6,11 @@ import subprocess
 import sys
 
 from amr_description.cli.daemon import domain_id
+from amr_description.core.gazebo.sdf_world import read_world
+from amr_description.core.gazebo.sensors import parse_sensors
+from amr_description.core.ros_names import topic_name_problem
+from amr_description.core.rviz_config import read_rviz_config
+from amr_description.core.xml_document import parse_text
 import pytest
 
 
@@ -31,3 +36,121 @@ def test_ros2_with_a_bad_domain_id_is_one_line_and_exit_1():
     assert run.returncode == 1
     assert run.stderr.strip() == "ROS_DOMAIN_ID 'abc': expected an integer from 0 to 232"
     assert run.stdout == ''
+
+
+def _world(tmp_path, body, version='1.9'):
+    path = tmp_path / 'w.sdf'
+    path.write_text(f'<?xml version="1.0"?><sdf version="{version}"><world name="w">{body}'
+                    '<model name="ok"><static>true</static><link name="l"><collision name="c">'
+                    '<geometry><box><size>1 1 1</size></box></geometry></collision></link>'
+                    '</model></world></sdf>')
+    return read_world(str(path))
+
+
+@pytest.mark.parametrize('step, used', [('1e-9', 1e-5), ('10', 0.01), ('0.004', 0.004)])
+def test_physics_steps_that_cannot_work_are_clamped_with_a_line(tmp_path, step, used):
+    world = _world(tmp_path, f'<physics type="ode"><max_step_size>{step}</max_step_size>'
+                   '</physics>')
+    assert world.physics_step == used
+    clamped = [m for m in world.messages if '<max_step_size>' in m]
+    assert clamped == ([] if float(step) == used else
+                       [f'<physics><max_step_size> {float(step):g} s is out of 1e-05..0.01 s: '
+                        f'{used:g} s used'])
+
+
+def test_version_that_is_not_a_number_is_one_line(tmp_path):
+    world = _world(tmp_path, '', version='one')
+    assert world.messages[0].endswith('<sdf version="one"> is not a version number (expected '
+                                      'MAJOR.MINOR); read as 1.11')
+    assert [m.name for m in world.models] == ['ok']
+
+
+def test_latitude_out_of_range_leaves_navsat_without_origin(tmp_path):
+    world = _world(tmp_path, '<spherical_coordinates><latitude_deg>1000</latitude_deg>'
+                   '</spherical_coordinates>')
+    assert world.spherical_coordinates is None
+    assert world.messages == ['<spherical_coordinates><latitude_deg>: expected -90..90 deg, '
+                              'found 1000: navsat sensors have no origin']
+
+
+def test_huge_size_leaves_that_shape_out(tmp_path):
+    world = _world(tmp_path, '<model name="huge"><static>true</static><link name="l">'
+                   '<collision name="c"><geometry><box><size>1e300 1 1</size></box></geometry>'
+                   '</collision></link></model>')
+    assert world.messages == ["model 'huge' link 'l' collision 'c': <box> sizes must be > 0 "
+                              'and at most 100000, found 1e+300 1 1: skipped']
+
+
+def test_include_chain_deeper_than_the_limit_is_one_line(tmp_path, monkeypatch):
+    for i in range(40):
+        folder = tmp_path / f'm{i}'
+        folder.mkdir()
+        inner = f'<include><uri>model://m{i + 1}</uri></include>' if i < 39 else (
+            '<link name="l"><collision name="c"><geometry><box><size>1 1 1</size></box>'
+            '</geometry></collision></link>')
+        (folder / 'model.sdf').write_text(f'<sdf version="1.9"><model name="m{i}">{inner}'
+                                          '</model></sdf>')
+        (folder / 'model.config').write_text('<model><sdf>model.sdf</sdf></model>')
+    monkeypatch.setenv('GZ_SIM_RESOURCE_PATH', str(tmp_path))
+    world = _world(tmp_path, '<include><uri>model://m0</uri></include>')
+    assert [m.name for m in world.models] == ['ok']
+    assert len(world.messages) == 1
+    assert world.messages[0].startswith('model://m32: more than 32 nested <include>s')
+
+
+@pytest.mark.parametrize('name, problem', [
+    ('scan', ''), ('/robot/scan', ''), ('~/scan', ''), ('{node}/scan', ''),
+    ('my scan', "it holds ' '"), ('scan/', 'it ends with "/"'), ('a//b', 'it holds "//"'),
+    ('a/~b', '"~" may only start it'), ('2d/scan', "its token '2d' starts with a digit"),
+    ('', 'it is empty'), ('{a{b}}', 'nested')])
+def test_topic_name_rules_are_rcls(name, problem):
+    found = topic_name_problem(name)
+    assert (found == '') if not problem else (problem in found), found
+
+
+def test_sensor_topics_checked_up_front():
+    root = parse_text(
+        '<robot name="r"><link name="l"/><gazebo reference="l">'
+        '<sensor name="front lidar" type="gpu_lidar"/>'
+        '<sensor name="a" type="imu"><topic>my imu</topic></sensor>'
+        '<sensor name="b" type="imu"><topic>imu</topic></sensor>'
+        '<sensor name="c" type="gpu_lidar"><topic>/imu</topic></sensor>'
+        '</gazebo></robot>')
+    blocks = parse_sensors(root, {'l'})
+    assert [b.name for b in blocks.sensors] == ['b']
+    assert blocks.messages[0].startswith("sensor 'front lidar': its name makes no valid ROS "
+                                         'topic')
+    assert blocks.messages[1].startswith("sensor 'a': <topic>: 'my imu' is not a valid ROS "
+                                         "topic name: it holds ' '")
+    assert blocks.messages[2] == ("sensor 'c': <topic> '/imu' is already the topic of sensor "
+                                  "'b' (one topic, one sensor); the sensor is skipped")
+
+
+def test_rviz_configs_bad_values_are_one_line_each(tmp_path):
+    path = tmp_path / 'bad.rviz'
+    path.write_text('Visualization Manager:\n  Global Options:\n    Fixed Frame: [a, b]\n'
+                    '  Displays:\n    - Class: rviz_default_plugins/LaserScan\n'
+                    '      Name: scan\n      Topic:\n        Value: my scan\n')
+    config = read_rviz_config(str(path), {'rviz_default_plugins/LaserScan': 'scan_topics'})
+    assert config.fixed_frame == '' and config.topics == {'scan_topics': []}
+    assert len(config.problems) == 2 and 'Fixed Frame: expected a frame name' in \
+        config.problems[0] and "topic 'my scan' is not a valid ROS topic" in config.problems[1]
+
+
+def test_rviz_alias_bomb_deep_nesting_and_non_utf8_are_refused(tmp_path):
+    lines = ['a0: &a0 [{Class: rviz_common/Group, Displays: []}]']
+    for i in range(1, 10):
+        lines.append(f'a{i}: &a{i} [' + ', '.join(
+            [f'{{Class: rviz_common/Group, Displays: *a{i - 1}}}'] * 9) + ']')
+    bomb = tmp_path / 'bomb.rviz'
+    bomb.write_text('\n'.join(lines) + '\nVisualization Manager:\n  Displays: *a9\n')
+    deep = tmp_path / 'deep.rviz'
+    deep.write_text('Visualization Manager:\n  Displays: ' + '[{Class: rviz_common/Group, '
+                    'Displays: ' * 3000 + '[]' + '}]' * 3000 + '\n')
+    latin = tmp_path / 'latin.rviz'
+    latin.write_bytes(b'Visualization Manager:\n  Displays: []\n# caf\xe9\n')
+    for path, words in ((bomb, 'more than 10000 displays'), (deep, 'nested too deeply'),
+                        (latin, 'not UTF-8 text (byte 0xe9 at offset 43)')):
+        with pytest.raises(ValueError) as info:
+            read_rviz_config(str(path), {})
+        assert str(info.value).startswith(f'{path}: ') and words in str(info.value)

@@ -141,8 +141,8 @@ def test_bad_parts_are_one_line_each_and_the_rest_loads(tmp_path, models_path):
     assert [m.name for m in world.models] == ['flat', 'good', 'm', 'cone']
     messages = world.messages
     assert messages[0] == f'{path}: <sdf version="1.12"> is newer than 1.11; read as 1.11'
-    assert messages[1] == ("model 'flat' link 'l' collision 'c': <box> sizes must be > 0, "
-                           'found 1 0 1: skipped')
+    assert messages[1] == ("model 'flat' link 'l' collision 'c': <box> sizes must be > 0 and "
+                           'at most 100000, found 1 0 1: skipped')
     assert messages[2] == ("model 'arm' has joints: articulated SDF models are not simulated "
                            'yet: the world loads without it')
     assert messages[3].startswith("model 'm' link 'l' visual 'v': mesh 'meshes/none.stl' not "

@@ -22,6 +22,10 @@ import numpy as np
 SDF_GRAVITY = (0.0, 0.0, -9.8)
 """SDF's default ``<world><gravity>`` (m/s^2)."""
 
+MAX_SIZE = 1e5
+"""Largest size of a shape in metres (100 km: larger ones overflow the renderer's and the
+simulator's arithmetic)."""
+
 SHAPES = ('box', 'cylinder', 'sphere', 'capsule', 'ellipsoid', 'plane', 'mesh')
 """SDF geometries simulated; the others (cone, heightmap, polyline, image) are reported."""
 
@@ -259,7 +263,7 @@ def read_geometry(geometry, where, mesh_path):
         size = sdf_floats(child_text(kind_element, 'scale', '1 1 1'), 3,
                           f'{where} <mesh><scale>')
     checked = size[3:] if kind == 'plane' else size
-    if not all(v > 0 for v in checked):
-        raise PartError(f'{where}: <{kind}> sizes must be > 0, found '
+    if not all(0 < v <= MAX_SIZE for v in checked):
+        raise PartError(f'{where}: <{kind}> sizes must be > 0 and at most {MAX_SIZE:g}, found '
                         f'{" ".join(f"{v:g}" for v in checked)}')
     return kind, tuple(size), path

@@ -46,9 +46,12 @@ from amr_description.core.gazebo.sdf_elements import sdf_bool
 from amr_description.core.gazebo.sdf_elements import sdf_floats
 from amr_description.core.gazebo.sdf_elements import Shape
 from amr_description.core.gazebo.sdf_elements import World
+from amr_description.core.gazebo.sdf_resources import find_world
 from amr_description.core.gazebo.sdf_resources import fuel_model_name
 from amr_description.core.gazebo.sdf_resources import FUEL_SHIPPED
 from amr_description.core.gazebo.sdf_resources import RESOURCE_PATH_VARIABLES
+from amr_description.core.gazebo.sdf_resources import shipped_worlds_folder
+from amr_description.core.gazebo.sdf_resources import WorldError
 from amr_description.core.geodesy import SphericalCoordinates
 from amr_description.core.xml_document import parse_file
 from amr_description.core.xml_document import XMLError
@@ -57,13 +60,16 @@ import numpy as np
 NEWEST_VERSION = (1, 11)
 """The newest SDFormat version read without a warning (sdformat 14, Gazebo Harmonic)."""
 
+STEP_RANGE = (1e-5, 0.01)
+"""Physics steps (s) that work with MuJoCo and a robot: a smaller one leaves sim time still,
+a larger one lets a wheel sink through the ground; others are clamped with a warning."""
+
+MAX_NESTING = 32
+"""Nested ``<include>`` files, or nested ``<model>`` s, deeper than this leave the model out."""
+
 SIMULATED_WORLD_ELEMENTS = ('physics', 'gravity', 'model', 'include', 'state', 'frame',
                             'spherical_coordinates')
 """``<world>`` children read; every other one is listed once as not simulated."""
-
-
-class WorldError(ValueError):
-    """A world file that cannot be read: one line naming the file and the cause."""
 
 
 def collapse_repeats(lines):
@@ -84,7 +90,10 @@ def _version(root, source, messages):
         version = tuple(int(v) for v in text.split('.')[:2])
     except ValueError:
         version = ()
-    if len(version) == 2 and version > NEWEST_VERSION:
+    if len(version) != 2:
+        messages.append(f'{source}: <sdf version="{text}"> is not a version number (expected '
+                        f'MAJOR.MINOR); read as {NEWEST_VERSION[0]}.{NEWEST_VERSION[1]}')
+    elif version > NEWEST_VERSION:
         messages.append(f'{source}: <sdf version="{text}"> is newer than '
                         f'{NEWEST_VERSION[0]}.{NEWEST_VERSION[1]}; read as '
                         f'{NEWEST_VERSION[0]}.{NEWEST_VERSION[1]}')
@@ -206,8 +215,13 @@ class _Reader:
                                  f'world_frame_orientation ENU is simulated, found {model} '
                                  f'{orientation}: navsat sensors have no origin')
             return
+        latitude = child_number(spherical, 'latitude_deg', 0.0, where)
+        if not -90.0 <= latitude <= 90.0:
+            self.messages.append(f'{where}<latitude_deg>: expected -90..90 deg, found '
+                                 f'{latitude:g}: navsat sensors have no origin')
+            return
         world.spherical_coordinates = SphericalCoordinates(
-            child_number(spherical, 'latitude_deg', 0.0, where),
+            latitude,
             child_number(spherical, 'longitude_deg', 0.0, where),
             child_number(spherical, 'elevation', 0.0, where),
             child_number(spherical, 'heading_deg', 0.0, where))
@@ -225,6 +239,11 @@ class _Reader:
             if not world.real_time_factor >= 0:
                 raise PartError(f'<physics><real_time_factor> must be >= 0, found '
                                 f'{world.real_time_factor:g}')
+            step = min(max(world.physics_step, STEP_RANGE[0]), STEP_RANGE[1])
+            if step != world.physics_step:  # sim time stands still, or robots fall through
+                self.messages.append(f'<physics><max_step_size> {world.physics_step:g} s is out '
+                                     f'of {STEP_RANGE[0]:g}..{STEP_RANGE[1]:g} s: {step:g} s used')
+                world.physics_step = step
         self._spherical(element, world)
         gravity = child_text(element, 'gravity')
         if gravity is not None:
@@ -288,6 +307,9 @@ class _Reader:
         target = self.model_file(self.resolve(uri, base))
         if os.path.abspath(target) in self.stack:
             raise PartError(f'{uri}: an include cycle ({" -> ".join(self.stack + [target])})')
+        if len(self.stack) > MAX_NESTING:  # a chain of files: an error, not a RecursionError
+            raise PartError(f'{uri}: more than {MAX_NESTING} nested <include>s, from '
+                            f'{self.stack[0]} to {target}')
         root = _parse_file(target, 'the model')
         inner = root.find('model')
         if inner is None and root.find('light') is not None:
@@ -326,6 +348,8 @@ class _Reader:
 
     def _links(self, element, source, where, prefix=''):
         """Return the links of a model (nested models flattened) posed in its frame."""
+        if prefix.count('::') > MAX_NESTING:
+            raise PartError(f'{where}: models nested more than {MAX_NESTING} deep')
         frames = {'__model__': np.eye(4), '': np.eye(4)}
         pending = [(e, 'link') for e in element.findall('link')] + \
             [(e, 'frame') for e in element.findall('frame')]
@@ -438,55 +462,6 @@ def read_world(path, model_paths=()):
     except PartError as exc:
         raise WorldError(str(exc)) from None
     return reader.world(root)
-
-
-def shipped_worlds_folder():
-    """
-    Return the folder of the package's worlds (``share/amr_description/worlds``).
-
-    The source tree's ``worlds/`` when the package is not installed (tests from a checkout).
-    """
-    try:
-        from ament_index_python.packages import get_package_share_directory
-        folder = os.path.join(get_package_share_directory('amr_description'), 'worlds')
-        if os.path.isdir(folder):
-            return folder
-    except Exception:  # noqa: B902 - not installed: the checkout's folder
-        pass
-    return os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(
-        os.path.abspath(__file__)))), 'worlds')
-
-
-def find_world(value):
-    """
-    Return the file of a ``world`` parameter: a path, ``package://``, or a shipped world's name.
-
-    :param value: ``warehouse`` (a file ``<name>.sdf`` of :func:`shipped_worlds_folder`),
-        ``package://pkg/worlds/x.sdf``, ``file://...`` or a path.
-    :returns: the file path (str).
-    :raises WorldError: one line when nothing is found (naming the shipped worlds).
-    """
-    value = str(value).strip() or 'empty'
-    folder = shipped_worlds_folder()
-    if os.sep not in value and '://' not in value and not value.endswith(('.sdf', '.world')):
-        path = os.path.join(folder, value + '.sdf')
-        if os.path.isfile(path):
-            return path
-        names = sorted(f[:-4] for f in os.listdir(folder) if f.endswith('.sdf')) \
-            if os.path.isdir(folder) else []
-        raise WorldError(f'world {value!r}: no such file and not a shipped world '
-                         f'({", ".join(names)})')
-    if value.startswith('package://'):
-        from amr_description.core.description.files import resolve_uri
-        try:
-            value = resolve_uri(value)
-        except ValueError as exc:
-            raise WorldError(f'world: {exc}') from None
-    elif value.startswith('file://'):
-        value = value[len('file://'):]
-    if not os.path.isfile(value):
-        raise WorldError(f'world {value!r}: no such file')
-    return value
 
 
 def load_world(value):

@@ -29,6 +29,7 @@ from amr_description.core.gazebo.sensor_kinds import LidarSpec
 from amr_description.core.gazebo.sensor_kinds import NavSatSpec
 from amr_description.core.gazebo.sensor_kinds import read_kind
 from amr_description.core.gazebo.sensor_kinds import SensorError
+from amr_description.core.ros_names import topic_name_problem
 
 SDF_SENSOR_TYPES = (
     'air_pressure', 'air_speed', 'altimeter', 'boundingbox_camera', 'camera', 'contact',
@@ -154,6 +155,15 @@ def read_sensor(sensor, link):
         xyz=xyz, rpy=rpy)
     if block.topic == '__default__':
         block.topic = ''
+    if block.topic:
+        problem = topic_name_problem(block.topic)
+        if problem:
+            raise SensorError(f'{where}<topic>: {block.topic!r} is not a valid ROS topic name: '
+                              f'{problem}')
+    elif topic_name_problem(f'/sensor/{name}'):
+        raise SensorError(f"sensor {name!r}: its name makes no valid ROS topic (gz-sim's "
+                          f'default topic ends in .../sensor/<name>/...): '
+                          f'{topic_name_problem(name)}; set <topic>')
     read_kind(block.kind, sensor, where, block)
     return block
 
@@ -166,7 +176,7 @@ def parse_sensors(root, links):
     :param links: the URDF link names (a container).
     """
     result = SensorBlocks()
-    names = set()
+    names, topics = set(), {}
     for gazebo in root.findall('gazebo'):
         reference = gazebo.get('reference')
         for sensor in gazebo.findall('sensor'):
@@ -187,6 +197,14 @@ def parse_sensors(root, links):
                 result.messages.append(f'sensor {block.name!r}: a second sensor of that name; '
                                        'the sensor is skipped')
                 continue
+            if block.topic and block.topic.lstrip('/') in topics:
+                first = topics[block.topic.lstrip('/')]
+                result.messages.append(f'sensor {block.name!r}: <topic> {block.topic!r} is '
+                                       f'already the topic of sensor {first!r} (one topic, one '
+                                       'sensor); the sensor is skipped')
+                continue
+            if block.topic:
+                topics[block.topic.lstrip('/')] = block.name
             names.add(block.name)
             result.sensors.append(block)
     return result

@@ -11,6 +11,7 @@ mapped to contact friction; the tags Harmonic's default engine ignores are ignor
 everything else is reported as not read by the simulator (yet).
 """
 
+from amr_description.core.gazebo.sensors import parse_sensors
 from amr_description.core.gazebo.sensors import read_sensor
 from amr_description.core.gazebo.sensors import SensorError
 from amr_description.core.gazebo.systems import is_sensor_system
@@ -89,6 +90,10 @@ def check_gazebo(root):
                                         "Harmonic's default physics engine (DART) does"))
             else:
                 findings.append(Finding(WARNING, f'{where}<{child.tag}>', NOT_YET))
+    for message in parse_sensors(root, links).messages:
+        if '(one topic, one sensor)' in message:  # read one by one above, found here
+            element, _, text = message.partition(': ')
+            findings.append(Finding(WARNING, f'<sensor {element[8:-1]}>', text))
     return findings
 
 

@@ -11,6 +11,7 @@ import threading
 from amr_description.core.gazebo.bridge_config import read_bridge_config
 from amr_description.core.gazebo.sdf_world import collapse_repeats
 from amr_description.core.gazebo.sdf_world import load_world
+from amr_description.core.ros_names import topic_name_problem
 from amr_description.nodes.mujoco_sim.bridge import bridged_inputs
 from amr_description.nodes.mujoco_sim.bridge import bridged_outputs
 from amr_description.nodes.mujoco_sim.clock import ClockFollower
@@ -216,10 +217,17 @@ class MujocoSim(Node):
         """
         outputs = bridged_outputs(entity.sensors, self._bridge)
         inputs = bridged_inputs(entity.inputs, self._bridge)
-        self._pending[entity.name] = [
-            _Published(sensor, self.create_publisher(sensor.message_type, topic, 10),
-                       sensor.period_steps(self.physics_step))
-            for sensor, topic in outputs]
+        pending = []
+        for sensor, topic in outputs:
+            problem = topic_name_problem(topic)
+            if problem:  # a world or model name in gz-sim's default topic, a bridge entry
+                self.get_logger().error(f'{entity.name}: sensor {sensor.name!r}: topic '
+                                        f'{topic!r} is not a valid ROS topic name: {problem}; '
+                                        'the sensor is skipped')
+                continue
+            pending.append(_Published(sensor, self.create_publisher(
+                sensor.message_type, topic, 10), sensor.period_steps(self.physics_step)))
+        self._pending[entity.name] = pending
         for topic, message_type, callback in inputs:
             self.create_subscription(message_type, topic,
                                      _guarded(callback, topic, self.get_logger()), 10)
