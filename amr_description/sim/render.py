@@ -35,6 +35,7 @@ def build_scene(urdf_xml, width=640, height=480, pose=(0.0, 0.0, 0.0, 0.0, 0.0, 
     from amr_description.sim.sdf_to_mjcf import add_world
     from amr_description.sim.sdf_to_mjcf import GROUND_BODY
     from amr_description.sim.urdf_to_mjcf import urdf_to_spec
+    from amr_description.sim.world import mujoco_error
 
     spec = urdf_to_spec(urdf_xml, name='render', pose=pose, free=False)
     spec.visual.global_.offwidth = max(int(width), 640)
@@ -69,7 +70,10 @@ def build_scene(urdf_xml, width=640, height=480, pose=(0.0, 0.0, 0.0, 0.0, 0.0, 
         spec.worldbody.add_light(name='sun', pos=[0.0, 0.0, 10.0], dir=[0.3, 0.2, -1.0],
                                  type=mujoco.mjtLightType.mjLIGHT_DIRECTIONAL,
                                  diffuse=[0.8, 0.8, 0.8], castshadow=False)
-    model = spec.compile()
+    try:
+        model = spec.compile()
+    except ValueError as exc:
+        raise ValueError(f'MuJoCo cannot build the scene: {mujoco_error(exc)}') from None
     data = mujoco.MjData(model)
     mujoco.mj_forward(model, data)
     return model, data

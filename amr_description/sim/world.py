@@ -25,6 +25,25 @@ import numpy as np
 __all__ = ['Robot', 'World', 'make_world_spec']
 
 
+def mujoco_error(exc):
+    """
+    Return MuJoCo's compiler error as one line naming the element it is about.
+
+    MuJoCo writes ``Error: <what>`` then, on the next line, ``Element name '<name>', id N``;
+    this gives ``<what> (element '<name>')``, the element being the scoped world name
+    (``model::link``) or the robot's (``<robot>/<link>``).
+
+    :param exc: the ``ValueError`` of ``MjSpec.compile``.
+    """
+    text = ' '.join(str(exc).split())
+    text = text[len('Error: '):] if text.startswith('Error: ') else text
+    what, _, element = text.partition(' Element name ')
+    if element:
+        element = element.rsplit(', id ', 1)[0]
+        return f'{what} (element {element})'
+    return what
+
+
 @dataclass
 class Robot:
     """
@@ -72,8 +91,7 @@ class World:
             self.model = self.spec.compile()
         except ValueError as exc:
             source = description.source if description is not None else 'the empty world'
-            raise ValueError(f'{source}: MuJoCo cannot build it: {exc}'.splitlines()[0]) \
-                from None
+            raise ValueError(f'{source}: MuJoCo cannot build it: {mujoco_error(exc)}') from None
         self.data = mujoco.MjData(self.model)
         self.robots = {}
         self._initial_joints = {}  # joint (prefixed) -> (position or None, velocity or None)
@@ -131,7 +149,7 @@ class World:
             self._delete_robot_elements(prefix, body)
             self.spec.delete(frame)
             self._recompile()
-            raise ValueError(f'cannot compile robot {name!r}: {exc}'.splitlines()[0]) from None
+            raise ValueError(f'cannot compile robot {name!r}: {mujoco_error(exc)}') from None
         robot = Robot(name=name, prefix=prefix, root=root_name, urdf_xml=urdf_xml)
         self.robots[name] = robot
         if self._place_mimic_joints(prefix):

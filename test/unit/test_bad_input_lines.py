@@ -154,3 +154,36 @@ def test_rviz_alias_bomb_deep_nesting_and_non_utf8_are_refused(tmp_path):
         with pytest.raises(ValueError) as info:
             read_rviz_config(str(path), {})
         assert str(info.value).startswith(f'{path}: ') and words in str(info.value)
+
+
+def test_mujoco_compiler_errors_become_one_line_naming_the_element():
+    from amr_description.sim.world import mujoco_error
+    exc = ValueError("Error: inertia must satisfy A + B >= C; use 'balanceinertia' to fix\n"
+                     "Element name 'amr/wheel_front_left', id 3")
+    assert mujoco_error(exc) == ("inertia must satisfy A + B >= C; use 'balanceinertia' to fix "
+                                 "(element 'amr/wheel_front_left')")
+    assert mujoco_error(ValueError('Error: something')) == 'something'
+
+
+def test_world_models_of_one_name_and_unphysical_inertia_leave_that_model_out(tmp_path):
+    box = ('<collision name="c"><geometry><box><size>1 1 1</size></box></geometry>'
+           '</collision>')
+    world = _world(tmp_path, f'<model name="ok"><link name="l">{box}</link></model>'
+                   '<model name="loose"><link name="link"><inertial><mass>1</mass><inertia>'
+                   f'<ixx>1</ixx><iyy>1</iyy><izz>5</izz></inertia></inertial>{box}</link>'
+                   '</model>')
+    assert [m.name for m in world.models] == ['ok']
+    assert world.messages == [
+        "model 'loose' link 'link' <inertia>: principal moments break the triangle inequality "
+        '(expected I1 + I2 >= I3, found (1, 1, 5)): the world loads without it',
+        "model 'ok': a second model of that name: the world loads without it"]
+
+
+@pytest.mark.parametrize('name, words', [
+    ('foo_msgs/msg/Bar', "package 'foo_msgs' is not installed"),
+    ('std_msgs/msg/Nope', "package 'std_msgs' has no msg 'Nope'")])
+def test_unknown_message_type_names_the_type_and_why(name, words):
+    from amr_description.core.message_yaml.utilities import get_message
+    with pytest.raises(ValueError) as info:
+        get_message(name)
+    assert str(info.value) == f"Unknown interface type '{name}': {words}"

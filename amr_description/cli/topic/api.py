@@ -80,13 +80,14 @@ def message_class(type_name):
 
     :param type_name: ``pkg/msg/Type`` or ``pkg/Type``.
     :returns: the class.
-    :raises CliError: ``The passed message type is invalid`` (upstream's wording).
+    :raises CliError: ``The passed message type is invalid`` (upstream's wording) and the
+        reason, naming the type (a package not installed, no such type).
     """
     from amr_description.core.message_yaml.utilities import get_message
     try:
         return get_message(type_name)
-    except ValueError:
-        raise CliError('The passed message type is invalid') from None
+    except ValueError as exc:  # upstream's words, then which type and why
+        raise CliError(f'The passed message type is invalid: {exc}') from None
 
 
 def qos_from_args(args, default_key, node=None, topic=None):

@@ -53,6 +53,7 @@ from amr_description.core.gazebo.sdf_resources import RESOURCE_PATH_VARIABLES
 from amr_description.core.gazebo.sdf_resources import shipped_worlds_folder
 from amr_description.core.gazebo.sdf_resources import WorldError
 from amr_description.core.geodesy import SphericalCoordinates
+from amr_description.core.model_check.links import inertia_problems
 from amr_description.core.xml_document import parse_file
 from amr_description.core.xml_document import XMLError
 import numpy as np
@@ -193,6 +194,12 @@ class _Reader:
                         models.append((child, model))
             except PartError as exc:
                 self.messages.append(str(exc) + ': the world loads without it')
+        names = {}
+        for child, model in models:  # sdformat: names unique in a world; the first one kept
+            if names.setdefault(model.name, child) is not child:
+                self.messages.append(f'model {model.name!r}: a second model of that name: the '
+                                     'world loads without it')
+        models = [(child, model) for child, model in models if names[model.name] is child]
         self._place_models(element, models)
         world.models = [m for _, m in models]
         self._state(element, world)
@@ -421,6 +428,11 @@ class _Reader:
             link.inertia = tuple(
                 child_number(matrix, tag, default, f'{where} <inertia>')
                 for tag, default in zip(('ixx', 'iyy', 'izz', 'ixy', 'ixz', 'iyz'), defaults))
+            xx, yy, zz, xy, xz, yz = link.inertia
+            for problem, expected, found in inertia_problems(
+                    [[xx, xy, xz], [xy, yy, yz], [xz, yz, zz]])[:1]:  # MuJoCo refuses it
+                raise PartError(f'{where} <inertia>: {problem} (expected {expected}, found '
+                                f'{found})')
 
     def _shape(self, element, source, where, tag):
         kind, size, path = read_geometry(element.find('geometry'), where,

@@ -3,6 +3,7 @@
 """ROS interface classes from type names (``rosidl_runtime_py.utilities``)."""
 
 import importlib
+import importlib.util
 
 
 #: The interface kinds accepted in a type name ``pkg/<kind>/Type``.
@@ -44,9 +45,15 @@ def get_interface(identifier, default_kind='msg'):
     package, kind, name = split_type_name(identifier, default_kind)
     try:
         module = importlib.import_module(f'{package}.{kind}')
-        cls = getattr(module, name)
-    except (ImportError, AttributeError):
-        raise ValueError(f"Unknown interface type '{package}/{kind}/{name}'") from None
+    except ImportError:
+        installed = importlib.util.find_spec(package) is not None
+        raise ValueError(f"Unknown interface type '{package}/{kind}/{name}': " + (
+            f"package '{package}' has no {kind} interfaces" if installed else
+            f"package '{package}' is not installed")) from None
+    cls = getattr(module, name, None)
+    if cls is None:
+        raise ValueError(f"Unknown interface type '{package}/{kind}/{name}': package "
+                         f"'{package}' has no {kind} '{name}'")
     if not isinstance(cls, type):
         raise ValueError(f"Unknown interface type '{package}/{kind}/{name}'")
     return cls
