@@ -23,6 +23,7 @@ names override wildcards of the same file. ``.nan`` in YAML is a float NaN.
 
 import re
 
+from amr_description.core.yaml_text import safe_load
 import yaml
 
 ROS_PARAMS_KEY = 'ros__parameters'
@@ -38,13 +39,14 @@ def load_yaml(path):
     """
     try:
         with open(path, 'r') as f:
-            data = yaml.safe_load(f)
+            data = safe_load(f)
     except OSError as exc:
         raise ValueError(f'cannot read parameter file {path}: {exc.strerror}') from None
     except yaml.YAMLError as exc:
         mark = getattr(exc, 'problem_mark', None)
         where = f' line {mark.line + 1}' if mark is not None else ''
-        raise ValueError(f'parameter file {path}{where}: invalid YAML') from None
+        problem = f' ({exc.problem})' if getattr(exc, 'problem', None) else ''
+        raise ValueError(f'parameter file {path}{where}: invalid YAML{problem}') from None
     if data is None:
         return {}
     if not isinstance(data, dict):
@@ -153,7 +155,7 @@ def parse_params_file_value(value):
     text = str(value).strip()
     if text.startswith('[') and text.endswith(']'):
         try:
-            items = yaml.safe_load(text)
+            items = safe_load(text)
         except yaml.YAMLError:
             items = None
         if isinstance(items, list):

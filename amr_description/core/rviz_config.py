@@ -17,6 +17,7 @@ from dataclasses import dataclass
 from dataclasses import field
 
 from amr_description.core.ros_names import topic_name_problem
+from amr_description.core.yaml_text import safe_load
 
 WITHOUT_TOPIC = ('rviz_default_plugins/Grid', 'rviz_default_plugins/TF',
                  'rviz_default_plugins/Axes', 'rviz_common/Group')
@@ -115,7 +116,7 @@ def read_rviz_config(path, topic_parameters):
     import yaml
     try:
         with open(path, encoding='utf-8') as stream:
-            document = yaml.safe_load(stream)
+            document = safe_load(stream, aliases=True)
     except OSError as exc:
         raise ValueError(f'{path}: cannot read the RViz config: {exc.strerror}') from None
     except UnicodeDecodeError as exc:
@@ -126,7 +127,8 @@ def read_rviz_config(path, topic_parameters):
     except yaml.YAMLError as exc:
         mark = getattr(exc, 'problem_mark', None)
         where = f' (line {mark.line + 1})' if mark is not None else ''
-        raise ValueError(f'{path}: not a YAML RViz config{where}') from None
+        problem = f': {exc.problem}' if getattr(exc, 'problem', None) else ''
+        raise ValueError(f'{path}: not a YAML RViz config{where}{problem}') from None
     manager = document.get('Visualization Manager') if isinstance(document, dict) else None
     if not isinstance(manager, dict):
         raise ValueError(f'{path}: no "Visualization Manager" mapping: not an RViz 2 config')

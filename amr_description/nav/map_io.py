@@ -37,6 +37,7 @@ from dataclasses import dataclass
 import math
 import os
 
+from amr_description.core.yaml_text import safe_load
 import numpy as np
 
 MODES = ('trinary', 'scale', 'raw')
@@ -149,7 +150,7 @@ def read_map_yaml(path):
     path = os.path.expanduser(path)
     try:
         with open(path, encoding='utf-8') as stream:
-            document = yaml.safe_load(stream)
+            document = safe_load(stream)
     except OSError as exc:
         raise MapError(f'{path}: cannot read the map YAML: {exc.strerror}',
                        RESULT_MAP_DOES_NOT_EXIST if isinstance(exc, FileNotFoundError)

@@ -42,6 +42,7 @@ import argparse
 from importlib.metadata import entry_points
 import sys
 
+from amr_description.core.yaml_text import safe_load
 from amr_description.ros import shutdown
 from amr_description.ros.node import Node
 from amr_description.ros.sim_time import take_over_time_source
@@ -69,7 +70,7 @@ def read_components(path):
     """
     try:
         with open(path) as f:
-            data = yaml.safe_load(f)
+            data = safe_load(f)
     except (OSError, yaml.YAMLError) as exc:
         raise ComponentError(f'cannot read --nodes {path}: {" ".join(str(exc).split())}')
     if not isinstance(data, list):

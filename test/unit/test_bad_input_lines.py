@@ -149,7 +149,8 @@ def test_rviz_alias_bomb_deep_nesting_and_non_utf8_are_refused(tmp_path):
                     'Displays: ' * 3000 + '[]' + '}]' * 3000 + '\n')
     latin = tmp_path / 'latin.rviz'
     latin.write_bytes(b'Visualization Manager:\n  Displays: []\n# caf\xe9\n')
-    for path, words in ((bomb, 'more than 10000 displays'), (deep, 'nested too deeply'),
+    for path, words in ((bomb, 'more than 10000 displays'),
+                        (deep, 'nested more than 100 levels deep'),
                         (latin, 'not UTF-8 text (byte 0xe9 at offset 43)')):
         with pytest.raises(ValueError) as info:
             read_rviz_config(str(path), {})
@@ -187,3 +188,28 @@ def test_unknown_message_type_names_the_type_and_why(name, words):
     with pytest.raises(ValueError) as info:
         get_message(name)
     assert str(info.value) == f"Unknown interface type '{name}': {words}"
+
+
+def test_parameter_files_refuse_aliases_and_deep_nesting_with_the_line(tmp_path):
+    from amr_description.core.ros_param_file import load_yaml
+    lines = ['a0: &a0 [x, x, x, x, x, x, x, x, x]']
+    lines += [f'a{i}: &a{i} [' + ', '.join([f'*a{i - 1}'] * 9) + ']' for i in range(1, 9)]
+    bomb = tmp_path / 'bomb.yaml'
+    bomb.write_text('\n'.join(lines) + '\n/**:\n  ros__parameters:\n    p: *a8\n')
+    deep = tmp_path / 'deep.yaml'
+    deep.write_text('/**:\n  ros__parameters:\n    p: ' + '[' * 5000 + ']' * 5000 + '\n')
+    with pytest.raises(ValueError) as info:
+        load_yaml(str(bomb))
+    assert str(info.value) == (f'parameter file {bomb} line 2: invalid YAML (aliases (*name) '
+                               'are not allowed in this file)')
+    with pytest.raises(ValueError) as info:
+        load_yaml(str(deep))
+    assert str(info.value) == (f'parameter file {deep} line 3: invalid YAML (nested more than '
+                               '100 levels deep)')
+
+
+def test_safe_load_reads_what_yaml_safe_load_reads():
+    from amr_description.core.yaml_text import safe_load
+    text = 'a: [1, 2.5, {b: c}]\nd: null\n'
+    assert safe_load(text) == {'a': [1, 2.5, {'b': 'c'}], 'd': None}
+    assert safe_load('x: &v 1\ny: *v\n', aliases=True) == {'x': 1, 'y': 1}

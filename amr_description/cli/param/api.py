@@ -17,6 +17,7 @@ import time
 from amr_description.cli.common import CliError
 from amr_description.cli.common import spin_once
 from amr_description.cli.common import wait_for_graph
+from amr_description.core.yaml_text import safe_load
 import yaml
 
 TYPE_NAMES = ('not set', 'boolean', 'integer', 'double', 'string', 'byte array',
@@ -80,7 +81,7 @@ def parameter_value_from_string(text):
     from rcl_interfaces.msg import ParameterValue
     value = ParameterValue()
     try:
-        data = yaml.safe_load(text)
+        data = safe_load(text)
     except yaml.YAMLError:
         data = text
     if isinstance(data, bool):

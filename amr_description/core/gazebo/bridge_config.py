@@ -14,6 +14,7 @@ subscribes the ROS side of each entry itself (:func:`ros_side`).
 
 from dataclasses import dataclass
 
+from amr_description.core.yaml_text import safe_load
 import yaml
 
 DIRECTIONS = ('BIDIRECTIONAL', 'GZ_TO_ROS', 'ROS_TO_GZ')
@@ -62,7 +63,7 @@ def parse_bridge_config(text, source):
         an unknown direction or key.
     """
     try:
-        data = yaml.safe_load(text)
+        data = safe_load(text)
     except yaml.YAMLError as exc:
         raise ValueError(f'{source}: not YAML: {str(exc).splitlines()[0]}') from None
     if data is None:

@@ -3,6 +3,7 @@
 """controllers.yaml (ros2_control format): reading it and finding a node's parameters."""
 
 from amr_description.core.model_check.findings import DIFF_DRIVE_TYPE
+from amr_description.core.yaml_text import safe_load
 import yaml
 
 
@@ -47,7 +48,7 @@ def load_controllers(path):
     """
     try:
         with open(path) as f:
-            data = yaml.safe_load(f)
+            data = safe_load(f)
     except OSError as exc:
         raise ValueError(f'{path}: cannot read: {exc.strerror}') from None
     except yaml.YAMLError as exc:
