@@ -8,6 +8,7 @@ import math
 from amr_description.core.message_yaml.convert import class_of
 from amr_description.core.message_yaml.convert import slot_items
 from amr_description.core.message_yaml.utilities import type_name_of
+from amr_description.core.yaml_text import safe_load
 import rosidl_parser.definition as idl
 import yaml
 
@@ -37,7 +38,7 @@ def parse_yaml_values(text):
     if text is None or not str(text).strip():
         return {}
     try:
-        values = yaml.safe_load(text)
+        values = safe_load(text, aliases=True)  # as ros2cli's yaml.safe_load, depth-bounded
     except yaml.YAMLError as exc:
         problem = getattr(exc, 'problem', None) or str(exc).splitlines()[0]
         mark = getattr(exc, 'problem_mark', None)
