@@ -15,6 +15,7 @@ frame, as the Odometry trails of frame ``world`` are.
 
 import math
 
+from amr_description.core.description.meshes import prepare_mesh
 from amr_description.web.displays.base import Display
 from amr_description.web.displays.base import moved
 from amr_description.web.displays.base import POSE_TOLERANCE
@@ -42,13 +43,9 @@ def shape_mesh(shape, sections=24):
     elif shape.kind == 'ellipsoid':
         mesh = trimesh.creation.icosphere(subdivisions=2, radius=1.0)
         mesh.apply_scale(size)
-    elif shape.kind == 'mesh':
-        try:
-            mesh = trimesh.load(shape.path, force='mesh')
-        except Exception as exc:  # noqa: B902 - trimesh raises many kinds
-            raise ValueError(f'mesh {shape.path!r}: cannot load ({exc})'.splitlines()[0]) \
-                from None
-        mesh.apply_scale(size)
+    elif shape.kind == 'mesh':  # as the simulator reads it: cleaned, at most 200,000 triangles
+        prepared = prepare_mesh(shape.path, size)  # ValueError: one line naming the file
+        mesh = trimesh.Trimesh(prepared.vertices, prepared.faces, process=False)
     else:
         return None
     mesh.apply_transform(shape.pose)
