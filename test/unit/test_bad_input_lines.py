@@ -213,3 +213,18 @@ def test_safe_load_reads_what_yaml_safe_load_reads():
     text = 'a: [1, 2.5, {b: c}]\nd: null\n'
     assert safe_load(text) == {'a': [1, 2.5, {'b': 'c'}], 'd': None}
     assert safe_load('x: &v 1\ny: *v\n', aliases=True) == {'x': 1, 'y': 1}
+
+
+def test_bridge_config_refuses_a_bad_ros_topic_and_non_utf8_with_one_line(tmp_path):
+    from amr_description.core.gazebo.bridge_config import parse_bridge_config
+    from amr_description.core.gazebo.bridge_config import read_bridge_config
+    text = ('- ros_topic_name: "my scan"\n  gz_topic_name: /scan\n'
+            '  ros_type_name: sensor_msgs/msg/LaserScan\n  gz_type_name: gz.msgs.LaserScan\n')
+    with pytest.raises(ValueError) as info:
+        parse_bridge_config(text, 'bridge.yaml')
+    assert str(info.value).startswith("bridge.yaml entry 1: ROS topic 'my scan' is not a valid "
+                                      'ROS topic name')
+    latin = tmp_path / 'bridge.yaml'
+    latin.write_bytes(b'# caf\xe9\n')
+    with pytest.raises(ValueError, match=r'not UTF-8 text \(byte 0xe9 at offset 5\)'):
+        read_bridge_config(str(latin))

@@ -14,6 +14,7 @@ subscribes the ROS side of each entry itself (:func:`ros_side`).
 
 from dataclasses import dataclass
 
+from amr_description.core.ros_names import topic_name_problem
 from amr_description.core.yaml_text import safe_load
 import yaml
 
@@ -88,6 +89,10 @@ def parse_bridge_config(text, source):
         if not ros or not gz:
             raise ValueError(f'{where}: topic_name, ros_topic_name or gz_topic_name is '
                              'required')
+        problem = topic_name_problem(str(ros))
+        if problem:
+            raise ValueError(f'{where}: ROS topic {ros!r} is not a valid ROS topic name: '
+                             f'{problem}')
         for key in ('ros_type_name', 'gz_type_name'):
             if not item.get(key):
                 raise ValueError(f'{where}: {key} is required')
@@ -111,6 +116,9 @@ def read_bridge_config(path):
             text = stream.read()
     except OSError as exc:
         raise ValueError(f'bridge_config {path!r}: {exc.strerror}') from None
+    except UnicodeDecodeError as exc:
+        raise ValueError(f'bridge_config {path!r}: not UTF-8 text (byte '
+                         f'{exc.object[exc.start]:#04x} at offset {exc.start})') from None
     return parse_bridge_config(text, path)
 
 
