@@ -51,6 +51,11 @@ def safe_load(stream, aliases=False):
     :param aliases: allow ``&anchor`` / ``*alias`` (a file format that has them: ``.rviz``).
     :returns: the document (dict, list, scalar or None).
     :raises yaml.YAMLError: as ``yaml.safe_load``; a refused alias or nesting is a
-        ``ComposerError`` with the line (``problem_mark``).
+        ``ComposerError`` with the line (``problem_mark``); a file that is not UTF-8 a
+        ``MarkedYAMLError`` whose ``problem`` names the byte and its offset.
     """
-    return yaml.load(stream, Loader=_AliasLoader if aliases else _Loader)  # noqa: S506
+    try:
+        return yaml.load(stream, Loader=_AliasLoader if aliases else _Loader)  # noqa: S506
+    except UnicodeDecodeError as exc:  # a text file opened as UTF-8 that is not
+        raise yaml.MarkedYAMLError(problem=f'not UTF-8 text (byte {exc.object[exc.start]:#04x} '
+                                   f'at offset {exc.start})') from None

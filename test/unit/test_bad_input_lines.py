@@ -228,3 +228,16 @@ def test_bridge_config_refuses_a_bad_ros_topic_and_non_utf8_with_one_line(tmp_pa
     latin.write_bytes(b'# caf\xe9\n')
     with pytest.raises(ValueError, match=r'not UTF-8 text \(byte 0xe9 at offset 5\)'):
         read_bridge_config(str(latin))
+
+
+def test_yaml_files_that_are_not_utf8_are_one_line(tmp_path):
+    from amr_description.core.model_check.controllers_yaml import load_controllers
+    from amr_description.core.ros_param_file import load_yaml
+    path = tmp_path / 'latin.yaml'
+    path.write_bytes(b'/**:\n  ros__parameters:\n    a: caf\xe9\n')
+    with pytest.raises(ValueError) as info:
+        load_yaml(str(path))
+    assert str(info.value) == (f'parameter file {path}: invalid YAML (not UTF-8 text (byte '
+                               '0xe9 at offset 34))')
+    with pytest.raises(ValueError, match='not UTF-8 text'):
+        load_controllers(str(path))
