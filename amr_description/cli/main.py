@@ -59,15 +59,14 @@ def main(argv=None):
         sub = getattr(args, '_command_parser', parser)
         sub.print_help()
         return 0 if args.command is None else 1
-    try:
-        if args.command not in OFF_THE_GRAPH:
-            from amr_description.cli.daemon import domain_id
+    if args.command not in OFF_THE_GRAPH:
+        from amr_description.cli.daemon import domain_id
+        try:
             domain_id()
+        except ValueError as exc:
+            return fail(str(exc))
+    try:
         return int(func(args) or 0)
-    except ValueError as exc:
-        if 'ROS_DOMAIN_ID' not in str(exc):
-            raise
-        return fail(str(exc))
     except CliError as exc:
         return fail(str(exc))
     except BrokenPipeError:

@@ -21,6 +21,7 @@ class _Loader(yaml.SafeLoader):
     """PyYAML's safe loader that refuses aliases and nesting over :data:`MAX_DEPTH`."""
 
     allow_aliases = False
+    _depth = 0
 
     def compose_node(self, parent, index):
         """Compose one node, refusing an alias or one nested too deeply (PyYAML API)."""
@@ -28,7 +29,7 @@ class _Loader(yaml.SafeLoader):
             event = self.peek_event()
             raise yaml.composer.ComposerError(
                 None, None, 'aliases (*name) are not allowed in this file', event.start_mark)
-        self._depth = getattr(self, '_depth', 0) + 1
+        self._depth += 1
         try:
             if self._depth > MAX_DEPTH:
                 raise yaml.composer.ComposerError(

@@ -92,8 +92,8 @@ def check_gazebo(root):
                 findings.append(Finding(WARNING, f'{where}<{child.tag}>', NOT_YET))
     for message in parse_sensors(root, links).messages:
         if '(one topic, one sensor)' in message:  # read one by one above, found here
-            element, _, text = message.partition(': ')
-            findings.append(Finding(WARNING, f'<sensor {element[8:-1]}>', text))
+            element, _, text = message.partition(': ')  # "sensor 'name'", the reason
+            findings.append(Finding(WARNING, element, text))
     return findings
 
 
