@@ -59,6 +59,10 @@ setup(
             'component_container = amr_description.nodes.component_container:main',
             'static_transform_publisher = '
             'amr_description.nodes.static_transform_publisher:main',
+            'lifecycle_manager = amr_description.nodes.lifecycle_manager:main',
+            'map_server = amr_description.nodes.map_server:main',
+            'map_saver_server = amr_description.nodes.map_saver:server_main',
+            'map_saver_cli = amr_description.nodes.map_saver:cli_main',
         ],
         'amr_description.command': [
             'action = amr_description.cli.action:COMMAND',
@@ -68,6 +72,7 @@ setup(
             'doctor = amr_description.cli.doctor:COMMAND',
             'interface = amr_description.cli.interface:COMMAND',
             'launch = amr_description.cli.launch:COMMAND',
+            'lifecycle = amr_description.cli.lifecycle:COMMAND',
             'node = amr_description.cli.node:COMMAND',
             'param = amr_description.cli.param:COMMAND',
             'pkg = amr_description.cli.pkg:COMMAND',
@@ -115,6 +120,12 @@ setup(
             'package = amr_description.cli.interface:VERB_PACKAGE',
             'packages = amr_description.cli.interface:VERB_PACKAGES',
             'show = amr_description.cli.interface:VERB_SHOW',
+        ],
+        'amr_description.lifecycle.verb': [
+            'get = amr_description.cli.lifecycle:VERB_GET',
+            'list = amr_description.cli.lifecycle:VERB_LIST',
+            'nodes = amr_description.cli.lifecycle:VERB_NODES',
+            'set = amr_description.cli.lifecycle:VERB_SET',
         ],
         'amr_description.node.verb': [
             'info = amr_description.cli.node:VERB_INFO',

@@ -1,0 +1,264 @@
+# Copyright 2026 The amr_description Authors
+# Licensed under the Apache License, Version 2.0
+"""
+``lifecycle_manager``: Nav2's lifecycle manager (nav2_lifecycle_manager, Jazzy).
+
+Parameters: ``node_names`` (string array, the managed nodes relative to this node's
+namespace), ``autostart`` (false: STARTUP at start-up when true), ``bond_timeout`` (4.0 s;
+0 disables bonds), ``bond_respawn_max_duration`` (10.0 s) and
+``attempt_respawn_reconnection`` (true). Services ``~/manage_nodes``
+(``nav2_msgs/srv/ManageLifecycleNodes``) and ``~/is_active`` (``std_srvs/srv/Trigger``,
+success when the managed nodes are active).
+
+Each node is driven through its ``<node>/change_state`` and checked with ``<node>/get_state``
+(the plan is :mod:`amr_description.core.lifecycle_plan`); a transition that fails, or leaves
+the node in another state, stops the command with ``Failed to change state for node: X``.
+After a node is activated and ``bond_timeout`` is above 0, a bond (topic ``bond``, id = the
+node's name, heartbeat period 0.1 s, timeout ``bond_timeout``) must form within
+``bond_timeout / 2``. While the system is active the bonds are checked every 0.2 s; a broken
+one resets every node (deactivate, cleanup) and, with ``attempt_respawn_reconnection``, the
+manager starts them up again once all of them answer, for up to ``bond_respawn_max_duration``.
+Source: ``nav2_lifecycle_manager/src/lifecycle_manager.cpp``.
+"""
+
+import threading
+import time
+
+from amr_description.core import lifecycle_plan
+from amr_description.ros import shutdown
+from amr_description.ros.bond import Bond
+from amr_description.ros.node import Node
+from lifecycle_msgs.msg import Transition
+from lifecycle_msgs.srv import ChangeState
+from lifecycle_msgs.srv import GetState
+from nav2_msgs.srv import ManageLifecycleNodes
+from rclpy.callback_groups import MutuallyExclusiveCallbackGroup
+from rclpy.callback_groups import ReentrantCallbackGroup
+from rclpy.executors import MultiThreadedExecutor
+from std_srvs.srv import Trigger
+
+SERVICE_WAIT = 2.0
+"""Seconds between "Waiting for ..." lines while a managed node's services are absent."""
+
+CALL_TIMEOUT = 10.0
+"""Seconds a change_state or get_state call may take before it counts as failed."""
+
+BOND_HEARTBEAT_PERIOD = 0.1
+BOND_CHECK_PERIOD = 0.2
+RESPAWN_CHECK_PERIOD = 1.0
+
+
+class _Managed:
+    """The lifecycle service clients of one managed node."""
+
+    def __init__(self, node, name, group):
+        self.name = name
+        self.change_state = node.create_client(ChangeState, f'{name}/change_state',
+                                               callback_group=group)
+        self.get_state = node.create_client(GetState, f'{name}/get_state', callback_group=group)
+
+    def ready(self):
+        return self.change_state.service_is_ready() and self.get_state.service_is_ready()
+
+
+class LifecycleManager(Node):
+    """Node ``lifecycle_manager``; see the module docstring."""
+
+    def __init__(self):
+        """Declare the parameters, create the clients and services, start up if asked."""
+        super().__init__('lifecycle_manager')
+        self.node_names = list(self.declare_parameter('node_names', ['']).value or [])
+        self.node_names = [n for n in self.node_names if n]
+        self.autostart = bool(self.declare_parameter('autostart', False).value)
+        self.bond_timeout = float(self.declare_parameter('bond_timeout', 4.0).value)
+        self.respawn_max = float(
+            self.declare_parameter('bond_respawn_max_duration', 10.0).value)
+        self.attempt_respawn = bool(
+            self.declare_parameter('attempt_respawn_reconnection', True).value)
+        self._clients_group = ReentrantCallbackGroup()
+        self._command_group = MutuallyExclusiveCallbackGroup()
+        self._lock = threading.Lock()
+        self.system_active = False
+        self.bonds = {}
+        self._respawn_since = None
+        self.get_logger().info('Creating and initializing lifecycle service clients')
+        self.managed = {name: _Managed(self, name, self._clients_group)
+                        for name in self.node_names}
+        self.create_service(ManageLifecycleNodes, '~/manage_nodes', self._on_manage,
+                            callback_group=self._command_group)
+        self.create_service(Trigger, '~/is_active', self._on_is_active,
+                            callback_group=self._clients_group)
+        self._bond_timer = self.create_timer(BOND_CHECK_PERIOD, self._check_bonds,
+                                             callback_group=self._command_group)
+        self._respawn_timer = None
+        if self.autostart:
+            self._autostart_timer = self.create_timer(
+                0.0, self._autostart, callback_group=self._command_group)
+
+    # services
+    def _autostart(self):
+        self._autostart_timer.cancel()
+        self.run(lifecycle_plan.STARTUP)
+
+    def _on_manage(self, request, response):
+        try:
+            response.success = self.run(request.command)
+        except ValueError as exc:
+            self.get_logger().error(str(exc))
+            response.success = False
+        return response
+
+    def _on_is_active(self, request, response):
+        response.success = self.system_active
+        return response
+
+    # commands
+    def run(self, command, hard=False):
+        """
+        Carry out a ``ManageLifecycleNodes`` command on the managed nodes.
+
+        :param command: the command (0..6).
+        :param hard: keep going after a failed step (a reset after a broken bond).
+        :returns: True when every step succeeded.
+        :raises ValueError: for an unknown command.
+        """
+        steps = lifecycle_plan.plan(command, self.node_names)
+        before, after = lifecycle_plan.MESSAGES[command]
+        log = self.get_logger()
+        log.info(before)
+        if command != lifecycle_plan.STARTUP:
+            self.system_active = False
+        if lifecycle_plan.DEACTIVATE in {s.transition for s in steps}:
+            self._destroy_bonds()
+        ok = True
+        for step in steps:
+            if not self._wait_for(self.managed[step.node]):
+                return False
+            log.info(step.line)
+            if not self._change(step):
+                log.error(f'Failed to change state for node: {step.node}')
+                ok = False
+                if hard:
+                    continue
+                if command == lifecycle_plan.STARTUP:
+                    log.error('Failed to bring up all requested nodes. Aborting bringup.')
+                return False
+            if step.transition == lifecycle_plan.ACTIVATE and not self._bond(step.node):
+                return False
+        if ok:
+            log.info(after)
+        self.system_active = ok and lifecycle_plan.ACTIVE_AFTER[command]
+        return ok
+
+    def _wait_for(self, managed):
+        while not managed.ready():
+            if not self.context.ok() or shutdown.interrupted():
+                return False
+            self.get_logger().info(f'Waiting for service {managed.name}/get_state...')
+            managed.get_state.wait_for_service(timeout_sec=SERVICE_WAIT)
+            managed.change_state.wait_for_service(timeout_sec=0.1)
+        return True
+
+    def _call(self, client, request):
+        done = threading.Event()
+        future = client.call_async(request)
+        future.add_done_callback(lambda _: done.set())
+        if not done.wait(CALL_TIMEOUT):
+            client.remove_pending_request(future)
+            return None
+        return future.result()
+
+    def _change(self, step):
+        managed = self.managed[step.node]
+        request = ChangeState.Request()
+        request.transition = Transition(id=step.transition)
+        answer = self._call(managed.change_state, request)
+        if answer is None or not answer.success:
+            return False
+        state = self._call(managed.get_state, GetState.Request())
+        return state is not None and state.current_state.id == step.goal
+
+    # bonds
+    def _bond(self, name):
+        if self.bond_timeout <= 0.0:
+            return True
+        bond = Bond(self, 'bond', name, heartbeat_period=BOND_HEARTBEAT_PERIOD,
+                    heartbeat_timeout=self.bond_timeout)
+        with self._lock:
+            self.bonds[name] = bond
+        deadline = time.monotonic() + self.bond_timeout / 2.0
+        while not bond.formed and time.monotonic() < deadline and self.context.ok():
+            time.sleep(0.01)
+        if not bond.formed:
+            self.get_logger().error(
+                f'Server {name} was unable to be reached after {self.bond_timeout / 2.0:.2f}s '
+                'by bond. This server may be misconfigured.')
+            return False
+        self.get_logger().info(f'Server {name} connected with bond.')
+        return True
+
+    def _destroy_bonds(self):
+        with self._lock:
+            bonds, self.bonds = self.bonds, {}
+        for bond in bonds.values():
+            bond.destroy()
+
+    def _check_bonds(self):
+        if not self.system_active or not self.bonds:
+            return
+        with self._lock:
+            broken = [name for name, bond in self.bonds.items() if bond.broken]
+        if not broken:
+            return
+        name = broken[0]
+        log = self.get_logger()
+        log.info(f'Have not received a heartbeat from {name}.')
+        log.error(f'CRITICAL FAILURE: SERVER {name} IS DOWN after not receiving a heartbeat '
+                  f'for {int(self.bond_timeout * 1000)} ms. Shutting down related nodes.')
+        self.run(lifecycle_plan.RESET, hard=True)
+        if self.attempt_respawn:
+            self._respawn_since = time.monotonic()
+            self._respawn_timer = self.create_timer(
+                RESPAWN_CHECK_PERIOD, self._check_respawn, callback_group=self._command_group)
+
+    def _check_respawn(self):
+        if self._respawn_since is None:
+            return
+        if all(m.ready() for m in self.managed.values()):
+            self._respawn_since = None
+            self._respawn_timer.cancel()
+            self.run(lifecycle_plan.STARTUP)
+        elif time.monotonic() - self._respawn_since > self.respawn_max:
+            self._respawn_since = None
+            self._respawn_timer.cancel()
+            self.get_logger().error(
+                f'Failed to bring up all requested nodes after {self.respawn_max:.2f} seconds. '
+                'Check that all nodes are functioning properly.')
+
+    def destroy_node(self):
+        """Destroy the bonds, then the node."""
+        self._destroy_bonds()
+        super().destroy_node()
+
+
+def main(args=None):
+    """
+    Run the lifecycle manager until Ctrl-C.
+
+    :param args: command-line arguments for rclpy (default ``sys.argv``).
+    """
+    shutdown.init(args)
+    node = executor = None
+    try:
+        node = shutdown.create(LifecycleManager)
+        executor = MultiThreadedExecutor(num_threads=4, context=node.context)
+        executor.add_node(node)
+        shutdown.spin(executor)
+    except KeyboardInterrupt:
+        pass
+    finally:
+        shutdown.shutdown(node, executor=executor)
+
+
+if __name__ == '__main__':
+    main()

@@ -1,0 +1,130 @@
+# Copyright 2026 The amr_description Authors
+# Licensed under the Apache License, Version 2.0
+"""
+A bond as ros/bond_core's bondcpp makes one: two processes watching each other's heartbeats.
+
+Each side publishes ``bond/msg/Status`` on the bond topic (``bond`` for Nav2; keep-last 5,
+reliable) every heartbeat period with its bond ``id`` (Nav2: the managed node's name), its own
+``instance_id`` (a random UUID), ``active`` true, and its heartbeat timeout and period; it
+subscribes to the same topic (depth 100). The bond is *formed* when a status with the same
+``id`` and another ``instance_id`` arrives (bondcpp's ``SisterAlive`` in state
+``WaitingForSister``). It is *broken* when the other side says ``active`` false, when no status
+of the other side arrived for ``heartbeat_timeout`` (unless the node's parameter
+``bond_disable_heartbeat_timeout`` is true), or when this side calls :meth:`Bond.break_bond`,
+which publishes ``active`` false a few times at bondcpp's ``DEAD_PUBLISH_PERIOD`` (0.05 s).
+Source: ``bondcpp/src/bond.cpp`` and ``bond/msg/Constants.msg`` of ros/bond_core (ros2 branch).
+"""
+
+import uuid
+
+from bond.msg import Constants
+from bond.msg import Status
+from rclpy.clock import Clock
+from rclpy.clock import ClockType
+from rclpy.qos import QoSProfile
+
+DISABLE_PARAM = 'bond_disable_heartbeat_timeout'
+"""The node parameter that disables the heartbeat timeout (``Constants``' name for it)."""
+
+DEAD_REPEATS = 3
+"""How many ``active: false`` statuses :meth:`Bond.break_bond` publishes."""
+
+
+class Bond:
+    """
+    One side of a bond on ``node``, started at construction.
+
+    :param node: the rclpy node whose timers and topics the bond uses.
+    :param topic: the bond topic (Nav2: ``bond``).
+    :param bond_id: the bond's id (Nav2: the managed node's name).
+    :param heartbeat_period: seconds between status messages.
+    :param heartbeat_timeout: seconds without the other side's status before the bond breaks.
+    :param on_formed: called once when the bond forms.
+    :param on_broken: called once when it breaks.
+    """
+
+    def __init__(self, node, topic, bond_id, heartbeat_period=Constants.DEFAULT_HEARTBEAT_PERIOD,
+                 heartbeat_timeout=Constants.DEFAULT_HEARTBEAT_TIMEOUT, on_formed=None,
+                 on_broken=None):
+        """Create the publisher, the subscription and the heartbeat timer."""
+        self._node = node
+        self.id = bond_id
+        self.instance_id = str(uuid.uuid4())
+        self.heartbeat_period = float(heartbeat_period)
+        self.heartbeat_timeout = float(heartbeat_timeout)
+        self._on_formed = on_formed
+        self._on_broken = on_broken
+        if not node.has_parameter(DISABLE_PARAM):
+            node.declare_parameter(DISABLE_PARAM, False)
+        self._heartbeat_timeout_disabled = bool(node.get_parameter(DISABLE_PARAM).value)
+        self._clock = Clock(clock_type=ClockType.STEADY_TIME)
+        self.formed = False
+        self.broken = False
+        self._sister_seen = None
+        self._dead_left = 0
+        self._publisher = node.create_publisher(Status, topic, QoSProfile(depth=5))
+        self._subscription = node.create_subscription(Status, topic, self._on_status, 100)
+        self._timer = node.create_timer(self.heartbeat_period, self._tick)
+        self._publish(True)
+
+    def _now(self):
+        return self._clock.now().nanoseconds * 1e-9
+
+    def _publish(self, active):
+        msg = Status()
+        msg.header.stamp = self._clock.now().to_msg()
+        msg.id = self.id
+        msg.instance_id = self.instance_id
+        msg.active = active
+        msg.heartbeat_timeout = self.heartbeat_timeout
+        msg.heartbeat_period = self.heartbeat_period
+        self._publisher.publish(msg)
+
+    def _on_status(self, msg):
+        if self.broken or msg.id != self.id or msg.instance_id == self.instance_id:
+            return
+        if not msg.active:
+            self._break()
+            return
+        self._sister_seen = self._now()
+        if not self.formed:
+            self.formed = True
+            if self._on_formed is not None:
+                self._on_formed()
+
+    def _tick(self):
+        if self.broken:
+            if self._dead_left > 0:
+                self._dead_left -= 1
+                self._publish(False)
+            return
+        self._publish(True)
+        if self.formed and not self._heartbeat_timeout_disabled and \
+                self._now() - self._sister_seen > self.heartbeat_timeout:
+            self._break()
+
+    def _break(self):
+        if self.broken:
+            return
+        self.broken = True
+        self._dead_left = DEAD_REPEATS
+        if self._on_broken is not None:
+            self._on_broken()
+
+    def break_bond(self):
+        """Tell the other side this one is going (``active`` false), then stop the heartbeat."""
+        if not self.broken:
+            self.broken = True
+            self._publish(False)
+            self._dead_left = DEAD_REPEATS - 1
+            self._timer.cancel()
+            self._timer = self._node.create_timer(Constants.DEAD_PUBLISH_PERIOD, self._tick)
+
+    def destroy(self):
+        """Break the bond if it is not, and remove its publisher, subscription and timer."""
+        if not self.broken:
+            self.broken = True
+            self._publish(False)
+        self._node.destroy_timer(self._timer)
+        self._node.destroy_subscription(self._subscription)
+        self._node.destroy_publisher(self._publisher)
