@@ -17,8 +17,8 @@ lists the available ones. A node that is not a lifecycle node is ``Node not foun
 import sys
 
 from amr_description.cli.common import add_spin_time_argument
-from amr_description.cli.common import CliError
 from amr_description.cli.common import cli_node
+from amr_description.cli.common import CliError
 from amr_description.cli.common import default_node_name
 from amr_description.cli.common import spin_once
 from amr_description.cli.common import wait_for_graph

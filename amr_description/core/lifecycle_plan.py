@@ -68,7 +68,7 @@ class Step:
 
     @property
     def line(self):
-        """The log line, e.g. ``Configuring map_server``."""
+        """Return the log line, e.g. ``Configuring map_server``."""
         return f'{VERB[self.transition]} {self.node}'
 
 

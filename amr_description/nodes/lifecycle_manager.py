@@ -132,6 +132,10 @@ class LifecycleManager(Node):
             self._destroy_bonds()
         ok = True
         for step in steps:
+            if hard and not self.managed[step.node].ready():
+                log.error(f'Failed to change state for node: {step.node}')
+                ok = False
+                continue  # a node that is gone cannot be reset
             if not self._wait_for(self.managed[step.node]):
                 return False
             log.info(step.line)

@@ -25,7 +25,7 @@ import time
 from amr_description.nav import map_io
 from amr_description.ros import shutdown
 from amr_description.ros.managed_node import ManagedNode
-from amr_description.ros.maps import grid_from_message
+from amr_description.nav.grid_message import grid_from_message
 from nav2_msgs.srv import SaveMap
 from nav_msgs.msg import OccupancyGrid
 from rclpy.callback_groups import ReentrantCallbackGroup
@@ -69,8 +69,9 @@ class MapSaver(ManagedNode):
         self.free_default = float(self.get_parameter('free_thresh_default').value)
         self.occupied_default = float(self.get_parameter('occupied_thresh_default').value)
         self.transient_local = bool(self.get_parameter('map_subscribe_transient_local').value)
-        self._save_service = self.create_service(SaveMap, self.get_name() + '/save_map',
-                                            self._on_save_map, callback_group=self._group)
+        self._save_service = self.create_service(
+            SaveMap, self.get_name() + '/save_map', self._on_save_map,
+            callback_group=self._group)
 
     def cleanup(self):
         """Remove the service."""
