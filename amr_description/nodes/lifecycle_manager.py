@@ -34,7 +34,6 @@ from lifecycle_msgs.srv import GetState
 from nav2_msgs.srv import ManageLifecycleNodes
 from rclpy.callback_groups import MutuallyExclusiveCallbackGroup
 from rclpy.callback_groups import ReentrantCallbackGroup
-from rclpy.executors import MultiThreadedExecutor
 from std_srvs.srv import Trigger
 
 SERVICE_WAIT = 2.0
@@ -251,17 +250,7 @@ def main(args=None):
 
     :param args: command-line arguments for rclpy (default ``sys.argv``).
     """
-    shutdown.init(args)
-    node = executor = None
-    try:
-        node = shutdown.create(LifecycleManager)
-        executor = MultiThreadedExecutor(num_threads=4, context=node.context)
-        executor.add_node(node)
-        shutdown.spin(executor)
-    except KeyboardInterrupt:
-        pass
-    finally:
-        shutdown.shutdown(node, executor=executor)
+    shutdown.run(LifecycleManager, args, threads=4)
 
 
 if __name__ == '__main__':

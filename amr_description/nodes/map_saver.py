@@ -29,7 +29,6 @@ from amr_description.nav.grid_message import grid_from_message
 from nav2_msgs.srv import SaveMap
 from nav_msgs.msg import OccupancyGrid
 from rclpy.callback_groups import ReentrantCallbackGroup
-from rclpy.executors import MultiThreadedExecutor
 from rclpy.qos import DurabilityPolicy
 from rclpy.qos import QoSProfile
 from rclpy.qos import ReliabilityPolicy
@@ -153,17 +152,7 @@ def server_main(args=None):
 
     :param args: command-line arguments for rclpy (default ``sys.argv``).
     """
-    shutdown.init(args)
-    node = executor = None
-    try:
-        node = shutdown.create(MapSaver)
-        executor = MultiThreadedExecutor(num_threads=2, context=node.context)
-        executor.add_node(node)
-        shutdown.spin(executor)
-    except KeyboardInterrupt:
-        pass
-    finally:
-        shutdown.shutdown(node, executor=executor)
+    shutdown.run(MapSaver, args, threads=2)
 
 
 FLAGS = {'-t': 'topic', '-f': 'path', '--occ': 'occupied', '--free': 'free', '--fmt': 'fmt',

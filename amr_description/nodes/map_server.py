@@ -128,15 +128,7 @@ def main(args=None):
 
     :param args: command-line arguments for rclpy (default ``sys.argv``).
     """
-    shutdown.init(args)
-    node = None
-    try:
-        node = shutdown.create(MapServer)
-        shutdown.spin(node)
-    except KeyboardInterrupt:
-        pass
-    finally:
-        shutdown.shutdown(node)
+    shutdown.run(MapServer, args)
 
 
 if __name__ == '__main__':

@@ -10,8 +10,8 @@ subscribes to the same topic (depth 100). The bond is *formed* when a status wit
 ``id`` and another ``instance_id`` arrives (bondcpp's ``SisterAlive`` in state
 ``WaitingForSister``). It is *broken* when the other side says ``active`` false, when no status
 of the other side arrived for ``heartbeat_timeout`` (unless the node's parameter
-``bond_disable_heartbeat_timeout`` is true), or when this side calls :meth:`Bond.break_bond`,
-which publishes ``active`` false a few times at bondcpp's ``DEAD_PUBLISH_PERIOD`` (0.05 s).
+``bond_disable_heartbeat_timeout`` is true); this side then says ``active`` false in its next
+few heartbeats. :meth:`Bond.destroy` says it once and removes the bond.
 Source: ``bondcpp/src/bond.cpp`` and ``bond/msg/Constants.msg`` of ros/bond_core (ros2 branch).
 """
 
@@ -27,7 +27,7 @@ DISABLE_PARAM = 'bond_disable_heartbeat_timeout'
 """The node parameter that disables the heartbeat timeout (``Constants``' name for it)."""
 
 DEAD_REPEATS = 3
-"""How many ``active: false`` statuses :meth:`Bond.break_bond` publishes."""
+"""How many ``active: false`` statuses a broken bond still publishes."""
 
 
 class Bond:
@@ -110,15 +110,6 @@ class Bond:
         self._dead_left = DEAD_REPEATS
         if self._on_broken is not None:
             self._on_broken()
-
-    def break_bond(self):
-        """Tell the other side this one is going (``active`` false), then stop the heartbeat."""
-        if not self.broken:
-            self.broken = True
-            self._publish(False)
-            self._dead_left = DEAD_REPEATS - 1
-            self._timer.cancel()
-            self._timer = self._node.create_timer(Constants.DEAD_PUBLISH_PERIOD, self._tick)
 
     def destroy(self):
         """Break the bond if it is not, and remove its publisher, subscription and timer."""

@@ -257,3 +257,28 @@ def shutdown(*nodes, executor=None):
         except Exception:  # noqa: B902 - best effort at exit
             pass
     rclpy.try_shutdown()
+
+
+def run(factory, args=None, threads=1):
+    """
+    Run one node as a program's ``main``: :func:`init`, :func:`create`, :func:`spin`, cleanup.
+
+    :param factory: the node class (or a callable building the node).
+    :param args: command-line arguments for rclpy (default ``sys.argv``).
+    :param threads: 1 spins the node on a single-threaded executor; more use rclpy's
+        ``MultiThreadedExecutor`` with that many threads (a node whose callbacks wait for
+        other callbacks, e.g. a service that waits for a message).
+    """
+    from rclpy.executors import MultiThreadedExecutor
+    init(args)
+    node = executor = None
+    try:
+        node = create(factory)
+        if threads > 1:
+            executor = MultiThreadedExecutor(num_threads=threads, context=node.context)
+            executor.add_node(node)
+        spin(executor or node)
+    except KeyboardInterrupt:
+        pass
+    finally:
+        shutdown(node, executor=executor)
