@@ -23,9 +23,9 @@ import threading
 import time
 
 from amr_description.nav import map_io
+from amr_description.nav.grid_message import grid_from_message
 from amr_description.ros import shutdown
 from amr_description.ros.managed_node import ManagedNode
-from amr_description.nav.grid_message import grid_from_message
 from nav2_msgs.srv import SaveMap
 from nav_msgs.msg import OccupancyGrid
 from rclpy.callback_groups import ReentrantCallbackGroup

@@ -16,9 +16,9 @@ Source: ``nav2_map_server/src/map_server/map_server.cpp``.
 """
 
 from amr_description.nav import map_io
+from amr_description.nav.grid_message import occupancy_grid
 from amr_description.ros import shutdown
 from amr_description.ros.managed_node import ManagedNode
-from amr_description.nav.grid_message import occupancy_grid
 from nav2_msgs.srv import LoadMap
 from nav_msgs.msg import OccupancyGrid
 from nav_msgs.srv import GetMap

@@ -48,10 +48,11 @@ def _call(exe, env, service, srv_type, values):
                           capture_output=True, text=True, timeout=120)
 
 
-def _state(exe, env, node):
-    import subprocess
-    result = subprocess.run([exe('ros2'), 'lifecycle', 'get', node], env=env,
-                            capture_output=True, text=True, timeout=120)
+def _state(exe, env, node, expected):
+    """Return what ``ros2 lifecycle get`` prints once it is ``expected`` (or after 90 s)."""
+    from conftest import run_until
+    result = run_until([exe('ros2'), 'lifecycle', 'get', node], env,
+                       lambda r: r.stdout.strip() == expected)
     return result.stdout.strip()
 
 
@@ -68,7 +69,7 @@ def test_serve_save_load_and_manage(procs, exe, ros_env, tmp_path):
     assert manager.wait_for_output(ACTIVE, 120.0), manager.output
     assert 'Server map_server connected with bond.' in manager.output
     assert 'Server map_saver connected with bond.' in manager.output
-    assert _state(exe, ros_env, '/map_server') == 'active [3]'
+    assert _state(exe, ros_env, '/map_server', 'active [3]') == 'active [3]'
 
     # the CLI under upstream's package name saves the served map with the same pixels
     import subprocess
@@ -104,7 +105,7 @@ def test_serve_save_load_and_manage(procs, exe, ros_env, tmp_path):
     answer = _call(exe, ros_env, '/lifecycle_manager/manage_nodes',
                    'nav2_msgs/srv/ManageLifecycleNodes', '{command: 1}')
     assert 'success=True' in answer.stdout, answer.stdout + answer.stderr
-    assert _state(exe, ros_env, '/map_server') == 'inactive [2]'
+    assert _state(exe, ros_env, '/map_server', 'inactive [2]') == 'inactive [2]'
     answer = _call(exe, ros_env, '/lifecycle_manager/is_active', 'std_srvs/srv/Trigger', '{}')
     assert 'success=False' in answer.stdout, answer.stdout
     assert 'Deactivating map_saver' in manager.output
@@ -128,7 +129,7 @@ def test_bad_map_file_fails_configure_and_the_node_keeps_running(procs, exe, ros
     assert 'Transitioning failed' in answer.stderr, answer.stdout + answer.stderr
     assert server.wait_for_output('expected free_thresh < occupied_thresh', 30.0), server.output
     assert 'Traceback' not in server.output
-    assert _state(exe, ros_env, '/map_server') == 'unconfigured [1]'
+    assert _state(exe, ros_env, '/map_server', 'unconfigured [1]') == 'unconfigured [1]'
     assert server.popen.poll() is None
 
 

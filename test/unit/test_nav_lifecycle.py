@@ -6,10 +6,10 @@ import math
 
 from amr_description.cli.lifecycle import lifecycle_node_names
 from amr_description.core import lifecycle_plan as lp
-from amr_description.nav.map_io import GridMap
-from amr_description.nodes.map_saver import parse_cli
 from amr_description.nav.grid_message import grid_from_message
 from amr_description.nav.grid_message import occupancy_grid
+from amr_description.nav.map_io import GridMap
+from amr_description.nodes.map_saver import parse_cli
 from builtin_interfaces.msg import Time
 import numpy as np
 import pytest
