@@ -20,14 +20,17 @@ from amr_description.cli.common import add_spin_time_argument
 from amr_description.cli.common import cli_node
 from amr_description.cli.common import CliError
 from amr_description.cli.common import default_node_name
-from amr_description.cli.common import spin_once
 from amr_description.cli.common import wait_for_graph
 from amr_description.cli.daemon import graph_node
 from amr_description.cli.extension import Command
 from amr_description.cli.extension import Verb
 from amr_description.cli.node import fully_qualified
+from amr_description.cli.param.api import call
 
 GET_STATE_TYPE = 'lifecycle_msgs/srv/GetState'
+
+SERVICE_WAIT = 30.0
+"""Seconds to wait for a lifecycle service of a node the graph has shown."""
 
 
 def lifecycle_node_names(node_names, services):
@@ -60,26 +63,6 @@ def _absolute(name):
     return name if name.startswith('/') else '/' + name
 
 
-def _call(node, srv_type, name, request, timeout=None):
-    import time
-    client = node.create_client(srv_type, name)
-    deadline = None if timeout is None else time.monotonic() + timeout
-    while not client.wait_for_service(timeout_sec=0.5):
-        if deadline is not None and time.monotonic() > deadline:
-            raise CliError(f"Exception while calling service of node '{name.rsplit('/', 1)[0]}'"
-                           ': the service is not available')
-    future = client.call_async(request)
-    while not future.done():
-        if deadline is not None and time.monotonic() > deadline:
-            raise CliError(f"Exception while calling service of node '{name.rsplit('/', 1)[0]}'"
-                           ': no answer in time')
-        spin_once(node, timeout_sec=0.1)
-    if future.exception() is not None:
-        raise CliError(f"Exception while calling service of node '{name.rsplit('/', 1)[0]}': "
-                       f'{future.exception()}')
-    return future.result()
-
-
 def _nodes(args):
     names = _lifecycle_nodes(args, args.all)
     if args.count_nodes:
@@ -96,8 +79,8 @@ def _list(args):
         raise CliError('Node not found')
     service = 'get_transition_graph' if args.all else 'get_available_transitions'
     with cli_node(default_node_name()) as node:
-        answer = _call(node, GetAvailableTransitions, f'{target}/{service}',
-                       GetAvailableTransitions.Request())
+        answer = call(node, GetAvailableTransitions, f'{target}/{service}',
+                      GetAvailableTransitions.Request(), timeout=SERVICE_WAIT)
     for t in answer.available_transitions:
         print(f'- {t.transition.label} [{t.transition.id}]\n'
               f'\tStart: {t.start_state.label}\n\tGoal: {t.goal_state.label}')
@@ -115,8 +98,8 @@ def _get(args):
     with cli_node(default_node_name()) as node:
         for name in names:
             try:
-                state = _call(node, GetState, f'{name}/get_state', GetState.Request(),
-                              args.timeout).current_state
+                state = call(node, GetState, f'{name}/get_state', GetState.Request(),
+                             timeout=SERVICE_WAIT, service_timeout=args.timeout).current_state
             except CliError as exc:
                 if args.node_name:
                     raise
@@ -134,8 +117,9 @@ def _set(args):
     if target not in _lifecycle_nodes(args, True, target):
         raise CliError('Node not found')
     with cli_node(default_node_name()) as node:
-        available = _call(node, GetAvailableTransitions, f'{target}/get_available_transitions',
-                          GetAvailableTransitions.Request()).available_transitions
+        available = call(node, GetAvailableTransitions, f'{target}/get_available_transitions',
+                         GetAvailableTransitions.Request(),
+                         timeout=SERVICE_WAIT).available_transitions
         chosen = next((t.transition for t in available
                        if t.transition.label == args.transition), None) or \
             next((t.transition for t in available
@@ -145,7 +129,8 @@ def _set(args):
                 f'\n- {t.transition.label} [{t.transition.id}]' for t in available))
         request = ChangeState.Request()
         request.transition = chosen
-        answer = _call(node, ChangeState, f'{target}/change_state', request)
+        answer = call(node, ChangeState, f'{target}/change_state', request,
+                      timeout=SERVICE_WAIT)
     if answer.success:
         print('Transitioning successful')
         return 0

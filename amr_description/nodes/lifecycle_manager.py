@@ -76,10 +76,9 @@ class LifecycleManager(Node):
             self.declare_parameter('attempt_respawn_reconnection', True).value)
         self._clients_group = ReentrantCallbackGroup()
         self._command_group = MutuallyExclusiveCallbackGroup()
-        self._lock = threading.Lock()
         self.system_active = False
-        self.bonds = {}
-        self._respawn_since = None
+        self.bonds = {}  # touched only by the command group's callbacks
+        self._respawn_since = self._respawn_timer = None
         self.get_logger().info('Creating and initializing lifecycle service clients')
         self.managed = {name: _Managed(self, name, self._clients_group)
                         for name in self.node_names}
@@ -89,7 +88,6 @@ class LifecycleManager(Node):
                             callback_group=self._clients_group)
         self._bond_timer = self.create_timer(BOND_CHECK_PERIOD, self._check_bonds,
                                              callback_group=self._command_group)
-        self._respawn_timer = None
         if self.autostart:
             self._autostart_timer = self.create_timer(
                 0.0, self._autostart, callback_group=self._command_group)
@@ -187,12 +185,8 @@ class LifecycleManager(Node):
             return True
         bond = Bond(self, 'bond', name, heartbeat_period=BOND_HEARTBEAT_PERIOD,
                     heartbeat_timeout=self.bond_timeout)
-        with self._lock:
-            self.bonds[name] = bond
-        deadline = time.monotonic() + self.bond_timeout / 2.0
-        while not bond.formed and time.monotonic() < deadline and self.context.ok():
-            time.sleep(0.01)
-        if not bond.formed:
+        self.bonds[name] = bond
+        if not bond.wait_until_formed(self.bond_timeout / 2.0):
             self.get_logger().error(
                 f'Server {name} was unable to be reached after {self.bond_timeout / 2.0:.2f}s '
                 'by bond. This server may be misconfigured.')
@@ -201,16 +195,14 @@ class LifecycleManager(Node):
         return True
 
     def _destroy_bonds(self):
-        with self._lock:
-            bonds, self.bonds = self.bonds, {}
+        bonds, self.bonds = self.bonds, {}
         for bond in bonds.values():
             bond.destroy()
 
     def _check_bonds(self):
         if not self.system_active or not self.bonds:
             return
-        with self._lock:
-            broken = [name for name, bond in self.bonds.items() if bond.broken]
+        broken = [name for name, bond in self.bonds.items() if bond.broken]
         if not broken:
             return
         name = broken[0]
@@ -225,15 +217,11 @@ class LifecycleManager(Node):
                 RESPAWN_CHECK_PERIOD, self._check_respawn, callback_group=self._command_group)
 
     def _check_respawn(self):
-        if self._respawn_since is None:
-            return
         if all(m.ready() for m in self.managed.values()):
-            self._respawn_since = None
-            self._respawn_timer.cancel()
+            self.destroy_timer(self._respawn_timer)
             self.run(lifecycle_plan.STARTUP)
         elif time.monotonic() - self._respawn_since > self.respawn_max:
-            self._respawn_since = None
-            self._respawn_timer.cancel()
+            self.destroy_timer(self._respawn_timer)
             self.get_logger().error(
                 f'Failed to bring up all requested nodes after {self.respawn_max:.2f} seconds. '
                 'Check that all nodes are functioning properly.')

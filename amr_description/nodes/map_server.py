@@ -104,7 +104,8 @@ class MapServer(ManagedNode):
         if not self.is_active():
             self.get_logger().warn('Received GetMap request but not in ACTIVE state, ignoring!')
             return response
-        response.map = self.map_msg if self.map_msg is not None else OccupancyGrid()
+        if self.map_msg is not None:
+            response.map = self.map_msg
         return response
 
     def _on_load_map(self, request, response):

@@ -15,6 +15,7 @@ few heartbeats. :meth:`Bond.destroy` says it once and removes the bond.
 Source: ``bondcpp/src/bond.cpp`` and ``bond/msg/Constants.msg`` of ros/bond_core (ros2 branch).
 """
 
+import threading
 import uuid
 
 from bond.msg import Constants
@@ -39,26 +40,21 @@ class Bond:
     :param bond_id: the bond's id (Nav2: the managed node's name).
     :param heartbeat_period: seconds between status messages.
     :param heartbeat_timeout: seconds without the other side's status before the bond breaks.
-    :param on_formed: called once when the bond forms.
-    :param on_broken: called once when it breaks.
     """
 
     def __init__(self, node, topic, bond_id, heartbeat_period=Constants.DEFAULT_HEARTBEAT_PERIOD,
-                 heartbeat_timeout=Constants.DEFAULT_HEARTBEAT_TIMEOUT, on_formed=None,
-                 on_broken=None):
+                 heartbeat_timeout=Constants.DEFAULT_HEARTBEAT_TIMEOUT):
         """Create the publisher, the subscription and the heartbeat timer."""
         self._node = node
         self.id = bond_id
         self.instance_id = str(uuid.uuid4())
         self.heartbeat_period = float(heartbeat_period)
         self.heartbeat_timeout = float(heartbeat_timeout)
-        self._on_formed = on_formed
-        self._on_broken = on_broken
         if not node.has_parameter(DISABLE_PARAM):
             node.declare_parameter(DISABLE_PARAM, False)
         self._heartbeat_timeout_disabled = bool(node.get_parameter(DISABLE_PARAM).value)
         self._clock = Clock(clock_type=ClockType.STEADY_TIME)
-        self.formed = False
+        self._formed = threading.Event()
         self.broken = False
         self._sister_seen = None
         self._dead_left = 0
@@ -66,6 +62,20 @@ class Bond:
         self._subscription = node.create_subscription(Status, topic, self._on_status, 100)
         self._timer = node.create_timer(self.heartbeat_period, self._tick)
         self._publish(True)
+
+    @property
+    def formed(self):
+        """Return True once the other side's status was seen."""
+        return self._formed.is_set()
+
+    def wait_until_formed(self, timeout):
+        """
+        Wait until the bond forms (bondcpp's ``waitUntilFormed``), while the node is spun.
+
+        :param timeout: seconds to wait.
+        :returns: True when formed.
+        """
+        return self._formed.wait(timeout)
 
     def _now(self):
         return self._clock.now().nanoseconds * 1e-9
@@ -87,10 +97,7 @@ class Bond:
             self._break()
             return
         self._sister_seen = self._now()
-        if not self.formed:
-            self.formed = True
-            if self._on_formed is not None:
-                self._on_formed()
+        self._formed.set()
 
     def _tick(self):
         if self.broken:
@@ -104,12 +111,9 @@ class Bond:
             self._break()
 
     def _break(self):
-        if self.broken:
-            return
-        self.broken = True
-        self._dead_left = DEAD_REPEATS
-        if self._on_broken is not None:
-            self._on_broken()
+        if not self.broken:
+            self.broken = True
+            self._dead_left = DEAD_REPEATS
 
     def destroy(self):
         """Break the bond if it is not, and remove its publisher, subscription and timer."""
