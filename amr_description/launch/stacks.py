@@ -30,6 +30,9 @@ from amr_description.launch.actions import OnProcessExit
 from amr_description.launch.actions import parse_bool
 from amr_description.launch.actions import parse_float
 from amr_description.launch.actions import parse_launch_arguments
+from amr_description.launch.nav_stacks import online_async
+from amr_description.launch.nav_stacks import slam
+from amr_description.launch.nav_stacks import SLAM_ARGUMENTS
 from amr_description.web.server import PORT_ARGUMENT
 
 PACKAGE = 'amr_description'
@@ -434,6 +437,10 @@ STACKS = {
             'MuJoCo simulation, robot_state_publisher, spawn and ros2_control controllers'),
     'fleet': (fleet, FLEET_ARGUMENTS,
               'MuJoCo simulation with N namespaced robots (r1 ... rN) on a grid'),
+    'online_async': (online_async, SLAM_ARGUMENTS,
+                     "slam_toolbox's online asynchronous mapper, configured and activated"),
+    'slam': (slam, SIM_ARGUMENTS + SLAM_ARGUMENTS[1:],
+             'the sim stack (world:=, viewer) with SLAM from its lidar'),
 }
 
 

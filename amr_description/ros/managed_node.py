@@ -98,9 +98,13 @@ class ManagedNode(LifecycleNode):
         self.get_logger().fatal(f'Lifecycle node {self.get_name()} entered error state')
         return TransitionCallbackReturn.SUCCESS
 
+    def wants_bond(self):
+        """Return True when the node bonds with a lifecycle manager on activate (default)."""
+        return True
+
     def _create_bond(self):
         period = float(self.get_parameter('bond_heartbeat_period').value)
-        if period > 0.0 and self.bond is None:
+        if period > 0.0 and self.bond is None and self.wants_bond():
             self.get_logger().info('Creating bond (%s) to lifecycle manager.' % self.get_name())
             self.bond = Bond(self, BOND_TOPIC, self.get_name(), heartbeat_period=period,
                              heartbeat_timeout=BOND_HEARTBEAT_TIMEOUT)

@@ -1,0 +1,84 @@
+# Copyright 2026 The amr_description Authors
+# Licensed under the Apache License, Version 2.0
+"""
+The mapping and localization stacks: slam_toolbox's and nav2_bringup's launch files.
+
+Registered in :data:`amr_description.launch.stacks.STACKS` with their declared arguments
+(upstream's names and defaults); the functions import :mod:`.stacks` (the ``sim`` stack) when
+called, as that module imports this one.
+"""
+
+import os
+
+from amr_description.launch.actions import DeclareLaunchArgument
+from amr_description.launch.actions import LaunchError
+from amr_description.launch.actions import Node
+from amr_description.launch.actions import parse_bool
+
+PACKAGE = 'amr_description'
+
+SLAM_ARGUMENTS = [
+    DeclareLaunchArgument('use_sim_time', 'true', 'Use simulation/Gazebo clock'),
+    DeclareLaunchArgument('slam_params_file', '',
+                          'Full path to the ROS2 parameters file to use for the slam_toolbox '
+                          "node (default: the package's config/mapper_params_online_async.yaml)"),
+    DeclareLaunchArgument('autostart', 'true',
+                          'Automatically startup the slamtoolbox. Ignored when '
+                          'use_lifecycle_manager is true.'),
+    DeclareLaunchArgument('use_lifecycle_manager', 'false',
+                          'Enable bond connection during node activation'),
+]
+"""slam_toolbox's ``online_async_launch.py`` arguments, its names, defaults and descriptions."""
+
+
+def _share_file(folder, name):
+    from ament_index_python.packages import get_package_share_directory
+    return os.path.join(get_package_share_directory(PACKAGE), folder, name)
+
+
+def online_async(args):
+    """
+    Describe the ``online_async`` stack (slam_toolbox's ``online_async_launch.py``).
+
+    ``async_slam_toolbox_node`` named ``slam_toolbox`` with ``slam_params_file`` (default
+    ``config/mapper_params_online_async.yaml``), ``use_sim_time`` and
+    ``use_lifecycle_manager``; with ``autostart`` and no lifecycle manager it is configured
+    then activated (``lifecycle_autostart``, launch_ros' lifecycle events), as upstream's
+    launch file does.
+
+    :param args: dict of launch-argument values (see ``SLAM_ARGUMENTS``).
+    :returns: list of actions.
+    :raises LaunchError: on a bad argument value or a missing params file.
+    """
+    from amr_description.launch.stacks import _with_defaults
+    args = _with_defaults(SLAM_ARGUMENTS, args)
+    use_sim_time = parse_bool(args['use_sim_time'], 'use_sim_time')
+    autostart = parse_bool(args['autostart'], 'autostart')
+    managed = parse_bool(args['use_lifecycle_manager'], 'use_lifecycle_manager')
+    params = args['slam_params_file'] or _share_file('config', 'mapper_params_online_async.yaml')
+    if not os.path.isfile(os.path.expanduser(params)):
+        raise LaunchError(f"launch argument 'slam_params_file': no such file '{params}'")
+    actions = [Node(PACKAGE, 'async_slam_toolbox_node', name='slam_toolbox', namespace='',
+                    output='screen',
+                    parameters=[os.path.expanduser(params),
+                                {'use_lifecycle_manager': managed,
+                                 'use_sim_time': use_sim_time}])]
+    if autostart and not managed:
+        actions.append(Node(PACKAGE, 'lifecycle_autostart', output='screen',
+                            arguments=['/slam_toolbox', 'configure', 'activate']))
+    return actions
+
+
+def slam(args):
+    """
+    Describe the ``slam`` stack: ``sim`` (world, robot, controllers, viewer) + ``online_async``.
+
+    :param args: dict of launch-argument values (``SIM_ARGUMENTS`` and ``SLAM_ARGUMENTS``).
+    :returns: list of actions.
+    :raises LaunchError: on a bad argument value.
+    """
+    from amr_description.launch.stacks import _with_defaults
+    from amr_description.launch.stacks import sim
+    from amr_description.launch.stacks import SIM_ARGUMENTS
+    args = _with_defaults(SIM_ARGUMENTS + SLAM_ARGUMENTS[1:], args)
+    return sim(args) + online_async(args)

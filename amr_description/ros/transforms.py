@@ -1,0 +1,96 @@
+# Copyright 2026 The amr_description Authors
+# Licensed under the Apache License, Version 2.0
+"""
+TF in and out for nodes: a listener filling a transform buffer, planar transforms and poses.
+
+:class:`TransformListener` subscribes ``/tf`` (depth 100) and ``/tf_static`` (reliable,
+transient local, depth 100) as tf2_ros' ``TransformListener`` does and hands every transform
+to a buffer's ``set_transform(parent, child, time, translation, rotation, static)`` (the
+project's :class:`amr_description.core.tf_buffer.TransformBuffer`, which nodes pass in). Times
+are seconds (float); planar poses are ``(x, y, yaw)`` in m, m, rad (REP 103).
+"""
+
+import math
+
+from geometry_msgs.msg import TransformStamped
+from rclpy.qos import DurabilityPolicy
+from rclpy.qos import QoSProfile
+from rclpy.qos import ReliabilityPolicy
+from tf2_msgs.msg import TFMessage
+
+STATIC_QOS = QoSProfile(depth=100, reliability=ReliabilityPolicy.RELIABLE,
+                        durability=DurabilityPolicy.TRANSIENT_LOCAL)
+"""tf2_ros' ``/tf_static`` QoS."""
+
+
+def stamp_seconds(stamp):
+    """Return seconds (float) of a ``builtin_interfaces/Time``."""
+    return stamp.sec + stamp.nanosec * 1e-9
+
+
+def yaw_of(q):
+    """Return the rotation about z (rad) of a quaternion with fields x, y, z, w."""
+    return math.atan2(2.0 * (q.w * q.z + q.x * q.y), 1.0 - 2.0 * (q.y * q.y + q.z * q.z))
+
+
+def set_yaw(q, yaw):
+    """Write the quaternion of a rotation ``yaw`` (rad) about z into ``q`` (in place)."""
+    q.x, q.y, q.z, q.w = 0.0, 0.0, math.sin(yaw / 2.0), math.cos(yaw / 2.0)
+
+
+def planar_transform(parent, child, stamp, pose):
+    """
+    Return a ``geometry_msgs/TransformStamped`` of ``child`` in ``parent``.
+
+    :param stamp: ``builtin_interfaces/Time``.
+    :param pose: ``(x, y, yaw)`` of ``child`` in ``parent``.
+    """
+    t = TransformStamped()
+    t.header.frame_id = parent
+    t.header.stamp = stamp
+    t.child_frame_id = child
+    t.transform.translation.x = float(pose[0])
+    t.transform.translation.y = float(pose[1])
+    set_yaw(t.transform.rotation, float(pose[2]))
+    return t
+
+
+class TransformListener:
+    """
+    Fill ``buffer`` from ``/tf`` and ``/tf_static``.
+
+    A transform the buffer refuses (``ValueError``: a NaN, a frame naming itself) is logged
+    as one warning line (at most every 5 s) and dropped.
+
+    :param node: the rclpy node that subscribes.
+    :param buffer: an object with ``set_transform(parent, child, time, translation,
+        rotation, static)``.
+    :param callback_group: the subscriptions' callback group, or None.
+    """
+
+    def __init__(self, node, buffer, callback_group=None):
+        """Subscribe both topics."""
+        self.node = node
+        self.buffer = buffer
+        self._subs = [
+            node.create_subscription(TFMessage, '/tf', lambda m: self._store(m, False), 100,
+                                     callback_group=callback_group),
+            node.create_subscription(TFMessage, '/tf_static', lambda m: self._store(m, True),
+                                     STATIC_QOS, callback_group=callback_group)]
+
+    def _store(self, msg, static):
+        for t in msg.transforms:
+            tr, q = t.transform.translation, t.transform.rotation
+            try:
+                self.buffer.set_transform(t.header.frame_id, t.child_frame_id,
+                                          stamp_seconds(t.header.stamp), (tr.x, tr.y, tr.z),
+                                          (q.x, q.y, q.z, q.w), static=static)
+            except ValueError as exc:
+                self.node.get_logger().warning(
+                    f"{'/tf_static' if static else '/tf'}: {exc}", throttle_duration_sec=5.0)
+
+    def destroy(self):
+        """Remove the subscriptions."""
+        for sub in self._subs:
+            self.node.destroy_subscription(sub)
+        self._subs = []
