@@ -31,6 +31,57 @@ SLAM_ARGUMENTS = [
 """slam_toolbox's ``online_async_launch.py`` arguments, its names, defaults and descriptions."""
 
 
+LOCALIZATION_ARGUMENTS = [
+    DeclareLaunchArgument('map', '', 'Full path to map yaml file to load'),
+    DeclareLaunchArgument('use_sim_time', 'false',
+                          'Use simulation (Gazebo) clock if true'),
+    DeclareLaunchArgument('params_file', '',
+                          'Full path to the ROS2 parameters file to use for all launched nodes '
+                          "(default: the package's config/nav2_params.yaml)"),
+    DeclareLaunchArgument('autostart', 'true',
+                          'Automatically startup the nav2 stack'),
+    DeclareLaunchArgument('use_respawn', 'False',
+                          'Whether to respawn if a node crashes. Applied when composition is '
+                          'disabled.'),
+]
+"""nav2_bringup's ``localization_launch.py`` arguments (names, defaults, descriptions)."""
+
+
+def localization(args):
+    """
+    Describe the ``localization`` stack (nav2_bringup's ``localization_launch.py``).
+
+    ``map_server`` (``yaml_filename`` = ``map``) and ``amcl`` reading ``params_file``
+    (default ``config/nav2_params.yaml``), and ``lifecycle_manager_localization``
+    (``node_names: [map_server, amcl]``, ``autostart``), all with ``use_sim_time``.
+
+    :param args: dict of launch-argument values (see ``LOCALIZATION_ARGUMENTS``).
+    :returns: list of actions.
+    :raises LaunchError: on a bad argument value or a missing file.
+    """
+    from amr_description.launch.stacks import _with_defaults
+    args = _with_defaults(LOCALIZATION_ARGUMENTS, args)
+    use_sim_time = parse_bool(args['use_sim_time'], 'use_sim_time')
+    autostart = parse_bool(args['autostart'], 'autostart')
+    respawn = parse_bool(args['use_respawn'], 'use_respawn')
+    params = os.path.expanduser(args['params_file'] or _share_file('config', 'nav2_params.yaml'))
+    if not os.path.isfile(params):
+        raise LaunchError(f"launch argument 'params_file': no such file '{params}'")
+    map_yaml = os.path.expanduser(args['map'])
+    if map_yaml and not os.path.isfile(map_yaml):
+        raise LaunchError(f"launch argument 'map': no such file '{args['map']}'")
+    common = {'use_sim_time': use_sim_time}
+    options = {'output': 'screen', 'respawn': respawn, 'respawn_delay': 2.0}
+    return [
+        Node(PACKAGE, 'map_server', name='map_server',
+             parameters=[params, {'yaml_filename': map_yaml, **common}], **options),
+        Node(PACKAGE, 'amcl', name='amcl', parameters=[params, common], **options),
+        Node(PACKAGE, 'lifecycle_manager', name='lifecycle_manager_localization',
+             output='screen', parameters=[{'autostart': autostart,
+                                           'node_names': ['map_server', 'amcl'], **common}]),
+    ]
+
+
 def _share_file(folder, name):
     from ament_index_python.packages import get_package_share_directory
     return os.path.join(get_package_share_directory(PACKAGE), folder, name)

@@ -30,6 +30,8 @@ from amr_description.launch.actions import OnProcessExit
 from amr_description.launch.actions import parse_bool
 from amr_description.launch.actions import parse_float
 from amr_description.launch.actions import parse_launch_arguments
+from amr_description.launch.nav_stacks import localization
+from amr_description.launch.nav_stacks import LOCALIZATION_ARGUMENTS
 from amr_description.launch.nav_stacks import online_async
 from amr_description.launch.nav_stacks import slam
 from amr_description.launch.nav_stacks import SLAM_ARGUMENTS
@@ -439,6 +441,8 @@ STACKS = {
               'MuJoCo simulation with N namespaced robots (r1 ... rN) on a grid'),
     'online_async': (online_async, SLAM_ARGUMENTS,
                      "slam_toolbox's online asynchronous mapper, configured and activated"),
+    'localization': (localization, LOCALIZATION_ARGUMENTS,
+                     "nav2_bringup's map_server + amcl + lifecycle_manager_localization"),
     'slam': (slam, SIM_ARGUMENTS + SLAM_ARGUMENTS[1:],
              'the sim stack (world:=, viewer) with SLAM from its lidar'),
 }

@@ -45,6 +45,12 @@ def compose(a, b):
                      float(wrap(a[2] + b[2]))])
 
 
+def inverse(pose):
+    """Return the inverse of a planar pose ``(x, y, yaw)``, as an array (3,)."""
+    c, s = math.cos(pose[2]), math.sin(pose[2])
+    return np.array([-c * pose[0] - s * pose[1], s * pose[0] - c * pose[1], -pose[2]])
+
+
 class PoseGraph:
     """
     Poses and relative-pose constraints; :meth:`optimize` moves every node but the first.

@@ -37,6 +37,7 @@ import math
 from amr_description.nav.map_io import GridMap
 from amr_description.nav.pose_graph import between
 from amr_description.nav.pose_graph import compose
+from amr_description.nav.pose_graph import inverse
 from amr_description.nav.pose_graph import PoseGraph
 from amr_description.nav.scan_matcher import correlative_search
 from amr_description.nav.scan_matcher import icp
@@ -191,10 +192,10 @@ class Mapper:
         """Return the ``(x, y, yaw)`` of the odom frame in the map frame (identity at first)."""
         if not self._session:
             if self._restart_pose is not None and self._restart_odom is not None:
-                return compose(self._restart_pose, _inverse(self._restart_odom))
+                return compose(self._restart_pose, inverse(self._restart_odom))
             return np.zeros(3)
         k = self._session[-1]
-        return compose(self.graph.poses[k], _inverse(self.keyframes[k].odom))
+        return compose(self.graph.poses[k], inverse(self.keyframes[k].odom))
 
     def pose(self, odom_pose):
         """Return the base frame's ``(x, y, yaw)`` in the map frame for an odometry pose."""
@@ -394,11 +395,6 @@ class Mapper:
         np.add.at(passes, flat[first], 1)
         end_cells = np.floor((ends[hits] - lo) / res).astype(np.int64)
         np.add.at(hit_count, end_cells[:, 1] * width + end_cells[:, 0], 1)
-
-
-def _inverse(pose):
-    c, s = math.cos(pose[2]), math.sin(pose[2])
-    return np.array([-c * pose[0] - s * pose[1], s * pose[0] - c * pose[1], -pose[2]])
 
 
 def save_graph(mapper, stem):

@@ -54,7 +54,8 @@ def trajectory(waypoints):
     """
     Return the true poses (M, 3) and body twists (M, 2) at :data:`SCAN_RATE` along a route.
 
-    Straight legs at :data:`SPEED`, turns in place at :data:`TURN_RATE` (shorter way).
+    Straight legs at :data:`SPEED` or just below, turns in place at :data:`TURN_RATE` or just
+    below (the shorter way), each leg a whole number of scan periods.
     """
     dt = 1.0 / SCAN_RATE
     x, y = waypoints[0]
@@ -63,10 +64,11 @@ def trajectory(waypoints):
     for (ax, ay), (bx, by) in zip(waypoints, waypoints[1:]):
         heading = math.atan2(by - ay, bx - ax)
         turn = math.atan2(math.sin(heading - yaw), math.cos(heading - yaw))
-        for _ in range(int(abs(turn) / (TURN_RATE * dt))):
-            yaw += math.copysign(TURN_RATE * dt, turn)
+        steps = int(math.ceil(abs(turn) / (TURN_RATE * dt)))
+        for _ in range(steps):
+            yaw += turn / steps
             poses.append((x, y, yaw))
-            twists.append((0.0, math.copysign(TURN_RATE, turn)))
+            twists.append((0.0, turn / steps / dt))
         yaw = heading
         length = math.hypot(bx - ax, by - ay)
         steps = int(length / (SPEED * dt))
@@ -78,13 +80,13 @@ def trajectory(waypoints):
     return np.array(poses), np.array(twists)
 
 
-def odometry(twists):
-    """Return the odometry poses (M, 3) integrated from the twists with the wrong geometry."""
+def odometry(twists, radius_error=RADIUS_ERROR, separation_error=SEPARATION_ERROR):
+    """Return the odometry poses (M, 3) integrated from the twists with the given geometry."""
     dt = 1.0 / SCAN_RATE
     pose = np.zeros(3)
     out = [pose.copy()]
     for v, w in twists[1:]:
-        v, w = RADIUS_ERROR * v, RADIUS_ERROR / SEPARATION_ERROR * w
+        v, w = radius_error * v, radius_error / separation_error * w
         # diff_drive_controller's integrateRungeKutta2: heading at mid-step
         mid = pose[2] + 0.5 * w * dt
         pose = pose + (v * dt * math.cos(mid), v * dt * math.sin(mid), w * dt)
@@ -92,7 +94,7 @@ def odometry(twists):
     return np.array(out)
 
 
-def _scans(world_name, poses):
+def scans(world_name, poses):
     """Return the lidar's ranges at each true pose, the Scan template and the sensor pose."""
     import mujoco
     from amr_description.core.description.files import read_description
@@ -134,7 +136,7 @@ def run(world_name):
     from amr_description.nav.slam import scan_rays
     truth, twists = trajectory(ROUTES[world_name])
     odom = odometry(twists)
-    ranges, msg, sensor_pose = _scans(world_name, truth)
+    ranges, msg, sensor_pose = scans(world_name, truth)
     mapper = Mapper()
     start = truth[0]
     errors, cpu = [], time.process_time()

@@ -1,0 +1,420 @@
+# Copyright 2026 The amr_description Authors
+# Licensed under the Apache License, Version 2.0
+"""
+Adaptive Monte Carlo localization as Nav2's ``amcl`` (Jazzy) does it, in numpy (no rclpy).
+
+Poses are planar ``(x, y, yaw)`` (m, m, rad): particles in the map frame, odometry in the odom
+frame, both of the base frame. The pieces, each after ``nav2_amcl``'s sources:
+
+- **map** (``src/map/map.c``, ``map_cspace.cpp``): 0 free, 100 occupied, anything else
+  unknown; the distance (m) from each cell to the nearest occupied one, capped at
+  ``laser_likelihood_max_dist`` (``scipy.ndimage.distance_transform_edt``); the origin's yaw
+  is ignored, as upstream does.
+- **motion** (``src/motion_model/differential_motion_model.cpp``): the odometry step as rot1,
+  trans, rot2; each particle moves by them with zero-mean noise of variance
+  ``alpha1 rot^2 + alpha2 trans^2`` (rotations) and ``alpha3 trans^2 + alpha4 (rot1^2 +
+  rot2^2)`` (translation); rot1 is 0 below 1 cm of translation, and the rotations are folded
+  so that driving backwards is not a half turn (Thrun et al., Probabilistic Robotics, table
+  5.6).
+- **sensor** (``src/sensors/laser/likelihood_field_model.cpp``): ``max_beams`` evenly spaced
+  beams; a beam at or beyond range_max, or NaN, is skipped; for each other beam ``pz =
+  z_hit exp(-d^2 / (2 sigma_hit^2)) + z_rand / range_max`` and the particle's weight is
+  multiplied by ``1 + sum(pz^3)``.
+- **resampling** (``src/pf/pf.c``, ``pf_update_resample``): KLD sampling (Fox, "Adapting
+  the sample size in particle filters through KLD-sampling", IJRR 2003): particles are drawn
+  until their number reaches ``(k - 1) / (2 pf_err) (1 - 2 / (9 (k - 1)) + sqrt(2 / (9 (k - 1)))
+  z)^3`` for the k histogram bins (0.5 m, 0.5 m, 10 deg) they occupy, between
+  ``min_particles`` and ``max_particles``; with ``recovery_alpha_slow/fast`` above 0, random
+  free-space particles are mixed in with probability ``max(0, 1 - w_fast / w_slow)``.
+- **estimate** (``pf_cluster_stats``): particles grouped by connected histogram bins; the
+  cluster with the largest total weight gives the pose (weighted mean, circular for yaw); the
+  covariance is the whole filter's.
+"""
+
+from dataclasses import dataclass
+from dataclasses import fields
+import math
+
+from amr_description.nav.pose_graph import between
+from amr_description.nav.pose_graph import compose
+from amr_description.nav.pose_graph import inverse
+from amr_description.nav.pose_graph import wrap
+import numpy as np
+from scipy import ndimage
+from scipy.special import ndtri
+
+BIN = (0.5, 0.5, math.radians(10.0))
+"""Histogram bin size of KLD sampling and clustering (m, m, rad), ``pf_kdtree`` of nav2_amcl."""
+
+
+@dataclass
+class AmclParameters:
+    """Nav2 ``amcl``'s filter parameters with ``nav2_amcl/src/amcl_node.cpp``'s defaults."""
+
+    alpha1: float = 0.2
+    alpha2: float = 0.2
+    alpha3: float = 0.2
+    alpha4: float = 0.2
+    alpha5: float = 0.2
+    laser_likelihood_max_dist: float = 2.0
+    laser_max_range: float = 100.0
+    laser_min_range: float = -1.0
+    max_beams: int = 60
+    max_particles: int = 2000
+    min_particles: int = 500
+    pf_err: float = 0.05
+    pf_z: float = 0.99
+    recovery_alpha_fast: float = 0.0
+    recovery_alpha_slow: float = 0.0
+    resample_interval: int = 1
+    sigma_hit: float = 0.2
+    z_hit: float = 0.5
+    z_rand: float = 0.5
+    update_min_a: float = 0.2
+    update_min_d: float = 0.25
+
+    @classmethod
+    def names(cls):
+        """Return the parameter names, in declaration order."""
+        return [f.name for f in fields(cls)]
+
+
+class LikelihoodMap:
+    """
+    The map as AMCL reads it: free cells and each cell's distance to an obstacle.
+
+    :param grid: :class:`~amr_description.nav.map_io.GridMap`.
+    :param max_dist: m, the distance cap (``laser_likelihood_max_dist``).
+    """
+
+    def __init__(self, grid, max_dist):
+        """Compute the distance field."""
+        self.resolution = float(grid.resolution)
+        self.origin = np.array(grid.origin[:2], dtype=float)
+        data = np.asarray(grid.data)
+        self.shape = data.shape  # (rows = y, columns = x)
+        self.max_dist = float(max_dist)
+        occupied = data == 100
+        self.free = np.argwhere(data == 0)  # (row, col)
+        if occupied.any():
+            d = ndimage.distance_transform_edt(~occupied) * self.resolution
+        else:
+            d = np.full(self.shape, np.inf)
+        self.distance = np.minimum(d, self.max_dist)
+
+    def lookup(self, points):
+        """Return the obstacle distance (m) at each point (..., 2); ``max_dist`` off the map."""
+        cells = np.floor((points - self.origin) / self.resolution).astype(np.int64)
+        col, row = cells[..., 0], cells[..., 1]
+        inside = (row >= 0) & (row < self.shape[0]) & (col >= 0) & (col < self.shape[1])
+        out = np.full(points.shape[:-1], self.max_dist)
+        out[inside] = self.distance[row[inside], col[inside]]
+        return out
+
+    def random_free_poses(self, count, rng):
+        """Return ``count`` poses uniformly over the free cells, any heading, (count, 3)."""
+        if len(self.free) == 0:
+            raise ValueError('the map has no free cell to place particles in')
+        pick = self.free[rng.integers(0, len(self.free), count)]
+        xy = self.origin + (pick[:, ::-1] + rng.random((count, 2))) * self.resolution
+        return np.column_stack([xy, rng.uniform(-math.pi, math.pi, count)])
+
+
+def kld_limit(bins, params):
+    """
+    Return the KLD-sampling particle count for ``bins`` occupied histogram bins.
+
+    ``pf_resample_limit`` of nav2_amcl: clamped to ``[min_particles, max_particles]``.
+    """
+    if bins <= 1:
+        return params.max_particles
+    a = 1.0
+    b = 2.0 / (9.0 * (bins - 1))
+    c = math.sqrt(2.0 / (9.0 * (bins - 1))) * float(ndtri(params.pf_z))
+    n = int(math.ceil((bins - 1) / (2.0 * params.pf_err) * (a - b + c) ** 3))
+    return min(max(n, params.min_particles), params.max_particles)
+
+
+def _bins(particles, weights):
+    """Return each particle's histogram bin (N, 3), yaw measured from the circular mean.
+
+    Yaw is unwrapped round the weighted circular mean so that a cloud heading along +-pi is
+    one cluster, not two halves either side of the seam.
+    """
+    mean = math.atan2(weights @ np.sin(particles[:, 2]), weights @ np.cos(particles[:, 2]))
+    unwrapped = np.column_stack([particles[:, :2], wrap(particles[:, 2] - mean)])
+    return np.floor(unwrapped / BIN).astype(np.int64)
+
+
+class ParticleFilter:
+    """
+    Particles and weights; the motion, sensor and resampling steps (module docstring).
+
+    :param params: :class:`AmclParameters`.
+    :param seed: seed of the filter's numpy ``Generator``.
+    :ivar particles: (N, 3) poses in the map frame.
+    :ivar weights: (N,) summing to 1.
+    """
+
+    def __init__(self, params=None, seed=None):
+        """Start empty (no pose known)."""
+        self.params = params or AmclParameters()
+        self.rng = np.random.default_rng(seed)
+        self.particles = np.zeros((0, 3))
+        self.weights = np.zeros(0)
+        self.w_slow = self.w_fast = 0.0
+
+    def initialize(self, mean, covariance):
+        """
+        Draw ``max_particles`` particles from a Gaussian (``pf_init``).
+
+        :param mean: ``(x, y, yaw)``.
+        :param covariance: 3x3 (x, y, yaw); a zero one puts every particle on the mean.
+        """
+        n = self.params.max_particles
+        cov = np.asarray(covariance, dtype=float).reshape(3, 3)
+        noise = self.rng.multivariate_normal(np.zeros(3), cov, n, method='eigh') \
+            if np.any(cov) else np.zeros((n, 3))
+        self.particles = np.asarray(mean, dtype=float) + noise
+        self.particles[:, 2] = wrap(self.particles[:, 2])
+        self.weights = np.full(n, 1.0 / n)
+        self.w_slow = self.w_fast = 0.0
+
+    def initialize_uniform(self, likelihood_map):
+        """Spread ``max_particles`` particles over the map's free space (``pf_init_model``)."""
+        n = self.params.max_particles
+        self.particles = likelihood_map.random_free_poses(n, self.rng)
+        self.weights = np.full(n, 1.0 / n)
+        self.w_slow = self.w_fast = 0.0
+
+    def move(self, old, new):
+        """Apply the odometry step from ``old`` to ``new`` (odom frame) with sampled noise."""
+        p = self.params
+        d = between(old, new)
+        trans = math.hypot(d[0], d[1])
+        heading = math.atan2(new[1] - old[1], new[0] - old[0])
+        rot1 = 0.0 if trans < 0.01 else float(wrap(heading - old[2]))
+        rot2 = float(wrap(new[2] - old[2] - rot1))
+        # fold: driving backwards is rot1 - pi, not a half turn
+        r1 = min(abs(rot1), abs(wrap(rot1 - math.pi)))
+        r2 = min(abs(rot2), abs(wrap(rot2 - math.pi)))
+        n = len(self.particles)
+        normal = self.rng.standard_normal((n, 3))
+        rot1_hat = rot1 - normal[:, 0] * math.sqrt(p.alpha1 * r1 ** 2 + p.alpha2 * trans ** 2)
+        trans_hat = trans - normal[:, 1] * math.sqrt(p.alpha3 * trans ** 2
+                                                     + p.alpha4 * (r1 ** 2 + r2 ** 2))
+        rot2_hat = rot2 - normal[:, 2] * math.sqrt(p.alpha1 * r2 ** 2 + p.alpha2 * trans ** 2)
+        heading = self.particles[:, 2] + rot1_hat
+        self.particles[:, 0] += trans_hat * np.cos(heading)
+        self.particles[:, 1] += trans_hat * np.sin(heading)
+        self.particles[:, 2] = wrap(heading + rot2_hat)
+
+    def weigh(self, likelihood_map, beams, range_max):
+        """
+        Multiply the weights by the likelihood-field model of a scan; normalise.
+
+        :param beams: (M, 4) of the used beams: sensor x, y, yaw in the base frame, range (m).
+        :param range_max: m, the scan's (or ``laser_max_range``).
+        :returns: the total weight before normalising (for the recovery averages).
+        """
+        p = self.params
+        if len(beams) == 0 or len(self.particles) == 0:
+            return 0.0
+        c, s = np.cos(self.particles[:, 2]), np.sin(self.particles[:, 2])
+        # beam end points in the base frame, then in the map for every particle
+        ex = beams[:, 0] + beams[:, 3] * np.cos(beams[:, 2])
+        ey = beams[:, 1] + beams[:, 3] * np.sin(beams[:, 2])
+        mx = self.particles[:, 0:1] + c[:, None] * ex - s[:, None] * ey
+        my = self.particles[:, 1:2] + s[:, None] * ex + c[:, None] * ey
+        d = likelihood_map.lookup(np.stack([mx, my], axis=-1))
+        pz = p.z_hit * np.exp(-d * d / (2.0 * p.sigma_hit ** 2)) + p.z_rand / range_max
+        likelihood = 1.0 + np.sum(pz ** 3, axis=1)
+        w = self.weights * likelihood
+        total = float(w.sum())
+        if total > 0.0:
+            self.weights = w / total
+            self._update_recovery(total / len(w))  # pf.c: the average weight
+        else:
+            self.weights = np.full(len(w), 1.0 / len(w))
+        return total
+
+    def _update_recovery(self, w_avg):
+        p = self.params
+        if self.w_slow == 0.0:
+            self.w_slow = w_avg
+        else:
+            self.w_slow += p.recovery_alpha_slow * (w_avg - self.w_slow)
+        if self.w_fast == 0.0:
+            self.w_fast = w_avg
+        else:
+            self.w_fast += p.recovery_alpha_fast * (w_avg - self.w_fast)
+
+    def resample(self, likelihood_map=None):
+        """Draw a new set by KLD sampling (module docstring); weights become uniform."""
+        p = self.params
+        n_max = p.max_particles
+        random_p = 0.0
+        if likelihood_map is not None and self.w_slow > 0.0:
+            random_p = max(0.0, 1.0 - self.w_fast / self.w_slow)
+        positions = (self.rng.random() + np.arange(n_max)) / n_max  # systematic
+        picks = np.searchsorted(np.cumsum(self.weights), positions)
+        picks = self.rng.permutation(np.minimum(picks, len(self.weights) - 1))
+        drawn = self.particles[picks]
+        if random_p > 0.0:
+            swap = self.rng.random(n_max) < random_p
+            if swap.any():
+                drawn[swap] = likelihood_map.random_free_poses(int(swap.sum()), self.rng)
+        # the smallest n with n >= kld_limit(bins among the first n)
+        _, first = np.unique(_bins(drawn, np.full(n_max, 1.0 / n_max)), axis=0,
+                             return_index=True)
+        first = np.sort(first)
+        count = n_max
+        for k, index in enumerate(first, start=1):
+            limit = kld_limit(k, p)
+            end = first[k] if k < len(first) else n_max
+            if limit <= end:
+                count = max(limit, index + 1)
+                break
+        count = max(count, p.min_particles)
+        self.particles = drawn[:count].copy()
+        self.weights = np.full(count, 1.0 / count)
+        if random_p > 0.0:
+            self.w_slow = self.w_fast = 0.0
+
+    def estimate(self):
+        """
+        Return ``(pose, covariance)``: the heaviest cluster's mean and the filter's covariance.
+
+        :returns: pose (3,); covariance 3x3 (x, y from every particle, yaw from the circular
+            spread), as ``pf_get_cluster_stats`` and amcl_node's ``getMaxWeightHyp``.
+        """
+        bins = _bins(self.particles, self.weights)
+        lo = bins.min(axis=0)
+        shape = bins.max(axis=0) - lo + 1
+        grid = np.zeros(shape, dtype=bool)
+        grid[tuple((bins - lo).T)] = True
+        labels, _ = ndimage.label(grid, structure=np.ones((3, 3, 3)))
+        cluster = labels[tuple((bins - lo).T)]
+        totals = np.bincount(cluster, weights=self.weights)
+        members = cluster == int(np.argmax(totals))
+        w = self.weights[members] / self.weights[members].sum()
+        pts = self.particles[members]
+        yaw = math.atan2(np.sum(w * np.sin(pts[:, 2])), np.sum(w * np.cos(pts[:, 2])))
+        pose = np.array([np.sum(w * pts[:, 0]), np.sum(w * pts[:, 1]), yaw])
+        wa = self.weights
+        mean_xy = wa @ self.particles[:, :2]
+        dxy = self.particles[:, :2] - mean_xy
+        cov = np.zeros((3, 3))
+        cov[:2, :2] = (wa[:, None] * dxy).T @ dxy
+        r = math.hypot(wa @ np.cos(self.particles[:, 2]), wa @ np.sin(self.particles[:, 2]))
+        cov[2, 2] = -2.0 * math.log(max(r, 1e-12))
+        return pose, cov
+
+
+class Amcl:
+    """
+    The filter with Nav2 amcl's update rules: when to update, resample and publish.
+
+    :param params: :class:`AmclParameters`.
+    :param seed: the filter's random seed.
+    :ivar map: the :class:`LikelihoodMap`, or None before a map arrives.
+    :ivar initialized: True once a pose (or global localization) started the filter.
+    """
+
+    def __init__(self, params=None, seed=None):
+        """Start with no map and no pose."""
+        self.params = params or AmclParameters()
+        self.filter = ParticleFilter(self.params, seed)
+        self.map = None
+        self.initialized = False
+        self._odom = None  # odometry pose at the last filter update
+        self._force = False
+        self._resample_count = 0
+        self.map_to_odom = None
+        self.pose = None
+        self.covariance = None
+
+    def set_map(self, grid):
+        """Use ``grid`` (:class:`~amr_description.nav.map_io.GridMap`) from now on."""
+        self.map = LikelihoodMap(grid, self.params.laser_likelihood_max_dist)
+
+    def set_initial_pose(self, pose, covariance):
+        """Start the filter round ``pose`` (map frame) with a 3x3 ``covariance``."""
+        self.filter.initialize(pose, covariance)
+        self.initialized = True
+        self._force = True
+        self._odom = None
+
+    def global_localization(self):
+        """
+        Spread the particles over the map's free space (``reinitialize_global_localization``).
+
+        :raises ValueError: without a map, or with no free cell.
+        """
+        if self.map is None:
+            raise ValueError('no map received yet')
+        self.filter.initialize_uniform(self.map)
+        self.initialized = True
+        self._force = True
+
+    def request_nomotion_update(self):
+        """Make the next scan update the filter even without motion."""
+        self._force = True
+
+    def beams(self, ranges, angle_min, angle_increment, range_min, range_max, sensor_pose):
+        """
+        Return the likelihood-field model's beams, (M, 4) rows of x, y, yaw, range, and its limit.
+
+        ``laser_min_range`` / ``laser_max_range`` replace the scan's limits when above 0 (max)
+        or 0 (min); ``max_beams`` evenly spaced beams (step ``(n - 1) / (max_beams - 1)``);
+        NaN and readings at or beyond range_max are skipped; readings at or below range_min
+        become range_max (and are skipped).
+        """
+        p = self.params
+        ranges = np.asarray(ranges, dtype=float)
+        rmax = min(range_max, p.laser_max_range) if p.laser_max_range > 0 else range_max
+        rmin = max(range_min, p.laser_min_range) if p.laser_min_range > 0 else range_min
+        n = len(ranges)
+        step = max(1, (n - 1) // max(1, p.max_beams - 1)) if n > 1 else 1
+        idx = np.arange(0, n, step)
+        r = np.where(ranges[idx] <= rmin, rmax, ranges[idx])
+        keep = np.isfinite(r) & (r < rmax) & (r > 0.0)
+        idx, r = idx[keep], r[keep]
+        yaw = sensor_pose[2] + angle_min + angle_increment * idx
+        beams = np.column_stack([np.full(len(r), sensor_pose[0]), np.full(len(r), sensor_pose[1]),
+                                 yaw, r])
+        return beams, rmax
+
+    def process(self, odom_pose, beams, range_max):
+        """
+        Run the filter for one scan taken at ``odom_pose``; return True when it updated.
+
+        Motion is applied and the scan weighed when the odometry moved more than
+        ``update_min_d`` along x or y, or turned more than ``update_min_a``, since the last
+        update, or when an update is forced (a new pose, ``request_nomotion_update``);
+        resampling follows every ``resample_interval`` updates. The pose and the map -> odom
+        transform are recomputed after every update.
+        """
+        if not self.initialized or self.map is None:
+            return False
+        odom_pose = np.asarray(odom_pose, dtype=float)
+        if self._odom is None:
+            self._odom = odom_pose
+            self._force = True
+        d = odom_pose - self._odom
+        d[2] = float(wrap(d[2]))
+        p = self.params
+        moved = abs(d[0]) > p.update_min_d or abs(d[1]) > p.update_min_d \
+            or abs(d[2]) > p.update_min_a
+        if not (moved or self._force):
+            return False
+        self.filter.move(self._odom, odom_pose)
+        self._odom = odom_pose
+        self._force = False
+        self.filter.weigh(self.map, beams, range_max)
+        self._resample_count += 1
+        if self._resample_count % max(1, p.resample_interval) == 0:
+            self.filter.resample(self.map if p.recovery_alpha_slow > 0 else None)
+        self.pose, self.covariance = self.filter.estimate()
+        self.map_to_odom = compose(self.pose, inverse(odom_pose))
+        return True

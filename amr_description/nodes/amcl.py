@@ -1,0 +1,304 @@
+# Copyright 2026 The amr_description Authors
+# Licensed under the Apache License, Version 2.0
+"""
+``amcl``: Nav2's adaptive Monte Carlo localization (Jazzy), a managed (lifecycle) node.
+
+Parameters: Nav2's (``nav2_amcl/src/amcl_node.cpp``) with its defaults; the filter's are
+:class:`~amr_description.nav.amcl.AmclParameters`, the node's :data:`NODE_PARAMETERS`. Only
+the ``likelihood_field`` laser model and ``nav2_amcl::DifferentialMotionModel`` are
+implemented: another value fails configure with one line. A parameter of the wrong type fails
+configure with one line naming it.
+
+On activate: ``map_topic`` (``map``, transient local) in; ``scan_topic`` (``scan``, sensor
+data QoS) in, placed with TF (``odom_frame_id`` -> ``base_frame_id`` at the scan's stamp,
+``base_frame_id`` -> the scan's frame); ``initialpose`` (PoseWithCovarianceStamped, reliable)
+in, refused with one warning unless in ``global_frame_id`` and finite (its covariance's
+``[0] [1] [6] [7] [35]`` are used); ``amcl_pose`` (transient local) and ``particle_cloud``
+(nav2_msgs/ParticleCloud, best effort) out; TF ``global_frame_id`` -> ``odom_frame_id`` stamped
+scan stamp + ``transform_tolerance`` (with ``tf_broadcast``); services
+``reinitialize_global_localization``, ``request_nomotion_update`` (std_srvs/Empty) and
+``set_initial_pose`` (nav2_msgs/SetInitialPose). Until a pose is known nothing is published
+and a warning repeats every 2 s. With ``set_initial_pose`` the filter starts at
+``initial_pose.{x, y, yaw}`` with zero covariance. Bad scans (ranges not matching the angles,
+unknown frame) are dropped with one warning line (at most every 5 s).
+"""
+
+import math
+
+from amr_description.core.tf_buffer import TransformBuffer
+from amr_description.core.tf_buffer import TransformException
+from amr_description.nav import amcl
+from amr_description.nav.grid_message import grid_from_message
+from amr_description.ros import shutdown
+from amr_description.ros.managed_node import ManagedNode
+from amr_description.ros.parameters import read_parameters
+from amr_description.ros.parameters import unused_parameters
+from amr_description.ros.stamps import time_to_msg
+from amr_description.ros.transforms import planar_transform
+from amr_description.ros.transforms import set_yaw
+from amr_description.ros.transforms import stamp_seconds
+from amr_description.ros.transforms import TransformListener
+from amr_description.ros.transforms import yaw_of
+from geometry_msgs.msg import PoseWithCovarianceStamped
+from nav2_msgs.msg import Particle
+from nav2_msgs.msg import ParticleCloud
+from nav2_msgs.srv import SetInitialPose
+from nav_msgs.msg import OccupancyGrid
+import numpy as np
+from rclpy.qos import DurabilityPolicy
+from rclpy.qos import qos_profile_sensor_data
+from rclpy.qos import qos_profile_system_default
+from rclpy.qos import QoSProfile
+from rclpy.qos import ReliabilityPolicy
+from sensor_msgs.msg import LaserScan
+from std_srvs.srv import Empty
+from tf2_msgs.msg import TFMessage
+
+LATCHED = QoSProfile(depth=1, reliability=ReliabilityPolicy.RELIABLE,
+                     durability=DurabilityPolicy.TRANSIENT_LOCAL)
+
+NODE_PARAMETERS = {
+    'base_frame_id': 'base_footprint', 'global_frame_id': 'map', 'odom_frame_id': 'odom',
+    'laser_model_type': 'likelihood_field',
+    'robot_model_type': 'nav2_amcl::DifferentialMotionModel',
+    'set_initial_pose': False, 'initial_pose.x': 0.0, 'initial_pose.y': 0.0,
+    'initial_pose.z': 0.0, 'initial_pose.yaw': 0.0, 'always_reset_initial_pose': False,
+    'save_pose_rate': 0.5, 'tf_broadcast': True, 'transform_tolerance': 1.0,
+    'scan_topic': 'scan', 'map_topic': 'map', 'first_map_only': False,
+    'freespace_downsampling': False, 'lambda_short': 0.1, 'z_short': 0.05, 'z_max': 0.05,
+    'do_beamskip': False, 'beam_skip_distance': 0.5, 'beam_skip_threshold': 0.3,
+    'beam_skip_error_threshold': 0.9,
+}
+"""amcl's node parameters with Nav2's defaults (``nav2_amcl/src/amcl_node.cpp``)."""
+
+DIFFERENTIAL = ('nav2_amcl::DifferentialMotionModel', 'differential')
+
+
+def _planar(T):
+    return np.array([T[0, 3], T[1, 3], math.atan2(T[1, 0], T[0, 0])])
+
+
+class Amcl(ManagedNode):
+    """Node ``amcl``; see the module docstring."""
+
+    def __init__(self):
+        """Hold the params file's parameters; the node starts unconfigured."""
+        super().__init__('amcl', automatically_declare_parameters_from_overrides=True)
+        self._active = []
+        self._listener = None
+        self.p = {}
+
+    def configure(self):
+        """Read and check the parameters; build the filter."""
+        self.get_logger().info('Configuring')
+        defaults = {**NODE_PARAMETERS, **{n: getattr(amcl.AmclParameters(), n)
+                                          for n in amcl.AmclParameters.names()}}
+        self.p = read_parameters(self, defaults)
+        unused = unused_parameters(self, defaults)
+        if unused:
+            self.get_logger().info('Parameters not used by this implementation: '
+                                   + ', '.join(unused))
+        if self.p['laser_model_type'] != 'likelihood_field':
+            raise ValueError(f"parameter 'laser_model_type': only likelihood_field is "
+                             f"implemented, got '{self.p['laser_model_type']}'")
+        if self.p['robot_model_type'] not in DIFFERENTIAL:
+            raise ValueError(f"parameter 'robot_model_type': only {DIFFERENTIAL[0]} is "
+                             f"implemented, got '{self.p['robot_model_type']}'")
+        params = amcl.AmclParameters(**{n: self.p[n] for n in amcl.AmclParameters.names()})
+        if params.min_particles > params.max_particles or params.min_particles < 1:
+            raise ValueError(f"parameters 'min_particles' ({params.min_particles}) and "
+                             f"'max_particles' ({params.max_particles}): expected 1 <= min "
+                             '<= max')
+        self.filter = amcl.Amcl(params)
+        self.tf_buffer = TransformBuffer()
+        self._last_tf = None
+        self._sent_pose = False
+
+    def activate(self):
+        """Create the subscriptions, publishers, services and the reminder timer."""
+        self.get_logger().info('Activating')
+        p = self.p
+        self._pose_pub = self.create_publisher(PoseWithCovarianceStamped, 'amcl_pose', LATCHED)
+        self._cloud_pub = self.create_publisher(ParticleCloud, 'particle_cloud',
+                                                qos_profile_sensor_data)
+        self._tf_pub = self.create_publisher(TFMessage, '/tf', 100)
+        self._listener = TransformListener(self, self.tf_buffer)
+        self._active = [
+            self._pose_pub, self._cloud_pub, self._tf_pub,
+            self.create_subscription(OccupancyGrid, p['map_topic'], self._on_map, LATCHED),
+            self.create_subscription(LaserScan, p['scan_topic'], self._on_scan,
+                                     qos_profile_sensor_data),
+            self.create_subscription(PoseWithCovarianceStamped, 'initialpose',
+                                     self._on_initial_pose, qos_profile_system_default),
+            self.create_service(Empty, 'reinitialize_global_localization', self._on_global),
+            self.create_service(Empty, 'request_nomotion_update', self._on_nomotion),
+            self.create_service(SetInitialPose, 'set_initial_pose', self._on_set_initial_pose),
+            self.create_timer(2.0, self._remind)]
+        if p['set_initial_pose']:
+            self.filter.set_initial_pose(
+                (p['initial_pose.x'], p['initial_pose.y'], p['initial_pose.yaw']),
+                np.zeros((3, 3)))
+
+    def deactivate(self):
+        """Destroy what :meth:`activate` created."""
+        self.get_logger().info('Deactivating')
+        for entity in self._active:
+            for destroy in (self.destroy_publisher, self.destroy_subscription,
+                            self.destroy_timer, self.destroy_service):
+                if destroy(entity):
+                    break
+        self._active = []
+        if self._listener is not None:
+            self._listener.destroy()
+            self._listener = None
+
+    def cleanup(self):
+        """Forget the filter."""
+        self.get_logger().info('Cleaning up')
+
+    # --- inputs -----------------------------------------------------------------------------
+    def _remind(self):
+        if not self.filter.initialized:
+            self.get_logger().warning(
+                'AMCL cannot publish a pose or update the transform. Please set the initial '
+                'pose...')
+
+    def _on_map(self, msg):
+        if self.p['first_map_only'] and self.filter.map is not None:
+            return
+        try:
+            grid = grid_from_message(msg)
+        except ValueError as exc:
+            self.get_logger().error(f"{self.p['map_topic']}: {exc}; map ignored")
+            return
+        self.get_logger().info(f'Received a {grid.width} X {grid.height} map @ '
+                               f'{grid.resolution:.3f} m/pix')
+        self.filter.set_map(grid)
+
+    def _on_initial_pose(self, msg):
+        frame = msg.header.frame_id.lstrip('/')
+        if frame != self.p['global_frame_id']:
+            self.get_logger().warning(
+                f'Ignoring initial pose in frame "{frame}"; initial poses must be in the '
+                f"global frame, \"{self.p['global_frame_id']}\"")
+            return
+        pose = msg.pose.pose
+        c = msg.pose.covariance
+        values = [pose.position.x, pose.position.y, pose.orientation.x, pose.orientation.y,
+                  pose.orientation.z, pose.orientation.w, c[0], c[1], c[6], c[7], c[35]]
+        if not all(math.isfinite(v) for v in values):
+            self.get_logger().warning('initialpose: NaN or infinite value in the pose or its '
+                                      'covariance; ignored')
+            return
+        cov = np.array([[c[0], c[1], 0.0], [c[6], c[7], 0.0], [0.0, 0.0, c[35]]])
+        mean = (pose.position.x, pose.position.y, yaw_of(pose.orientation))
+        self.get_logger().info(f'Setting pose ({self.get_clock().now().nanoseconds * 1e-9:.6f})'
+                               f': {mean[0]:.3f} {mean[1]:.3f} {mean[2]:.3f}')
+        self.filter.set_initial_pose(mean, cov)
+        self._sent_pose = False
+
+    def _on_set_initial_pose(self, request, response):
+        self._on_initial_pose(request.pose)
+        return response
+
+    def _on_global(self, request, response):
+        try:
+            self.filter.global_localization()
+            self.get_logger().info('Initializing with uniform distribution')
+            self._sent_pose = False
+        except ValueError as exc:
+            self.get_logger().warning(f'reinitialize_global_localization: {exc}')
+        return response
+
+    def _on_nomotion(self, request, response):
+        self.filter.request_nomotion_update()
+        self.get_logger().info('Requesting no-motion update')
+        return response
+
+    def _on_scan(self, msg):
+        if not self.filter.initialized or self.filter.map is None:
+            return
+        p = self.p
+        stamp = stamp_seconds(msg.header.stamp)
+        expected = int(round((msg.angle_max - msg.angle_min) / msg.angle_increment)) + 1 \
+            if msg.angle_increment and math.isfinite(msg.angle_increment) else -1
+        if len(msg.ranges) != expected:
+            self.get_logger().warning(
+                f"{p['scan_topic']}: ranges has {len(msg.ranges)} readings, its angles "
+                f'({msg.angle_min:g} to {msg.angle_max:g} by {msg.angle_increment:g}) need '
+                f'{expected}; scan dropped', throttle_duration_sec=5.0)
+            return
+        try:
+            try:
+                odom, _ = self.tf_buffer.lookup(p['odom_frame_id'], p['base_frame_id'], stamp)
+            except TransformException:
+                odom, t = self.tf_buffer.lookup(p['odom_frame_id'], p['base_frame_id'])
+                if abs(t - stamp) > p['transform_tolerance']:
+                    raise
+            laser, _ = self.tf_buffer.lookup(p['base_frame_id'], msg.header.frame_id)
+        except TransformException as exc:
+            self.get_logger().warning(
+                f"Failed to transform scan in frame '{msg.header.frame_id}': "
+                f'{str(exc).strip()}', throttle_duration_sec=5.0)
+            return
+        beams, rmax = self.filter.beams(np.asarray(msg.ranges, dtype=float), msg.angle_min,
+                                        msg.angle_increment, msg.range_min, msg.range_max,
+                                        _planar(laser))
+        updated = self.filter.process(_planar(odom), beams, rmax)
+        if updated or not self._sent_pose:
+            if self.filter.pose is None:
+                return
+            self._publish_pose(msg.header.stamp)
+            self._publish_cloud(msg.header.stamp)
+            self._last_tf = self.filter.map_to_odom
+            self._sent_pose = True
+        if p['tf_broadcast'] and self._last_tf is not None:
+            t = stamp + p['transform_tolerance']
+            self._tf_pub.publish(TFMessage(transforms=[planar_transform(
+                p['global_frame_id'], p['odom_frame_id'], time_to_msg(t), self._last_tf)]))
+
+    # --- outputs ----------------------------------------------------------------------------
+    def _publish_pose(self, stamp):
+        pose, cov = self.filter.pose, self.filter.covariance
+        if not (np.all(np.isfinite(pose)) and np.all(np.isfinite(cov))):
+            return
+        msg = PoseWithCovarianceStamped()
+        msg.header.stamp = stamp
+        msg.header.frame_id = self.p['global_frame_id']
+        msg.pose.pose.position.x, msg.pose.pose.position.y = float(pose[0]), float(pose[1])
+        set_yaw(msg.pose.pose.orientation, float(pose[2]))
+        c = [0.0] * 36
+        c[0], c[1], c[6], c[7] = cov[0, 0], cov[0, 1], cov[1, 0], cov[1, 1]
+        c[35] = cov[2, 2]
+        msg.pose.covariance = [float(v) for v in c]
+        self._pose_pub.publish(msg)
+
+    def _publish_cloud(self, stamp):
+        cloud = ParticleCloud()
+        cloud.header.stamp = stamp
+        cloud.header.frame_id = self.p['global_frame_id']
+        particles = self.filter.filter.particles
+        weights = self.filter.filter.weights
+        half = particles[:, 2] / 2.0
+        out = []
+        for (x, y, _), sz, cz, w in zip(particles.tolist(), np.sin(half).tolist(),
+                                        np.cos(half).tolist(), weights.tolist()):
+            part = Particle(weight=w)
+            part.pose.position.x, part.pose.position.y = x, y
+            part.pose.orientation.z, part.pose.orientation.w = sz, cz
+            out.append(part)
+        cloud.particles = out
+        self._cloud_pub.publish(cloud)
+
+
+def main(args=None):
+    """
+    Run amcl until Ctrl-C.
+
+    :param args: command-line arguments for rclpy (default ``sys.argv``).
+    """
+    shutdown.run(Amcl, args)
+
+
+if __name__ == '__main__':
+    main()
