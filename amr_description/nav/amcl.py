@@ -136,7 +136,8 @@ def kld_limit(bins, params):
 
 
 def _bins(particles, weights):
-    """Return each particle's histogram bin (N, 3), yaw measured from the circular mean.
+    """
+    Return each particle's histogram bin (N, 3), yaw measured from the circular mean.
 
     Yaw is unwrapped round the weighted circular mean so that a cloud heading along +-pi is
     one cluster, not two halves either side of the seam.

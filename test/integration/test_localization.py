@@ -9,8 +9,8 @@ the arena's walls and pillars, written with map_io); amcl waits for a pose, sayi
 drives, until ``/amcl_pose`` is within 12 cm and 5 deg of the ground truth (the skid-steer
 odometry slips in the turn; the engine benchmark's 5 cm is with exact odometry);
 ``/particle_cloud`` (best effort) holds Nav2's particle count; poses in the wrong frame or
-with NaN are refused with one line and the node stays active; ``reinitialize_global_localization`` spreads the
-particles over the map.
+with NaN are refused with one line and the node stays active;
+``reinitialize_global_localization`` spreads the particles over the map.
 """
 
 import math

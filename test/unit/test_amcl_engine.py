@@ -1,0 +1,109 @@
+# Copyright 2026 The amr_description Authors
+# Licensed under the Apache License, Version 2.0
+"""AMCL's pieces against closed forms: KLD limit, distance field, beams, motion, estimate."""
+
+import math
+
+from amr_description.nav import amcl
+from amr_description.nav.map_io import GridMap
+import numpy as np
+import pytest
+
+
+def _room():
+    """Return a 4 x 3 m room (0.05 m cells), walls one cell thick, origin (-1, -1)."""
+    data = np.zeros((60, 80), dtype=np.int8)
+    data[0, :] = data[-1, :] = 100
+    data[:, 0] = data[:, -1] = 100
+    return GridMap(data, 0.05, (-1.0, -1.0, 0.0))
+
+
+def test_kld_limit_closed_form():
+    params = amcl.AmclParameters()
+    assert amcl.kld_limit(1, params) == params.max_particles
+    # k = 10 bins: (k-1)/(2 err) (1 - 2/(9(k-1)) + sqrt(2/(9(k-1))) z_0.99)^3
+    z = 2.3263478740408408
+    k = 10
+    expected = math.ceil((k - 1) / 0.1 * (1 - 2 / (9 * (k - 1))
+                                          + math.sqrt(2 / (9 * (k - 1))) * z) ** 3)
+    assert amcl.kld_limit(k, params) == min(max(expected, 500), 2000)
+    assert amcl.kld_limit(2, params) == 500  # clamped to min_particles
+    assert amcl.kld_limit(10000, params) == 2000
+
+
+def test_distance_field_and_free_space():
+    field = amcl.LikelihoodMap(_room(), 2.0)
+    # 1 m from the left wall's cell (x = -1 .. -0.95) and far from the others
+    d = field.lookup(np.array([[0.025, 0.475], [50.0, 50.0]]))
+    assert d[0] == pytest.approx(1.0, abs=0.03)
+    assert d[1] == 2.0  # off the map: the cap
+    poses = field.random_free_poses(500, np.random.default_rng(0))
+    assert np.all(field.lookup(poses[:, :2]) > 0.0)
+
+
+def test_beams_follow_nav2_rules():
+    filt = amcl.Amcl(amcl.AmclParameters(max_beams=5, laser_max_range=-1.0))
+    ranges = [1.0, 0.05, 2.0, np.nan, 10.0, 3.0, 4.0, 5.0, 6.0]
+    beams, rmax = filt.beams(ranges, 0.0, 0.1, 0.1, 10.0, (0.2, 0.0, 0.0))
+    # step (9 - 1) // (5 - 1) = 2: readings 0, 2, 4, 6, 8 -> 1.0, 2.0, 10.0 (= max: skipped)
+    assert rmax == 10.0
+    assert beams[:, 3].tolist() == [1.0, 2.0, 4.0, 6.0]
+    assert np.allclose(beams[:, 2], [0.0, 0.2, 0.6, 0.8])
+    assert np.all(beams[:, 0] == 0.2)
+
+
+def test_motion_model_mean_follows_odometry():
+    filt = amcl.ParticleFilter(amcl.AmclParameters(), seed=3)
+    filt.initialize((1.0, 2.0, math.pi / 2), np.zeros((3, 3)))
+    filt.move((0.0, 0.0, 0.0), (0.5, 0.0, 0.2))  # 0.5 m forward then 0.2 rad left
+    mean = filt.particles.mean(axis=0)
+    assert mean[0] == pytest.approx(1.0, abs=0.02)
+    assert mean[1] == pytest.approx(2.5, abs=0.02)
+    assert mean[2] == pytest.approx(math.pi / 2 + 0.2, abs=0.02)
+    # translation noise: alpha3 trans^2 + alpha4 (rot1^2 + rot2^2), rot1 = 0, rot2 = 0.2
+    assert filt.particles[:, 1].std() == pytest.approx(
+        math.sqrt(0.2 * 0.25 + 0.2 * 0.04), rel=0.1)
+
+
+def test_estimate_is_the_heaviest_cluster_across_the_seam():
+    filt = amcl.ParticleFilter(amcl.AmclParameters(), seed=1)
+    rng = np.random.default_rng(2)
+    heading_pi = np.column_stack([rng.normal(1.0, 0.05, 800), rng.normal(0.0, 0.05, 800),
+                                  math.pi + rng.normal(0.0, 0.03, 800)])
+    heading_pi[:, 2] = (heading_pi[:, 2] + math.pi) % (2 * math.pi) - math.pi
+    other = np.column_stack([rng.normal(-3.0, 0.05, 200), rng.normal(0.0, 0.05, 200),
+                             rng.normal(0.0, 0.03, 200)])
+    filt.particles = np.vstack([heading_pi, other])
+    filt.weights = np.full(1000, 1e-3)
+    pose, cov = filt.estimate()
+    assert pose[0] == pytest.approx(1.0, abs=0.01)
+    assert abs(math.remainder(pose[2] - math.pi, math.tau)) < 0.01
+
+
+def test_filter_converges_in_a_room_with_scans():
+    room = _room()
+    loc = amcl.Amcl(amcl.AmclParameters(update_min_d=0.05), seed=0)
+    loc.set_map(room)
+    truth = np.array([0.5, 0.3, 0.3])
+    loc.set_initial_pose(truth + (0.2, -0.15, 0.1), np.diag([0.05, 0.05, 0.02]))
+    angles = np.linspace(-math.pi, math.pi, 181)[:-1]
+
+    def scan(pose):
+        walls = ((-0.975, None), (2.975, None), (None, -0.975), (None, 1.975))
+        out = []
+        for a in angles:
+            d = (math.cos(pose[2] + a), math.sin(pose[2] + a))
+            t = [((wx - pose[0]) / d[0]) if wx is not None and abs(d[0]) > 1e-9 else
+                 ((wy - pose[1]) / d[1]) if wy is not None and abs(d[1]) > 1e-9 else -1
+                 for wx, wy in walls]
+            out.append(min(v for v in t if v > 0))
+        return out
+    odom = np.zeros(3)
+    for k in range(12):
+        beams, rmax = loc.beams(scan(truth), -math.pi, angles[1] - angles[0], 0.1, 10.0,
+                                (0.0, 0.0, 0.0))
+        loc.process(odom, beams, rmax)
+        step = np.array([0.06 * math.cos(truth[2]), 0.06 * math.sin(truth[2]), 0.0])
+        truth = truth + step
+        odom = odom + [0.06, 0.0, 0.0]  # odometry frame at 0, heading 0: along its own x
+    assert np.hypot(*(loc.pose[:2] - (truth - step)[:2])) < 0.05
