@@ -34,6 +34,7 @@ from amr_description.ros.managed_node import ManagedNode
 from amr_description.ros.parameters import read_parameters
 from amr_description.ros.parameters import unused_parameters
 from amr_description.ros.stamps import time_to_msg
+from amr_description.ros.transforms import planar_pose
 from amr_description.ros.transforms import planar_transform
 from amr_description.ros.transforms import set_yaw
 from amr_description.ros.transforms import stamp_seconds
@@ -72,10 +73,6 @@ NODE_PARAMETERS = {
 """amcl's node parameters with Nav2's defaults (``nav2_amcl/src/amcl_node.cpp``)."""
 
 DIFFERENTIAL = ('nav2_amcl::DifferentialMotionModel', 'differential')
-
-
-def _planar(T):
-    return np.array([T[0, 3], T[1, 3], math.atan2(T[1, 0], T[0, 0])])
 
 
 class Amcl(ManagedNode):
@@ -142,11 +139,7 @@ class Amcl(ManagedNode):
     def deactivate(self):
         """Destroy what :meth:`activate` created."""
         self.get_logger().info('Deactivating')
-        for entity in self._active:
-            for destroy in (self.destroy_publisher, self.destroy_subscription,
-                            self.destroy_timer, self.destroy_service):
-                if destroy(entity):
-                    break
+        self.destroy_entities(self._active)
         self._active = []
         if self._listener is not None:
             self._listener.destroy()
@@ -243,8 +236,8 @@ class Amcl(ManagedNode):
             return
         beams, rmax = self.filter.beams(np.asarray(msg.ranges, dtype=float), msg.angle_min,
                                         msg.angle_increment, msg.range_min, msg.range_max,
-                                        _planar(laser))
-        updated = self.filter.process(_planar(odom), beams, rmax)
+                                        planar_pose(laser))
+        updated = self.filter.process(planar_pose(odom), beams, rmax)
         if updated or not self._sent_pose:
             if self.filter.pose is None:
                 return

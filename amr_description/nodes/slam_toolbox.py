@@ -49,6 +49,7 @@ from amr_description.ros.managed_node import ManagedNode
 from amr_description.ros.parameters import read_parameters
 from amr_description.ros.parameters import unused_parameters
 from amr_description.ros.stamps import time_to_msg
+from amr_description.ros.transforms import planar_pose
 from amr_description.ros.transforms import planar_transform
 from amr_description.ros.transforms import set_yaw
 from amr_description.ros.transforms import stamp_seconds
@@ -80,11 +81,6 @@ NODE_PARAMETERS = {
     'position_covariance_scale': 1.0, 'yaw_covariance_scale': 1.0,
 }
 """The node's parameters with slam_toolbox 2.8.3's code defaults."""
-
-
-def _planar(T):
-    """Return ``(x, y, yaw)`` of a 4x4 transform."""
-    return np.array([T[0, 3], T[1, 3], math.atan2(T[1, 0], T[0, 0])])
 
 
 class SlamToolbox(ManagedNode):
@@ -177,11 +173,7 @@ class SlamToolbox(ManagedNode):
     def deactivate(self):
         """Destroy what :meth:`activate` created."""
         self.get_logger().info('Deactivating')
-        for entity in self._active:
-            for destroy in (self.destroy_publisher, self.destroy_subscription,
-                            self.destroy_timer, self.destroy_service):
-                if destroy(entity):
-                    break
+        self.destroy_entities(self._active)
         self._active = []
         if self._listener is not None:
             self._listener.destroy()
@@ -229,10 +221,10 @@ class SlamToolbox(ManagedNode):
                 and stamp - self._last_processed < self.p['minimum_time_interval']):
             return
         scan = slam.Scan(np.asarray(msg.ranges, dtype=float), msg.angle_min,
-                         msg.angle_increment, msg.range_min, msg.range_max, _planar(laser))
+                         msg.angle_increment, msg.range_min, msg.range_max, planar_pose(laser))
         with self._lock:
-            added = self.mapper.process(_planar(odom), scan, stamp)
-            pose = self.mapper.pose(_planar(odom))
+            added = self.mapper.process(planar_pose(odom), scan, stamp)
+            pose = self.mapper.pose(planar_pose(odom))
         self._last_stamp = msg.header.stamp
         if added:
             self._last_processed = stamp

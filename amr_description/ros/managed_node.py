@@ -115,6 +115,14 @@ class ManagedNode(LifecycleNode):
             self.bond.destroy()
             self.bond = None
 
+    def destroy_entities(self, entities):
+        """Destroy publishers, subscriptions, timers and services (what activate created)."""
+        for entity in entities:
+            for destroy in (self.destroy_publisher, self.destroy_subscription,
+                            self.destroy_timer, self.destroy_service):
+                if destroy(entity):
+                    break
+
     def is_active(self):
         """Return True when the node's lifecycle state is ``active``."""
         return self._state_machine.current_state[1] == 'active'

@@ -13,6 +13,7 @@ are seconds (float); planar poses are ``(x, y, yaw)`` in m, m, rad (REP 103).
 import math
 
 from geometry_msgs.msg import TransformStamped
+import numpy as np
 from rclpy.qos import DurabilityPolicy
 from rclpy.qos import QoSProfile
 from rclpy.qos import ReliabilityPolicy
@@ -36,6 +37,11 @@ def yaw_of(q):
 def set_yaw(q, yaw):
     """Write the quaternion of a rotation ``yaw`` (rad) about z into ``q`` (in place)."""
     q.x, q.y, q.z, q.w = 0.0, 0.0, math.sin(yaw / 2.0), math.cos(yaw / 2.0)
+
+
+def planar_pose(T):
+    """Return ``(x, y, yaw)`` (array (3,)) of a 4x4 homogeneous transform (rotation about z)."""
+    return np.array([T[0, 3], T[1, 3], math.atan2(T[1, 0], T[0, 0])])
 
 
 def planar_transform(parent, child, stamp, pose):
