@@ -76,6 +76,22 @@ class Page:
         png = best.screenshot(path=path, timeout=TIMEOUT_MS)
         return np.asarray(Image.open(BytesIO(png)).convert('RGB'))
 
+    def all_image_pixels(self):
+        """Return every visible ``<img>`` of the page as (H, W, 3) uint8 arrays (a list)."""
+        from io import BytesIO
+
+        from PIL import Image
+        images = self.page.locator('img')
+        found = []
+        for index in range(images.count()):
+            image = images.nth(index)
+            if image.bounding_box() is None:
+                continue
+            image.scroll_into_view_if_needed(timeout=TIMEOUT_MS)
+            png = image.screenshot(timeout=TIMEOUT_MS)
+            found.append(np.asarray(Image.open(BytesIO(png)).convert('RGB')))
+        return found
+
     def close_notifications(self):
         """Close the page's notifications (e.g. 'Software WebGL rendering detected')."""
         close_notifications(self.page)
