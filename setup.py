@@ -183,7 +183,13 @@ setup(
             'robot_model = amr_description.web.displays.robot_model:RobotModelDisplay',
             'tf_axes = amr_description.web.displays.tf_axes:TfAxesDisplay',
             'trails = amr_description.web.displays.trails:TrailsDisplay',
+            'map = amr_description.web.displays.map:MapDisplay',
             'laser_scan = amr_description.web.displays.laser_scan:LaserScanDisplay',
+            'particle_cloud = amr_description.web.displays.particle_cloud:ParticleCloudDisplay',
+            'pose_array = amr_description.web.displays.particle_cloud:PoseArrayDisplay',
+            'pose_covariance = '
+            'amr_description.web.displays.pose_covariance:PoseWithCovarianceDisplay',
+            'pose_tool = amr_description.web.displays.pose_tool:PoseToolDisplay',
             'point_cloud = amr_description.web.displays.point_cloud:PointCloudDisplay',
             'imu = amr_description.web.displays.imu:ImuDisplay',
             'image = amr_description.web.displays.image:ImageDisplay',

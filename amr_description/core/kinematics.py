@@ -160,11 +160,25 @@ def matrix_to_quaternion(R):
 
 def quaternion_to_matrix(q):
     """Return the 3x3 rotation of a quaternion (x, y, z, w) (normalized here)."""
-    x, y, z, w = np.asarray(q, dtype=float) / np.linalg.norm(q)
-    return np.array([
-        [1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)],
-        [2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)],
-        [2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)]])
+    return quaternions_to_matrices([q])[0]
+
+
+def quaternions_to_matrices(quaternions):
+    """
+    Return the rotations of N quaternions at once.
+
+    :param quaternions: (N, 4) quaternions (x, y, z, w), normalized here; an all-zero one (an
+        unset orientation) is the identity.
+    :returns: (N, 3, 3) rotation matrices.
+    """
+    q = np.array(quaternions, dtype=float).reshape(-1, 4)
+    q[~q.any(axis=1)] = (0.0, 0.0, 0.0, 1.0)
+    x, y, z, w = (q / np.linalg.norm(q, axis=1, keepdims=True)).T
+    return np.stack([
+        np.stack([1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)], -1),
+        np.stack([2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)], -1),
+        np.stack([2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)], -1)],
+        axis=1)
 
 
 def matrix_to_translation_quaternion(T):

@@ -27,6 +27,7 @@ import time
 from amr_description.core import lifecycle_plan
 from amr_description.ros import shutdown
 from amr_description.ros.bond import Bond
+from amr_description.ros.bond import prepare_bonds
 from amr_description.ros.node import Node
 from lifecycle_msgs.msg import Transition
 from lifecycle_msgs.srv import ChangeState
@@ -78,6 +79,8 @@ class LifecycleManager(Node):
         self._command_group = MutuallyExclusiveCallbackGroup()
         self.system_active = False
         self.bonds = {}  # touched only by the command group's callbacks
+        if self.bond_timeout > 0.0:
+            prepare_bonds(self, 'bond')  # matched with the nodes' long before a bond forms
         self._respawn_since = self._respawn_timer = None
         self.get_logger().info('Creating and initializing lifecycle service clients')
         self.managed = {name: _Managed(self, name, self._clients_group)

@@ -183,6 +183,8 @@ class Viewer(Node):
         wanted = self._fixed_frame.value.strip().lstrip('/')
         if wanted and wanted in self.frames.buffer.frames():
             return wanted, ''
+        if wanted and wanted in self.frames.message_frames:
+            return wanted, f'Fixed Frame [{wanted}] is not in TF yet: only its map is drawn'
         robot_model = self.display_named.get('robot_model')
         root = robot_model.root_frame() if robot_model is not None else None
         if root is not None:

@@ -12,6 +12,12 @@ subscribes to the same topic (depth 100). The bond is *formed* when a status wit
 of the other side arrived for ``heartbeat_timeout`` (unless the node's parameter
 ``bond_disable_heartbeat_timeout`` is true); this side then says ``active`` false in its next
 few heartbeats. :meth:`Bond.destroy` says it once and removes the bond.
+
+All bonds of a node on one topic share one publisher and one subscription, made by the first
+bond or earlier by :func:`prepare_bonds` (a lifecycle manager at start-up, a managed node at
+configure), so that DDS has matched them with the other side long before a bond must form
+within its timeout (bondcpp makes them per bond; on a loaded machine, the Python processes'
+discovery of endpoints made at activation took over Nav2's 2 s).
 Source: ``bondcpp/src/bond.cpp`` and ``bond/msg/Constants.msg`` of ros/bond_core (ros2 branch).
 """
 
@@ -29,6 +35,38 @@ DISABLE_PARAM = 'bond_disable_heartbeat_timeout'
 
 DEAD_REPEATS = 3
 """How many ``active: false`` statuses a broken bond still publishes."""
+
+_ENDPOINTS = '_amr_bond_endpoints'
+"""The node attribute holding its :class:`_Endpoint` per bond topic."""
+
+
+class _Endpoint:
+    """The publisher and subscription a node's bonds on one topic share."""
+
+    def __init__(self, node, topic):
+        self.bonds = set()
+        self.lock = threading.Lock()
+        self.publisher = node.create_publisher(Status, topic, QoSProfile(depth=5))
+        node.create_subscription(Status, topic, self._on_status, 100)
+
+    def _on_status(self, msg):
+        with self.lock:
+            bonds = list(self.bonds)
+        for bond in bonds:
+            bond.on_status(msg)
+
+
+def prepare_bonds(node, topic):
+    """
+    Return the bond endpoint of ``node`` on ``topic``, made now if it does not exist.
+
+    :param node: an rclpy node.
+    :param topic: the bond topic (Nav2: ``bond``).
+    """
+    endpoints = node.__dict__.setdefault(_ENDPOINTS, {})
+    if topic not in endpoints:
+        endpoints[topic] = _Endpoint(node, topic)
+    return endpoints[topic]
 
 
 class Bond:
@@ -58,8 +96,9 @@ class Bond:
         self.broken = False
         self._sister_seen = None
         self._dead_left = 0
-        self._publisher = node.create_publisher(Status, topic, QoSProfile(depth=5))
-        self._subscription = node.create_subscription(Status, topic, self._on_status, 100)
+        self._endpoint = prepare_bonds(node, topic)
+        with self._endpoint.lock:
+            self._endpoint.bonds.add(self)
         self._timer = node.create_timer(self.heartbeat_period, self._tick)
         self._publish(True)
 
@@ -88,9 +127,10 @@ class Bond:
         msg.active = active
         msg.heartbeat_timeout = self.heartbeat_timeout
         msg.heartbeat_period = self.heartbeat_period
-        self._publisher.publish(msg)
+        self._endpoint.publisher.publish(msg)
 
-    def _on_status(self, msg):
+    def on_status(self, msg):
+        """Take a status heard on the bond topic (the shared subscription's callback)."""
         if self.broken or msg.id != self.id or msg.instance_id == self.instance_id:
             return
         if not msg.active:
@@ -116,10 +156,10 @@ class Bond:
             self._dead_left = DEAD_REPEATS
 
     def destroy(self):
-        """Break the bond if it is not, and remove its publisher, subscription and timer."""
+        """Break the bond if it is not, stop its heartbeat and stop hearing statuses."""
         if not self.broken:
             self.broken = True
             self._publish(False)
         self._node.destroy_timer(self._timer)
-        self._node.destroy_subscription(self._subscription)
-        self._node.destroy_publisher(self._publisher)
+        with self._endpoint.lock:
+            self._endpoint.bonds.discard(self)

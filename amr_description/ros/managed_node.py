@@ -18,6 +18,7 @@ fails, the node staying where it was, as a Nav2 node whose callback returns FAIL
 """
 
 from amr_description.ros.bond import Bond
+from amr_description.ros.bond import prepare_bonds
 from amr_description.ros.node import LifecycleNode
 from rclpy.lifecycle import TransitionCallbackReturn
 
@@ -64,8 +65,12 @@ class ManagedNode(LifecycleNode):
         return TransitionCallbackReturn.SUCCESS
 
     def on_configure(self, state):
-        """Run :meth:`configure`."""
-        return self._run(self.configure, 'Configuring')
+        """Run :meth:`configure`; then make the bond topic's endpoints, matched by activate."""
+        result = self._run(self.configure, 'Configuring')
+        if result == TransitionCallbackReturn.SUCCESS and self.wants_bond() and \
+                float(self.get_parameter('bond_heartbeat_period').value) > 0.0:
+            prepare_bonds(self, BOND_TOPIC)
+        return result
 
     def on_activate(self, state):
         """Run :meth:`activate`, then create the bond."""

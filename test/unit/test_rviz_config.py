@@ -18,8 +18,10 @@ def test_a_saved_rviz_config_gives_the_fixed_frame_topics_and_the_displays_not_s
     assert config.topics == {
         'image_topics': ['/camera/image_raw'], 'imu_topics': [],
         'odometry_topics': ['/odom'], 'point_cloud_topics': [],
-        'robot_description_topics': ['/robot_description'], 'scan_topics': ['/scan']}
-    assert config.not_shown == ['Map (rviz_default_plugins/Map)']  # the Path is disabled
+        'robot_description_topics': ['/robot_description'], 'scan_topics': ['/scan'],
+        'map_topics': ['/map'], 'particle_cloud_topics': [], 'pose_array_topics': [],
+        'pose_covariance_topics': []}
+    assert config.not_shown == []  # the Path is disabled
 
 
 def test_groups_are_walked_and_a_description_file_source_is_not_a_topic(tmp_path):
@@ -76,9 +78,10 @@ def test_displays_are_plug_ins_found_through_their_entry_point_group():
     from amr_description.web.displays import registry
     from amr_description.web.displays.base import Display
     classes = registry.display_classes()
-    assert list(classes) == ['world', 'robot_model', 'tf_axes', 'trails', 'laser_scan',
-                             'point_cloud', 'imu', 'image', 'navsat', 'contacts', 'teleop_pad',
-                             'status']
+    assert list(classes) == ['world', 'map', 'robot_model', 'tf_axes', 'trails', 'laser_scan',
+                             'point_cloud', 'imu', 'image', 'navsat', 'contacts',
+                             'particle_cloud', 'pose_array', 'pose_covariance', 'teleop_pad',
+                             'pose_tool', 'status']
     assert all(issubclass(cls, Display) for cls in classes.values())
     # every display module's Display subclass is registered: one module, one registration
     folder = os.path.join(os.path.dirname(HERE), '..', 'amr_description', 'web', 'displays')

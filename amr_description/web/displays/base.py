@@ -74,6 +74,8 @@ class FrameManager:
     :ivar rates: ``{'/clock': Rate, '/tf': Rate}``.
     :ivar jumps: backward jumps of ``/clock`` seen (int).
     :ivar last_jump: ``(wall s, from sim s, to sim s)`` of the last one, or None.
+    :ivar message_frames: frames named by messages (a map's ``header.frame_id``) that may be
+        the fixed frame before TF has them, as RViz lets a map's frame be.
     """
 
     def __init__(self, node):
@@ -85,6 +87,7 @@ class FrameManager:
         self.rates = {'/clock': Rate(), '/tf': Rate()}
         self.jumps = 0
         self.last_jump = None
+        self.message_frames = set()
         static_qos = QoSProfile(depth=100, durability=DurabilityPolicy.TRANSIENT_LOCAL)
         node.create_subscription(TFMessage, '/tf', self._on_tf, 100)
         node.create_subscription(TFMessage, '/tf_static', self._on_tf_static, static_qos)

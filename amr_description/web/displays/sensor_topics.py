@@ -44,11 +44,17 @@ class SensorTopicsDisplay(Display):
     :cvar label: the checkbox label (RViz's display name).
     :cvar default_frame: the frame of messages without ``header.frame_id`` (drawn as the
         fixed frame when TF does not have it); '' for none.
+    :cvar qos: the subscriptions' QoS profile (sensor data: best effort, volatile).
+    :cvar placed: True when a drawn message follows its frame between messages
+        (:meth:`place` moves it; a map under ``map -> odom``), False when the next message
+        redraws it.
     """
 
     message_type = None
     label = ''
     default_frame = ''
+    qos = qos_profile_sensor_data
+    placed = False
 
     def __init__(self, node, server, frames, topics):
         """Subscribe every named topic; with ``'*'``, every one found of ``message_type``."""
@@ -60,11 +66,11 @@ class SensorTopicsDisplay(Display):
             self.add_topic(topic)
 
     def add_topic(self, topic):
-        """Subscribe ``topic`` (sensor-data QoS)."""
+        """Subscribe ``topic`` (:attr:`qos`)."""
         self._topics[topic] = _Topic()
         self.node.create_subscription(self.message_type, topic,
                                       lambda msg, topic=topic: self._on_message(topic, msg),
-                                      qos_profile_sensor_data)
+                                      self.qos)
 
     def build(self, gui):
         """Add the display's checkbox."""
@@ -92,7 +98,7 @@ class SensorTopicsDisplay(Display):
                 msg = item.msg
             if item.node is not None and item.node.visible != show:
                 item.node.visible = show
-            if msg is None or not show or item.drawn is msg:
+            if msg is None or not show or (item.drawn is msg and not self.placed):
                 continue
             frame = msg.header.frame_id.lstrip('/') or self.default_frame
             T = context.pose(frame) if frame != context.fixed else np.eye(4)
@@ -100,6 +106,9 @@ class SensorTopicsDisplay(Display):
                 T = np.eye(4)  # the simulator's world, not in TF: drawn as the fixed frame
             if T is None:
                 context.missing.append(frame)
+                continue
+            if item.drawn is msg:
+                self.place(item.node, msg, T)
                 continue
             name = f'/{self.label.lower()}/' + topic.strip('/').replace('/', '_')
             item.drawn = msg
@@ -117,6 +126,13 @@ class SensorTopicsDisplay(Display):
         :param node: the node drawn last time for this topic, or None.
         """
         raise NotImplementedError
+
+    def place(self, node, msg, T):
+        """
+        Move the drawn ``node`` of ``msg`` to ``T`` (its frame in the fixed frame, 4x4).
+
+        Called on every redraw of an unchanged message when :attr:`placed` is True.
+        """
 
 
 def rainbow(values, low, high):

@@ -1,0 +1,188 @@
+# Copyright 2026 The amr_description Authors
+# Licensed under the Apache License, Version 2.0
+"""
+The viewer's navigation displays and its "2D Pose Estimate" tool, in a real browser.
+
+One stack as a Nav2 user runs it: the ``sim`` stack in arena.sdf (the viewer reading an
+``.rviz`` file with Fixed Frame ``map`` and the Map, ParticleCloud and PoseWithCovariance
+displays) and ``localization_launch.py`` with a map of the arena. Before AMCL has a pose the
+fixed frame ``map`` exists only through the map, which is drawn (its dark walls go when its
+checkbox is cleared). After a first pose the robot is drawn where it is; a drag from the
+robot's pixels with the tool publishes ``/initialpose`` in ``map`` with RViz's covariance at
+the robot's ground-truth position (the tool's ground point is the pixel's), AMCL takes it,
+and the particles and the covariance ellipse are drawn.
+"""
+
+import math
+
+from browser import centroid  # noqa: I100 - helpers next to this file
+from browser import colour_mask
+from browser import ensure_chromium
+from browser import free_port
+from browser import open_page
+import numpy as np
+import pytest
+from test_localization import _arena_map
+from test_localization import LocalizationPeer
+from test_localization import RVIZ_COVARIANCE
+
+pytest.importorskip('nav2_msgs.msg')
+
+CHASSIS_RGB = (0, 0, 204)  # urdf/amr.urdf material "blue" (0 0 0.8)
+
+VIEW = """Visualization Manager:
+  Global Options:
+    Fixed Frame: map
+  Displays:
+    - Class: rviz_default_plugins/Grid
+      Name: Grid
+    - Class: rviz_default_plugins/RobotModel
+      Name: RobotModel
+      Description Topic: {Value: /robot_description}
+    - Class: rviz_default_plugins/Map
+      Name: Map
+      Topic: {Value: /map}
+    - Class: nav2_rviz_plugins/ParticleCloud
+      Name: Amcl Particle Swarm
+      Topic: {Value: /particle_cloud}
+    - Class: rviz_default_plugins/PoseWithCovariance
+      Name: AMCL Pose
+      Topic: {Value: /amcl_pose}
+"""
+
+
+@pytest.fixture(autouse=True)
+def chromium():
+    assert ensure_chromium(), 'Debian chromium is missing: run scripts/setup'
+
+
+class ToolPeer(LocalizationPeer):
+    """LocalizationPeer plus what the viewer's tool publishes on /initialpose."""
+
+    def __init__(self, domain_id):
+        super().__init__(domain_id)
+        self.tool_poses = []
+        self.node.create_subscription(self.Pose, '/initialpose', self._on_initial_pose, 10)
+
+    def _on_initial_pose(self, msg):
+        if msg.header.stamp.sec or msg.header.stamp.nanosec:  # the peer's own are unstamped
+            self.tool_poses.append(msg)
+
+
+def _dark(image):
+    """Return how many grey pixels of the view are dark (the map's occupied cells at 0.7)."""
+    view = _view(image)
+    grey = view.max(axis=2) - view.min(axis=2) < 12
+    return int(np.count_nonzero(grey & (view.max(axis=2) < 110)))
+
+
+def _view(image):
+    """Return the 3D view's part of a screenshot: left of the panel, without the axes logo."""
+    h, w, _ = image.shape
+    view = image[:, :w // 2].astype(int)
+    view[h - 90:, :90] = 255
+    return view
+
+
+def _reddish(view):
+    """Return how many pixels are the particles' red, blended with the floor or not."""
+    r, g, b = view[..., 0], view[..., 1], view[..., 2]
+    return int(np.count_nonzero((r > 200) & (g < 180) & (b < 140) & (r - b > 90)))
+
+
+def _mask(page, rgb, tolerance=40):
+    mask = colour_mask(page.pixels(), rgb, tolerance)
+    h, w = mask.shape
+    mask[h - 90:, :90] = False  # viser's axes logo
+    mask[:, int(w * 0.5):] = False  # the control panel
+    return mask
+
+
+def test_map_particles_and_the_pose_estimate_tool(procs, exe, ros_env, tmp_path):
+    from test_slam import _yaw
+    view = tmp_path / 'nav.rviz'
+    view.write_text(VIEW)
+    port = free_port()
+    map_yaml = _arena_map(tmp_path)
+    sim = procs.start([exe('ros2'), 'launch', 'amr_description', 'sim.launch.py',
+                       'world:=arena', f'viewer_port:={port}', f'rviz_config:={view}'], ros_env)
+    peer = ToolPeer(int(ros_env['ROS_DOMAIN_ID']))
+    loc = None
+    try:
+        # as a user does: the simulation first, then localization beside it
+        assert sim.wait_for_output('Configured and activated diff_drive_controller', 240.0), \
+            sim.output[-2000:]
+        assert peer.spin_until(lambda: len(peer.odom) > 0, 120.0), sim.output[-2000:]
+        loc = procs.start([exe('ros2'), 'launch', 'amr_description', 'localization_launch.py',
+                           f'map:={map_yaml}', 'use_sim_time:=true'], ros_env)
+        assert loc.wait_for_output('Please set the initial pose', 240.0), loc.output[-3000:]
+        with open_page(f'http://127.0.0.1:{port}') as page:
+            # the map alone makes "map" a fixed frame; clearing its checkbox removes its walls
+            assert page.wait_for_text('only its map is drawn', 120.0), sim.output[-2000:]
+            page.close_notifications()
+            page.page.wait_for_timeout(1000)
+            with_map = _dark(page.pixels(str(tmp_path / 'with_map.png')))
+            page.page.get_by_text('Map', exact=True).click()
+            page.page.wait_for_timeout(1000)
+            without_map = _dark(page.pixels(str(tmp_path / 'without_map.png')))
+            page.page.get_by_text('Map', exact=True).click()
+            assert with_map > without_map + 150, (with_map, without_map)
+
+            # a first pose (0.3 m off) puts map -> odom in TF: the robot is drawn
+            truth = peer.odom[-1].pose.pose.position
+            assert peer.spin_until(lambda: peer.set_pose(truth.x + 0.3, truth.y, 0.0)
+                                   or peer.amcl_poses, 60.0), loc.output[-2000:]
+            deadline = peer.now + 30.0
+            robot = None
+            while robot is None and peer.now < deadline:
+                peer.spin_until(lambda: False, 0.5)
+                robot = centroid(_mask(page, CHASSIS_RGB))
+            assert robot is not None, sim.output[-2000:]
+
+            # the tool: press on the robot's pixels, drag up the screen, release
+            assert peer.spin_until(lambda: peer.amcl_poses, 60.0)
+            drawn = peer.amcl_poses[-1].pose.pose.position  # where the robot is drawn
+            page.page.get_by_text('2D Pose Estimate', exact=True).click()
+            page.page.wait_for_timeout(500)
+            x, y = robot
+            page.page.mouse.move(x, y)
+            page.page.mouse.down()
+            for step in range(1, 11):
+                page.page.mouse.move(x, y - 8 * step)
+                page.page.wait_for_timeout(50)
+            page.page.mouse.up()
+            assert peer.spin_until(lambda: peer.tool_poses, 60.0), sim.output[-2000:]
+            sent = peer.tool_poses[-1]
+            assert sent.header.frame_id == 'map'
+            cov = sent.pose.covariance
+            assert (cov[0], cov[7], cov[35]) == pytest.approx(RVIZ_COVARIANCE)
+            p = sent.pose.pose.position
+            # the ground point under the robot's pixels is where AMCL's pose put the robot,
+            # give or take the height of the pixels' centroid above the ground
+            error = math.hypot(p.x - drawn.x, p.y - drawn.y)
+            yaw = math.degrees(_yaw(sent.pose.pose.orientation))
+            print(f'tool pose {p.x:.3f} {p.y:.3f} m, yaw {yaw:.1f} deg; robot drawn at '
+                  f'{drawn.x:.3f} {drawn.y:.3f} m: {100 * error:.1f} cm apart')
+            assert error < 0.3
+            assert loc.wait_for_output('Setting pose', 30.0)
+
+            # AMCL's particles (thin red lines, lighter where they blend with the floor) go
+            # with their checkbox; the covariance ellipse is pink (alpha 0.3 over the floor)
+            assert peer.spin_until(lambda: peer.clouds, 60.0)
+            deadline = peer.now + 30.0
+            particles = ellipse = 0
+            while (particles < 300 or ellipse < 300) and peer.now < deadline:
+                peer.spin_until(lambda: False, 0.5)
+                image = _view(page.pixels(str(tmp_path / 'nav_viewer.png')))
+                ellipse = int(np.count_nonzero((image[..., 0] > 235) & (image[..., 2] > 230)
+                                               & (image[..., 1] < 232)))
+                page.page.get_by_text('ParticleCloud', exact=True).click()
+                page.page.wait_for_timeout(1000)
+                without = _reddish(_view(page.pixels()))
+                page.page.get_by_text('ParticleCloud', exact=True).click()
+                particles = _reddish(image) - without
+            assert particles >= 300 and ellipse >= 300, (particles, ellipse)
+    finally:
+        peer.close()
+        assert loc is None or loc.interrupt(60) is not None
+        assert sim.interrupt(60) is not None
