@@ -60,6 +60,26 @@ def parse_float(text, name='value'):
     return value
 
 
+class Arguments(dict):
+    """Launch-argument values; ``given`` holds the names the user set."""
+
+    given = frozenset()
+
+
+def with_defaults(declared, args):
+    """
+    Return ``args`` completed with the default values of the ``declared`` arguments.
+
+    :param declared: :class:`DeclareLaunchArgument` list.
+    :param args: dict of values (an :class:`Arguments` keeps its ``given``).
+    :returns: :class:`Arguments`.
+    """
+    values = Arguments((d.name, d.default_value) for d in declared)
+    values.update(args)
+    values.given = args.given if isinstance(args, Arguments) else frozenset(args)
+    return values
+
+
 class DeclareLaunchArgument:
     """
     A launch argument set as ``name:=value`` (``launch.actions.DeclareLaunchArgument``).

@@ -4,8 +4,8 @@
 The mapping and localization stacks: slam_toolbox's and nav2_bringup's launch files.
 
 Registered in :data:`amr_description.launch.stacks.STACKS` with their declared arguments
-(upstream's names and defaults); the functions import :mod:`.stacks` (the ``sim`` stack) when
-called, as that module imports this one.
+(upstream's names and defaults); the ``slam`` stack (``sim`` + ``online_async``) is in
+:mod:`.stacks`, which imports this module.
 """
 
 import os
@@ -14,6 +14,7 @@ from amr_description.launch.actions import DeclareLaunchArgument
 from amr_description.launch.actions import LaunchError
 from amr_description.launch.actions import Node
 from amr_description.launch.actions import parse_bool
+from amr_description.launch.actions import with_defaults
 
 PACKAGE = 'amr_description'
 
@@ -59,12 +60,11 @@ def localization(args):
     :returns: list of actions.
     :raises LaunchError: on a bad argument value or a missing file.
     """
-    from amr_description.launch.stacks import _with_defaults
-    args = _with_defaults(LOCALIZATION_ARGUMENTS, args)
+    args = with_defaults(LOCALIZATION_ARGUMENTS, args)
     use_sim_time = parse_bool(args['use_sim_time'], 'use_sim_time')
     autostart = parse_bool(args['autostart'], 'autostart')
     respawn = parse_bool(args['use_respawn'], 'use_respawn')
-    params = os.path.expanduser(args['params_file'] or _share_file('config', 'nav2_params.yaml'))
+    params = os.path.expanduser(args['params_file'] or share_file('config', 'nav2_params.yaml'))
     if not os.path.isfile(params):
         raise LaunchError(f"launch argument 'params_file': no such file '{params}'")
     map_yaml = os.path.expanduser(args['map'])
@@ -82,9 +82,19 @@ def localization(args):
     ]
 
 
-def _share_file(folder, name):
+def share_file(folder, name):
+    """
+    Return the path of ``folder/name`` in the package's share directory.
+
+    :raises LaunchError: when the package is not installed.
+    """
     from ament_index_python.packages import get_package_share_directory
-    return os.path.join(get_package_share_directory(PACKAGE), folder, name)
+    from ament_index_python.packages import PackageNotFoundError
+    try:
+        share = get_package_share_directory(PACKAGE)
+    except (PackageNotFoundError, ValueError, LookupError):
+        raise LaunchError(f"package '{PACKAGE}' not found") from None
+    return os.path.join(share, folder, name)
 
 
 def online_async(args):
@@ -101,12 +111,11 @@ def online_async(args):
     :returns: list of actions.
     :raises LaunchError: on a bad argument value or a missing params file.
     """
-    from amr_description.launch.stacks import _with_defaults
-    args = _with_defaults(SLAM_ARGUMENTS, args)
+    args = with_defaults(SLAM_ARGUMENTS, args)
     use_sim_time = parse_bool(args['use_sim_time'], 'use_sim_time')
     autostart = parse_bool(args['autostart'], 'autostart')
     managed = parse_bool(args['use_lifecycle_manager'], 'use_lifecycle_manager')
-    params = args['slam_params_file'] or _share_file('config', 'mapper_params_online_async.yaml')
+    params = args['slam_params_file'] or share_file('config', 'mapper_params_online_async.yaml')
     if not os.path.isfile(os.path.expanduser(params)):
         raise LaunchError(f"launch argument 'slam_params_file': no such file '{params}'")
     actions = [Node(PACKAGE, 'async_slam_toolbox_node', name='slam_toolbox', namespace='',
@@ -118,18 +127,3 @@ def online_async(args):
         actions.append(Node(PACKAGE, 'lifecycle_autostart', output='screen',
                             arguments=['/slam_toolbox', 'configure', 'activate']))
     return actions
-
-
-def slam(args):
-    """
-    Describe the ``slam`` stack: ``sim`` (world, robot, controllers, viewer) + ``online_async``.
-
-    :param args: dict of launch-argument values (``SIM_ARGUMENTS`` and ``SLAM_ARGUMENTS``).
-    :returns: list of actions.
-    :raises LaunchError: on a bad argument value.
-    """
-    from amr_description.launch.stacks import _with_defaults
-    from amr_description.launch.stacks import sim
-    from amr_description.launch.stacks import SIM_ARGUMENTS
-    args = _with_defaults(SIM_ARGUMENTS + SLAM_ARGUMENTS[1:], args)
-    return sim(args) + online_async(args)

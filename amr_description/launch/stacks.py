@@ -21,6 +21,7 @@ import os
 from amr_description.core.description.files import parse_xacro_args
 from amr_description.core.description.files import read_description
 from amr_description.core.description.urdf_model import parse_xml
+from amr_description.launch.actions import Arguments
 from amr_description.launch.actions import ComposableNode
 from amr_description.launch.actions import ComposableNodeContainer
 from amr_description.launch.actions import DeclareLaunchArgument
@@ -30,10 +31,11 @@ from amr_description.launch.actions import OnProcessExit
 from amr_description.launch.actions import parse_bool
 from amr_description.launch.actions import parse_float
 from amr_description.launch.actions import parse_launch_arguments
+from amr_description.launch.actions import with_defaults
 from amr_description.launch.nav_stacks import localization
 from amr_description.launch.nav_stacks import LOCALIZATION_ARGUMENTS
 from amr_description.launch.nav_stacks import online_async
-from amr_description.launch.nav_stacks import slam
+from amr_description.launch.nav_stacks import share_file
 from amr_description.launch.nav_stacks import SLAM_ARGUMENTS
 from amr_description.web.server import PORT_ARGUMENT
 
@@ -53,13 +55,7 @@ def urdf_path():
     :returns: the path (str).
     :raises LaunchError: when the package is not installed.
     """
-    from ament_index_python.packages import get_package_share_directory
-    from ament_index_python.packages import PackageNotFoundError
-    try:
-        share = get_package_share_directory(PACKAGE)
-    except (PackageNotFoundError, ValueError, LookupError):
-        raise LaunchError(f"package '{PACKAGE}' not found") from None
-    return os.path.join(share, 'urdf', 'amr.urdf.xacro')
+    return share_file('urdf', 'amr.urdf.xacro')
 
 
 def read_urdf(path=None, xacro_args=''):
@@ -189,20 +185,6 @@ def _page(args, name):
     return {'port': port}, env
 
 
-class _Arguments(dict):
-    """Launch-argument values; ``given`` holds the names the user set."""
-
-    given = frozenset()
-
-
-def _with_defaults(declared, args):
-    """Return ``args`` completed with the default values of the ``declared`` arguments."""
-    values = _Arguments((d.name, d.default_value) for d in declared)
-    values.update(args)
-    values.given = args.given if isinstance(args, _Arguments) else frozenset(args)
-    return values
-
-
 def display(args):
     """
     Describe the ``display`` stack (the tutorial's display.launch.py without RViz).
@@ -218,7 +200,7 @@ def display(args):
     :returns: list of actions.
     :raises LaunchError: on a bad argument value or an unreadable URDF.
     """
-    args = _with_defaults(DISPLAY_ARGUMENTS, args)
+    args = with_defaults(DISPLAY_ARGUMENTS, args)
     use_sim_time = parse_bool(args['use_sim_time'], 'use_sim_time')
     gui = parse_bool(args['gui'], 'gui')
     viewer = parse_bool(args['viewer'], 'viewer')
@@ -263,7 +245,7 @@ def sim(args):
     :returns: list of actions.
     :raises LaunchError: on a bad argument value or an unreadable URDF.
     """
-    args = _with_defaults(SIM_ARGUMENTS, args)
+    args = with_defaults(SIM_ARGUMENTS, args)
     use_sim_time = parse_bool(args['use_sim_time'], 'use_sim_time')
     rtf = parse_float(args['rtf'], 'rtf')
     if rtf < 0:
@@ -352,7 +334,7 @@ def fleet(args):
     :returns: list of actions.
     :raises LaunchError: on a bad argument value or an unreadable URDF.
     """
-    args = _with_defaults(FLEET_ARGUMENTS, args)
+    args = with_defaults(FLEET_ARGUMENTS, args)
     use_sim_time = parse_bool(args['use_sim_time'], 'use_sim_time')
     rtf = parse_float(args['rtf'], 'rtf')
     if rtf < 0:
@@ -431,6 +413,23 @@ def fleet(args):
     return actions
 
 
+def slam(args):
+    """
+    Describe the ``slam`` stack: ``sim`` (world, robot, controllers, viewer) + ``online_async``.
+
+    The viewer reads ``config/nav2_default_view.rviz`` (Fixed Frame ``map``; the map, scans
+    and poses) unless ``rviz_config`` names another file.
+
+    :param args: dict of launch-argument values (``SIM_ARGUMENTS`` and ``SLAM_ARGUMENTS``).
+    :returns: list of actions.
+    :raises LaunchError: on a bad argument value.
+    """
+    args = with_defaults(SIM_ARGUMENTS + SLAM_ARGUMENTS[1:], args)
+    if not args['rviz_config']:
+        args['rviz_config'] = share_file('config', 'nav2_default_view.rviz')
+    return sim(args) + online_async(args)
+
+
 STACKS = {
     'display': (display, DISPLAY_ARGUMENTS,
                 'robot_state_publisher + joint_state_publisher(_gui) + viewer for the '
@@ -478,7 +477,7 @@ def resolve(name, argv=()):
     :raises LaunchError: on an unknown stack or a bad argument.
     """
     _, declared, _ = STACKS[stack_name(name)]
-    values = _Arguments(parse_launch_arguments(declared, list(argv)))
+    values = Arguments(parse_launch_arguments(declared, list(argv)))
     values.given = frozenset(arg.partition(':=')[0] for arg in argv)
     return values
 
