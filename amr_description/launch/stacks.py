@@ -158,8 +158,12 @@ FLEET_ARGUMENTS = [
 
 
 def _rviz(args):
-    """Return the viewer's ``rviz_config`` parameter when ``rviz_config:=`` is given."""
-    return {'rviz_config': args['rviz_config']} if args['rviz_config'] else {}
+    """Return the viewer's ``rviz_config`` (a bare name not found here: the package's)."""
+    path = args['rviz_config']
+    if path and os.path.basename(path) == path and not os.path.exists(path):
+        shipped = share_file('config', path)
+        path = shipped if os.path.isfile(shipped) else path
+    return {'rviz_config': path} if path else {}
 
 
 def _page(args, name):
@@ -417,16 +421,14 @@ def slam(args):
     """
     Describe the ``slam`` stack: ``sim`` (world, robot, controllers, viewer) + ``online_async``.
 
-    The viewer reads ``config/nav2_default_view.rviz`` (Fixed Frame ``map``; the map, scans
-    and poses) unless ``rviz_config`` names another file.
+    The viewer reads ``config/nav2_default_view.rviz`` unless ``rviz_config`` names a file.
 
     :param args: dict of launch-argument values (``SIM_ARGUMENTS`` and ``SLAM_ARGUMENTS``).
     :returns: list of actions.
     :raises LaunchError: on a bad argument value.
     """
     args = with_defaults(SIM_ARGUMENTS + SLAM_ARGUMENTS[1:], args)
-    if not args['rviz_config']:
-        args['rviz_config'] = share_file('config', 'nav2_default_view.rviz')
+    args['rviz_config'] = args['rviz_config'] or 'nav2_default_view.rviz'
     return sim(args) + online_async(args)
 
 

@@ -27,6 +27,10 @@ What RViz's displays of the tutorial show, on a web page served by this node:
   camera's frustum (:mod:`amr_description.web.displays.image`);
   **NavSatFix** of ``navsat_topics`` as text; **Contacts**
   (ros_gz_interfaces) of ``contact_topics`` as red markers;
+- **Map** of ``map_topics`` (nav_msgs/OccupancyGrid on the ground, RViz's palettes),
+  **ParticleCloud** (nav2_msgs) and **PoseArray** arrows, **PoseWithCovariance** with its
+  covariance ellipse, and RViz's **2D Pose Estimate** / **2D Goal Pose** tools
+  (``/initialpose``, ``/goal_pose``; docs/navigation.md);
 - **Odometry** trails of ``odometry_topics``, one colour each (``/odom`` orange,
   ``/ground_truth/odom`` green) with a legend and a Clear button. A trail whose
   ``header.frame_id`` is not in TF (the simulator's ``world``) is drawn as if that frame were

@@ -3,9 +3,10 @@
 """
 The viewer's navigation displays and its "2D Pose Estimate" tool, in a real browser.
 
-One stack as a Nav2 user runs it: the ``sim`` stack in arena.sdf (the viewer reading an
-``.rviz`` file with Fixed Frame ``map`` and the Map, ParticleCloud and PoseWithCovariance
-displays) and ``localization_launch.py`` with a map of the arena. Before AMCL has a pose the
+One stack as a Nav2 user runs it (README): the ``sim`` stack in arena.sdf with
+``rviz_config:=nav2_default_view.rviz`` (the package's: Fixed Frame ``map``, the Map, LaserScan,
+ParticleCloud and PoseWithCovariance displays), then ``localization_launch.py`` with a map of
+the arena. Before AMCL has a pose the
 fixed frame ``map`` exists only through the map, which is drawn (its dark walls go when its
 checkbox is cleared). After a first pose the robot is drawn where it is; a drag from the
 robot's pixels with the tool publishes ``/initialpose`` in ``map`` with RViz's covariance at
@@ -17,7 +18,6 @@ import math
 
 from browser import centroid  # noqa: I100 - helpers next to this file
 from browser import colour_mask
-from browser import ensure_chromium
 from browser import free_port
 from browser import open_page
 import numpy as np
@@ -25,35 +25,10 @@ import pytest
 from test_localization import _arena_map
 from test_localization import LocalizationPeer
 from test_localization import RVIZ_COVARIANCE
+from test_web_pages import CHASSIS_RGB
+from test_web_pages import chromium  # noqa: F401 - its autouse fixture: chromium is there
 
 pytest.importorskip('nav2_msgs.msg')
-
-CHASSIS_RGB = (0, 0, 204)  # urdf/amr.urdf material "blue" (0 0 0.8)
-
-VIEW = """Visualization Manager:
-  Global Options:
-    Fixed Frame: map
-  Displays:
-    - Class: rviz_default_plugins/Grid
-      Name: Grid
-    - Class: rviz_default_plugins/RobotModel
-      Name: RobotModel
-      Description Topic: {Value: /robot_description}
-    - Class: rviz_default_plugins/Map
-      Name: Map
-      Topic: {Value: /map}
-    - Class: nav2_rviz_plugins/ParticleCloud
-      Name: Amcl Particle Swarm
-      Topic: {Value: /particle_cloud}
-    - Class: rviz_default_plugins/PoseWithCovariance
-      Name: AMCL Pose
-      Topic: {Value: /amcl_pose}
-"""
-
-
-@pytest.fixture(autouse=True)
-def chromium():
-    assert ensure_chromium(), 'Debian chromium is missing: run scripts/setup'
 
 
 class ToolPeer(LocalizationPeer):
@@ -100,12 +75,11 @@ def _mask(page, rgb, tolerance=40):
 
 def test_map_particles_and_the_pose_estimate_tool(procs, exe, ros_env, tmp_path):
     from test_slam import _yaw
-    view = tmp_path / 'nav.rviz'
-    view.write_text(VIEW)
     port = free_port()
     map_yaml = _arena_map(tmp_path)
     sim = procs.start([exe('ros2'), 'launch', 'amr_description', 'sim.launch.py',
-                       'world:=arena', f'viewer_port:={port}', f'rviz_config:={view}'], ros_env)
+                       'world:=arena', f'viewer_port:={port}',
+                       'rviz_config:=nav2_default_view.rviz'], ros_env)
     peer = ToolPeer(int(ros_env['ROS_DOMAIN_ID']))
     loc = None
     try:

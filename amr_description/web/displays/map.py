@@ -25,13 +25,11 @@ map_msgs is not installed here.
 
 from amr_description.core.kinematics import quaternion_to_matrix
 from amr_description.web.displays.discovery import AUTO
+from amr_description.web.displays.sensor_topics import BEST_AVAILABLE
 from amr_description.web.displays.sensor_topics import SensorTopicsDisplay
 from amr_description.web.robot_scene import wxyz_position
 from nav_msgs.msg import OccupancyGrid
 import numpy as np
-from rclpy.qos import DurabilityPolicy
-from rclpy.qos import QoSProfile
-from rclpy.qos import ReliabilityPolicy
 
 ALPHA = 0.7
 """RViz's Map display default alpha."""
@@ -129,8 +127,7 @@ class MapDisplay(SensorTopicsDisplay):
     parameters = (('map_topics', [AUTO]),)
     topics_parameter = 'map_topics'
     rviz_classes = {'rviz_default_plugins/Map': 'map_topics'}
-    qos = QoSProfile(depth=1, reliability=ReliabilityPolicy.BEST_AVAILABLE,
-                     durability=DurabilityPolicy.BEST_AVAILABLE)
+    qos = BEST_AVAILABLE
     placed = True
 
     def _on_message(self, topic, msg):

@@ -25,13 +25,11 @@ import math
 
 from amr_description.core.kinematics import quaternion_to_matrix
 from amr_description.web.displays.discovery import AUTO
+from amr_description.web.displays.sensor_topics import BEST_AVAILABLE
 from amr_description.web.displays.sensor_topics import SensorTopicsDisplay
 from amr_description.web.robot_scene import wxyz_position
 from geometry_msgs.msg import PoseWithCovarianceStamped
 import numpy as np
-from rclpy.qos import DurabilityPolicy
-from rclpy.qos import QoSProfile
-from rclpy.qos import ReliabilityPolicy
 
 ARROW_RGB = (255, 25, 0)
 ELLIPSE_RGB = (204, 51, 204)
@@ -114,8 +112,7 @@ class PoseWithCovarianceDisplay(SensorTopicsDisplay):
     parameters = (('pose_covariance_topics', [AUTO]),)
     topics_parameter = 'pose_covariance_topics'
     rviz_classes = {'rviz_default_plugins/PoseWithCovariance': 'pose_covariance_topics'}
-    qos = QoSProfile(depth=1, reliability=ReliabilityPolicy.BEST_AVAILABLE,
-                     durability=DurabilityPolicy.BEST_AVAILABLE)
+    qos = BEST_AVAILABLE
 
     def render(self, name, msg, T, node):
         """Draw the arrow, the ellipse and the wedge under a frame placed with ``T``."""

@@ -18,10 +18,17 @@ import time
 from amr_description.web.displays.base import Display
 from amr_description.web.displays.base import Rate
 import numpy as np
+from rclpy.qos import DurabilityPolicy
 from rclpy.qos import qos_profile_sensor_data
+from rclpy.qos import QoSProfile
+from rclpy.qos import ReliabilityPolicy
 
 RATE = 10.0
 """Redraws per second at most."""
+BEST_AVAILABLE = QoSProfile(depth=1, reliability=ReliabilityPolicy.BEST_AVAILABLE,
+                            durability=DurabilityPolicy.BEST_AVAILABLE)
+"""The QoS of a display of latched data (maps, poses): the publishers' own, found at
+subscription (transient local from map_server; volatile or best effort from others)."""
 
 
 class _Topic:
