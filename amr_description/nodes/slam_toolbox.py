@@ -143,12 +143,11 @@ class SlamToolbox(ManagedNode):
                                                LATCHED)
         self._pose_pub = self.create_publisher(PoseWithCovarianceStamped, 'pose', 10)
         self._tf_pub = self.create_publisher(TFMessage, '/tf', 100)
-        self._listener = TransformListener(self, self.tf_buffer)
+        self._listener = TransformListener(self, self.tf_buffer, spin_thread=True)
         scan_sub = self.create_subscription(LaserScan, p['scan_topic'], self._on_scan,
-                                            qos_profile_sensor_data)
+                                            qos_profile_sensor_data,
+                                            callback_group=self._scan_group)
         self._active = [self._map_pub, self._meta_pub, self._pose_pub, self._tf_pub, scan_sub,
-                        self.create_timer(0.02, self._process_pending,
-                                          callback_group=self._scan_group),
                         self.create_timer(p['map_update_interval'], self._publish_map,
                                           callback_group=self._map_group)]
         if p['transform_publish_period'] > 0.0:
@@ -186,10 +185,15 @@ class SlamToolbox(ManagedNode):
 
     # --- scans ------------------------------------------------------------------------------
     def _on_scan(self, msg):
+        # a scan waits for the odometry at its stamp: the one still pending goes first, now
+        # that the odometry has had a scan period to come (no polling timer: it woke the
+        # node's executor 50 times a second)
+        self._process_pending()
         self._scans += 1
         if self._paused or self._scans % max(1, self.p['throttle_scans']):
             return
         self._pending = msg
+        self._process_pending()
 
     def _process_pending(self):
         msg = self._pending
@@ -373,7 +377,7 @@ def main(args=None):
 
     :param args: command-line arguments for rclpy (default ``sys.argv``).
     """
-    shutdown.run(SlamToolbox, args, threads=3)
+    shutdown.run(SlamToolbox, args)
 
 
 if __name__ == '__main__':

@@ -66,23 +66,50 @@ class TransformListener:
     Fill ``buffer`` from ``/tf`` and ``/tf_static``.
 
     A transform the buffer refuses (``ValueError``: a NaN, a frame naming itself) is logged
-    as one warning line (at most every 5 s) and dropped.
+    as one warning line (at most every 5 s) and dropped. With ``spin_thread``, as tf2_ros'
+    ``TransformListener(..., spin_thread=True)``, the subscriptions belong to a node of their
+    own (``transform_listener_impl_<id>``) spun by a single-threaded executor in a daemon
+    thread: the hundreds of ``/tf`` messages a second then wake a wait set of two
+    subscriptions, not the node's whole set of services and timers (in the SLAM node that
+    wake-up, not the mapping, was the larger part of its CPU).
 
-    :param node: the rclpy node that subscribes.
+    :param node: the rclpy node that subscribes (or whose context the listener's node uses).
     :param buffer: an object with ``set_transform(parent, child, time, translation,
         rotation, static)``.
-    :param callback_group: the subscriptions' callback group, or None.
+    :param callback_group: the subscriptions' callback group, or None (not with
+        ``spin_thread``).
+    :param spin_thread: subscribe on a node and thread of the listener's own.
     """
 
-    def __init__(self, node, buffer, callback_group=None):
-        """Subscribe both topics."""
+    def __init__(self, node, buffer, callback_group=None, spin_thread=False):
+        """Subscribe both topics (on the listener's own node with ``spin_thread``)."""
         self.node = node
         self.buffer = buffer
+        self._own = self._executor = None
+        if spin_thread:
+            import threading
+
+            from rclpy.executors import SingleThreadedExecutor
+            from rclpy.node import Node as RclpyNode
+            self._own = RclpyNode(f'transform_listener_impl_{id(self):x}',
+                                  context=node.context, start_parameter_services=False)
+            self._executor = SingleThreadedExecutor(context=node.context)
+            self._executor.add_node(self._own)
+            threading.Thread(target=self._spin, daemon=True).start()
+        subscriber = self._own or node
         self._subs = [
-            node.create_subscription(TFMessage, '/tf', lambda m: self._store(m, False), 100,
-                                     callback_group=callback_group),
-            node.create_subscription(TFMessage, '/tf_static', lambda m: self._store(m, True),
-                                     STATIC_QOS, callback_group=callback_group)]
+            subscriber.create_subscription(TFMessage, '/tf', lambda m: self._store(m, False),
+                                           100, callback_group=callback_group),
+            subscriber.create_subscription(TFMessage, '/tf_static',
+                                           lambda m: self._store(m, True), STATIC_QOS,
+                                           callback_group=callback_group)]
+
+    def _spin(self):
+        from rclpy.executors import ExternalShutdownException
+        try:
+            self._executor.spin()
+        except (ExternalShutdownException, RuntimeError):  # the context or executor stopped
+            pass
 
     def _store(self, msg, static):
         for t in msg.transforms:
@@ -96,7 +123,12 @@ class TransformListener:
                     f"{'/tf_static' if static else '/tf'}: {exc}", throttle_duration_sec=5.0)
 
     def destroy(self):
-        """Remove the subscriptions."""
-        for sub in self._subs:
-            self.node.destroy_subscription(sub)
+        """Remove the subscriptions (and the listener's own node and thread)."""
+        if self._own is not None:
+            self._executor.shutdown(timeout_sec=1.0)
+            self._own.destroy_node()
+            self._own = None
+        else:
+            for sub in self._subs:
+                self.node.destroy_subscription(sub)
         self._subs = []
