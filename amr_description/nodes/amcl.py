@@ -51,6 +51,7 @@ from rclpy.qos import qos_profile_system_default
 from rclpy.qos import QoSProfile
 from rclpy.qos import ReliabilityPolicy
 from sensor_msgs.msg import LaserScan
+from std_msgs.msg import Header
 from std_srvs.srv import Empty
 from tf2_msgs.msg import TFMessage
 
@@ -266,10 +267,8 @@ class Amcl(ManagedNode):
         self._pose_pub.publish(msg)
 
     def _publish_cloud(self, stamp):
-        cloud = ParticleCloud()
-        cloud.header.stamp = stamp
-        cloud.header.frame_id = self.p['global_frame_id']
-        self._cloud_pub.publish(particle_cloud_bytes(cloud.header, self.filter.filter.particles,
+        header = Header(stamp=stamp, frame_id=self.p['global_frame_id'])
+        self._cloud_pub.publish(particle_cloud_bytes(header, self.filter.filter.particles,
                                                      self.filter.filter.weights))
 
 

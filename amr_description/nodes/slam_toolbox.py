@@ -38,7 +38,6 @@ import math
 import os
 import shutil
 import subprocess
-import threading
 
 from amr_description.core.tf_buffer import TransformBuffer
 from amr_description.core.tf_buffer import TransformException
@@ -59,7 +58,6 @@ from nav_msgs.msg import MapMetaData
 from nav_msgs.msg import OccupancyGrid
 from nav_msgs.srv import GetMap
 import numpy as np
-from rclpy.callback_groups import MutuallyExclusiveCallbackGroup
 from rclpy.qos import DurabilityPolicy
 from rclpy.qos import qos_profile_sensor_data
 from rclpy.qos import QoSProfile
@@ -91,10 +89,7 @@ class SlamToolbox(ManagedNode):
         super().__init__('slam_toolbox',
                          automatically_declare_parameters_from_overrides=True)
         self.mapper = None
-        self._lock = threading.Lock()
         self._active = []  # publishers, subscriptions, timers, services of the active state
-        self._scan_group = MutuallyExclusiveCallbackGroup()
-        self._map_group = MutuallyExclusiveCallbackGroup()
         self.tf_buffer = None
         self._listener = None
         self.p = {}
@@ -145,11 +140,9 @@ class SlamToolbox(ManagedNode):
         self._tf_pub = self.create_publisher(TFMessage, '/tf', 100)
         self._listener = TransformListener(self, self.tf_buffer, spin_thread=True)
         scan_sub = self.create_subscription(LaserScan, p['scan_topic'], self._on_scan,
-                                            qos_profile_sensor_data,
-                                            callback_group=self._scan_group)
+                                            qos_profile_sensor_data)
         self._active = [self._map_pub, self._meta_pub, self._pose_pub, self._tf_pub, scan_sub,
-                        self.create_timer(p['map_update_interval'], self._publish_map,
-                                          callback_group=self._map_group)]
+                        self.create_timer(p['map_update_interval'], self._publish_map)]
         if p['transform_publish_period'] > 0.0:
             self._active.append(self.create_timer(p['transform_publish_period'],
                                                   self._publish_tf))
@@ -166,8 +159,7 @@ class SlamToolbox(ManagedNode):
         if p['use_map_saver']:
             services.append((srv.SaveMap, 'save_map', self._on_save_map))
         for kind, name, callback in services:
-            self._active.append(self.create_service(kind, prefix + name, callback,
-                                                    callback_group=self._map_group))
+            self._active.append(self.create_service(kind, prefix + name, callback))
 
     def deactivate(self):
         """Destroy what :meth:`activate` created."""
@@ -226,9 +218,8 @@ class SlamToolbox(ManagedNode):
             return
         scan = slam.Scan(np.asarray(msg.ranges, dtype=float), msg.angle_min,
                          msg.angle_increment, msg.range_min, msg.range_max, planar_pose(laser))
-        with self._lock:
-            added = self.mapper.process(planar_pose(odom), scan, stamp)
-            pose = self.mapper.pose(planar_pose(odom))
+        added = self.mapper.process(planar_pose(odom), scan, stamp)
+        pose = self.mapper.pose(planar_pose(odom))
         self._last_stamp = msg.header.stamp
         if added:
             self._last_processed = stamp
@@ -249,8 +240,7 @@ class SlamToolbox(ManagedNode):
     def _publish_tf(self):
         if self._last_stamp is None or self.mapper is None:
             return
-        with self._lock:
-            map_to_odom = self.mapper.map_to_odom()
+        map_to_odom = self.mapper.map_to_odom()
         t = stamp_seconds(self._last_stamp) + self.p['transform_timeout']
         self._tf_pub.publish(TFMessage(transforms=[planar_transform(
             self.p['map_frame'], self.p['odom_frame'], time_to_msg(t), map_to_odom)]))
@@ -258,15 +248,14 @@ class SlamToolbox(ManagedNode):
     # --- the map ----------------------------------------------------------------------------
     def _current_map(self):
         """Return the OccupancyGrid of the graph now (rebuilt when keyframes changed)."""
-        with self._lock:
-            if self.mapper is None or not self.mapper.keyframes:
-                return None
-            version = (len(self.mapper.keyframes), self.mapper.loop_closures)
-            if version != self._map_version:
-                grid = self.mapper.occupancy()
-                stamp = self._last_stamp or self.get_clock().now().to_msg()
-                self._map_msg = occupancy_grid(grid, self.p['map_frame'], stamp)
-                self._map_version = version
+        if self.mapper is None or not self.mapper.keyframes:
+            return None
+        version = (len(self.mapper.keyframes), self.mapper.loop_closures)
+        if version != self._map_version:
+            grid = self.mapper.occupancy()
+            stamp = self._last_stamp or self.get_clock().now().to_msg()
+            self._map_msg = occupancy_grid(grid, self.p['map_frame'], stamp)
+            self._map_version = version
         return self._map_msg
 
     def _publish_map(self):
@@ -303,13 +292,12 @@ class SlamToolbox(ManagedNode):
         return response
 
     def _on_serialize(self, request, response):
-        with self._lock:
-            try:
-                slam.save_graph(self.mapper, request.filename)
-                response.result = srv.SerializePoseGraph.Response.RESULT_SUCCESS
-            except OSError as exc:
-                self.get_logger().error(f'serialize_map: {exc}')
-                response.result = srv.SerializePoseGraph.Response.RESULT_FAILED_TO_WRITE_FILE
+        try:
+            slam.save_graph(self.mapper, request.filename)
+            response.result = srv.SerializePoseGraph.Response.RESULT_SUCCESS
+        except OSError as exc:
+            self.get_logger().error(f'serialize_map: {exc}')
+            response.result = srv.SerializePoseGraph.Response.RESULT_FAILED_TO_WRITE_FILE
         return response
 
     def _load(self, stem, start_pose):
@@ -336,11 +324,10 @@ class SlamToolbox(ManagedNode):
         if request.match_type == kind.START_AT_GIVEN_POSE:
             p = request.initial_pose
             start = (p.x, p.y, p.theta)
-        with self._lock:
-            try:
-                self._load(request.filename, start)
-            except ValueError as exc:
-                self.get_logger().error(f'deserialize_map: {exc}')
+        try:
+            self._load(request.filename, start)
+        except ValueError as exc:
+            self.get_logger().error(f'deserialize_map: {exc}')
         return response
 
     def _on_dynamic_map(self, request, response):
@@ -357,10 +344,9 @@ class SlamToolbox(ManagedNode):
         return response
 
     def _on_reset(self, request, response):
-        with self._lock:
-            self.mapper = slam.Mapper(self.params)
-            self._map_version = -1
-            self._last_stamp = None
+        self.mapper = slam.Mapper(self.params)
+        self._map_version = -1
+        self._last_stamp = None
         self._paused = bool(request.pause_new_measurements)
         response.result = srv.Reset.Response.RESULT_SUCCESS
         return response
@@ -373,7 +359,7 @@ class SlamToolbox(ManagedNode):
 
 def main(args=None):
     """
-    Run the SLAM node until Ctrl-C (three threads: scans, the map and services, TF).
+    Run the SLAM node until Ctrl-C (one executor thread; TF is heard on its own thread).
 
     :param args: command-line arguments for rclpy (default ``sys.argv``).
     """

@@ -15,6 +15,7 @@ and the particles and the covariance ellipse are drawn.
 """
 
 import math
+import time
 
 from browser import centroid  # noqa: I100 - helpers next to this file
 from browser import colour_mask
@@ -49,6 +50,16 @@ def _dark(image):
     view = _view(image)
     grey = view.max(axis=2) - view.min(axis=2) < 12
     return int(np.count_nonzero(grey & (view.max(axis=2) < 110)))
+
+
+def _wait_for_pixels(page, measure, done, timeout):
+    """Return ``measure`` of the page's pixels once ``done`` says so, or at ``timeout`` s."""
+    deadline = time.monotonic() + timeout
+    value = measure(page.pixels())
+    while not done(value) and time.monotonic() < deadline:
+        page.page.wait_for_timeout(250)
+        value = measure(page.pixels())
+    return value
 
 
 def _view(image):
@@ -94,11 +105,11 @@ def test_map_particles_and_the_pose_estimate_tool(procs, exe, ros_env, tmp_path)
             # the map alone makes "map" a fixed frame; clearing its checkbox removes its walls
             assert page.wait_for_text('only its map is drawn', 120.0), sim.output[-2000:]
             page.close_notifications()
-            page.page.wait_for_timeout(1000)
-            with_map = _dark(page.pixels(str(tmp_path / 'with_map.png')))
+            with_map = _wait_for_pixels(page, _dark, lambda n: n > 150, 60.0)
+            page.pixels(str(tmp_path / 'with_map.png'))
             page.page.get_by_text('Map', exact=True).click()
-            page.page.wait_for_timeout(1000)
-            without_map = _dark(page.pixels(str(tmp_path / 'without_map.png')))
+            without_map = _wait_for_pixels(page, _dark, lambda n: n < with_map - 150, 30.0)
+            page.pixels(str(tmp_path / 'without_map.png'))
             page.page.get_by_text('Map', exact=True).click()
             assert with_map > without_map + 150, (with_map, without_map)
 
