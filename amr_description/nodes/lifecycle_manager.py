@@ -13,6 +13,11 @@ success when the managed nodes are active).
 Each node is driven through its ``<node>/change_state`` and checked with ``<node>/get_state``
 (the plan is :mod:`amr_description.core.lifecycle_plan`); a transition that fails, or leaves
 the node in another state, stops the command with ``Failed to change state for node: X``.
+Unlike Nav2, a node is first asked ``get_state`` (every second, for up to 10 s) until it
+answers, and a ``change_state`` that gets no answer counts as done when ``get_state`` then
+reports the goal state: rmw_fastrtps drops a service response whose client reader the server
+has not matched within 100 ms ("failed to send response ... (timeout)", also reported against
+Nav2's bring-up in ros2/rmw_fastrtps#706), which a loaded machine met in one of six bring-ups.
 After a node is activated and ``bond_timeout`` is above 0, a bond (topic ``bond``, id = the
 node's name, heartbeat period 0.1 s, timeout ``bond_timeout``) must form within
 ``bond_timeout / 2``. While the system is active the bonds are checked every 0.2 s; a broken
@@ -43,6 +48,9 @@ SERVICE_WAIT = 2.0
 CALL_TIMEOUT = 10.0
 """Seconds a change_state or get_state call may take before it counts as failed."""
 
+FIRST_CALL_RETRY = 1.0
+"""Seconds between the get_state requests sent until a managed node first answers one."""
+
 BOND_HEARTBEAT_PERIOD = 0.1
 BOND_CHECK_PERIOD = 0.2
 RESPAWN_CHECK_PERIOD = 1.0
@@ -56,6 +64,7 @@ class _Managed:
         self.change_state = node.create_client(ChangeState, f'{name}/change_state',
                                                callback_group=group)
         self.get_state = node.create_client(GetState, f'{name}/get_state', callback_group=group)
+        self.answered = False
 
     def ready(self):
         return self.change_state.service_is_ready() and self.get_state.service_is_ready()
@@ -163,22 +172,35 @@ class LifecycleManager(Node):
             managed.change_state.wait_for_service(timeout_sec=0.1)
         return True
 
-    def _call(self, client, request):
+    def _call(self, client, request, timeout=CALL_TIMEOUT):
         done = threading.Event()
         future = client.call_async(request)
         future.add_done_callback(lambda _: done.set())
-        if not done.wait(CALL_TIMEOUT):
+        if not done.wait(timeout):
             client.remove_pending_request(future)
             return None
         return future.result()
 
+    def _first_answer(self, managed):
+        """Ask get_state until it answers: then the node's responses reach this node."""
+        deadline = time.monotonic() + CALL_TIMEOUT
+        while time.monotonic() < deadline and self.context.ok() and not shutdown.interrupted():
+            if self._call(managed.get_state, GetState.Request(), FIRST_CALL_RETRY) is not None:
+                managed.answered = True
+                return True
+        return False
+
     def _change(self, step):
         managed = self.managed[step.node]
+        if not managed.answered and not self._first_answer(managed):
+            return False
         request = ChangeState.Request()
         request.transition = Transition(id=step.transition)
         answer = self._call(managed.change_state, request)
-        if answer is None or not answer.success:
+        if answer is not None and not answer.success:
             return False
+        # no answer: the node may have made the transition and its response been dropped
+        # (rmw_fastrtps drops a response whose reader it has not matched within 100 ms)
         state = self._call(managed.get_state, GetState.Request())
         return state is not None and state.current_state.id == step.goal
 

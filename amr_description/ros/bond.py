@@ -14,10 +14,14 @@ of the other side arrived for ``heartbeat_timeout`` (unless the node's parameter
 few heartbeats. :meth:`Bond.destroy` says it once and removes the bond.
 
 All bonds of a node on one topic share one publisher and one subscription, made by the first
-bond or earlier by :func:`prepare_bonds` (a lifecycle manager at start-up, a managed node at
-configure), so that DDS has matched them with the other side long before a bond must form
-within its timeout (bondcpp makes them per bond; on a loaded machine, the Python processes'
-discovery of endpoints made at activation took over Nav2's 2 s).
+bond or earlier by :func:`prepare_bonds` (a lifecycle manager and a managed node at start-up,
+a node whose bond depends on its parameters at configure), so that DDS has matched them with the
+other side long before a bond must form within its timeout (bondcpp makes them per bond; on a
+loaded machine, the Python processes' discovery of endpoints made at activation took over
+Nav2's 2 s). The endpoint also keeps the
+last status heard for each id, so a bond started within a second after its sister's first
+heartbeat forms on that heartbeat (bondcpp drops statuses heard before its bond starts and waits
+for the next one, which on a loaded machine came 0.5 s later in one measured bring-up).
 Source: ``bondcpp/src/bond.cpp`` and ``bond/msg/Constants.msg`` of ros/bond_core (ros2 branch).
 """
 
@@ -36,6 +40,9 @@ DISABLE_PARAM = 'bond_disable_heartbeat_timeout'
 DEAD_REPEATS = 3
 """How many ``active: false`` statuses a broken bond still publishes."""
 
+RECENT = 1.0
+"""Seconds for which a status heard before a bond started still forms it."""
+
 _ENDPOINTS = '_amr_bond_endpoints'
 """The node attribute holding its :class:`_Endpoint` per bond topic."""
 
@@ -45,14 +52,28 @@ class _Endpoint:
 
     def __init__(self, node, topic):
         self.bonds = set()
+        self.last = {}  # id -> (steady seconds heard, the latest Status of that id)
         self.lock = threading.Lock()
+        self.clock = Clock(clock_type=ClockType.STEADY_TIME)
         self.publisher = node.create_publisher(Status, topic, QoSProfile(depth=5))
         node.create_subscription(Status, topic, self._on_status, 100)
 
+    def now(self):
+        return self.clock.now().nanoseconds * 1e-9
+
     def _on_status(self, msg):
         with self.lock:
+            self.last[msg.id] = (self.now(), msg)
             bonds = list(self.bonds)
         for bond in bonds:
+            bond.on_status(msg)
+
+    def add(self, bond):
+        """Register ``bond``; an active status of its id heard just before forms it."""
+        with self.lock:
+            self.bonds.add(bond)
+            heard, msg = self.last.get(bond.id, (None, None))
+        if msg is not None and msg.active and self.now() - heard <= RECENT:
             bond.on_status(msg)
 
 
@@ -91,16 +112,14 @@ class Bond:
         if not node.has_parameter(DISABLE_PARAM):
             node.declare_parameter(DISABLE_PARAM, False)
         self._heartbeat_timeout_disabled = bool(node.get_parameter(DISABLE_PARAM).value)
-        self._clock = Clock(clock_type=ClockType.STEADY_TIME)
         self._formed = threading.Event()
         self.broken = False
         self._sister_seen = None
         self._dead_left = 0
         self._endpoint = prepare_bonds(node, topic)
-        with self._endpoint.lock:
-            self._endpoint.bonds.add(self)
         self._timer = node.create_timer(self.heartbeat_period, self._tick)
         self._publish(True)
+        self._endpoint.add(self)
 
     @property
     def formed(self):
@@ -117,11 +136,11 @@ class Bond:
         return self._formed.wait(timeout)
 
     def _now(self):
-        return self._clock.now().nanoseconds * 1e-9
+        return self._endpoint.now()
 
     def _publish(self, active):
         msg = Status()
-        msg.header.stamp = self._clock.now().to_msg()
+        msg.header.stamp = self._endpoint.clock.now().to_msg()
         msg.id = self.id
         msg.instance_id = self.instance_id
         msg.active = active

@@ -40,8 +40,10 @@ class ManagedNode(LifecycleNode):
     def __init__(self, node_name, **kwargs):
         """Declare ``bond_heartbeat_period``; the node starts unconfigured."""
         super().__init__(node_name, **kwargs)
-        self.declare_parameter('bond_heartbeat_period', 0.1)
+        period = self.declare_parameter('bond_heartbeat_period', 0.1).value
         self.bond = None
+        if period > 0.0 and type(self).wants_bond is ManagedNode.wants_bond:
+            prepare_bonds(self, BOND_TOPIC)  # matched with the manager's while it configures
 
     # what subclasses implement
     def configure(self):
@@ -65,7 +67,7 @@ class ManagedNode(LifecycleNode):
         return TransitionCallbackReturn.SUCCESS
 
     def on_configure(self, state):
-        """Run :meth:`configure`; then make the bond topic's endpoints, matched by activate."""
+        """Run :meth:`configure`; then make the bond topic's endpoints if not made yet."""
         result = self._run(self.configure, 'Configuring')
         if result == TransitionCallbackReturn.SUCCESS and self.wants_bond() and \
                 float(self.get_parameter('bond_heartbeat_period').value) > 0.0:
