@@ -1,0 +1,268 @@
+# Copyright 2026 The amr_description Authors
+# Licensed under the Apache License, Version 2.0
+"""
+Nav2's 2-D costmap as arrays: cost values, footprints, static, obstacle and inflation layers.
+
+A :class:`Costmap` is a ``(height, width)`` ``uint8`` array of Nav2 costs, row ``j`` and
+column ``i`` being cell ``(mx=i, my=j)``, whose corner (cell (0, 0)'s outer corner) sits at
+``origin`` (m) in the costmap's global frame, ``resolution`` m per cell, as
+``nav2_costmap_2d::Costmap2D``: ``mx = floor((wx - origin_x) / resolution)`` and a cell's
+centre is ``origin + (m + 0.5) * resolution``.
+
+Cost values (``nav2_costmap_2d/cost_values.hpp``): 0 free, 1..252 inflated, 253 inscribed,
+254 lethal, 255 unknown. :func:`to_occupancy` is ``costmap_2d_publisher.cpp``'s translation to
+an OccupancyGrid. :func:`static_costs` is ``StaticLayer::interpretValue``; :func:`inflate` is
+``InflationLayer``'s cost formula over the Euclidean distance to the nearest lethal cell
+(scipy's exact distance transform instead of Nav2's wavefront, which gives the same distances
+between cell centres); :func:`raytrace` and :meth:`Costmap.mark` are ``ObstacleLayer``'s
+clearing and marking. Footprints follow ``nav2_costmap_2d/src/footprint.cpp``.
+"""
+
+import math
+
+import numpy as np
+from scipy import ndimage
+
+FREE_SPACE = 0
+MAX_NON_OBSTACLE = 252
+INSCRIBED_INFLATED_OBSTACLE = 253
+LETHAL_OBSTACLE = 254
+NO_INFORMATION = 255
+
+
+def occupancy_table():
+    """
+    Return the 256-entry table from Nav2 costs to OccupancyGrid values (int8).
+
+    0 -> 0, 1..252 -> ``1 + 97 * (c - 1) // 251`` (1..98), 253 -> 99, 254 -> 100, 255 -> -1.
+    Source: ``nav2_costmap_2d/src/costmap_2d_publisher.cpp``.
+    """
+    table = np.empty(256, np.int8)
+    table[0] = 0
+    costs = np.arange(1, 253)
+    table[1:253] = 1 + (97 * (costs - 1)) // 251
+    table[253], table[254], table[255] = 99, 100, -1
+    return table
+
+
+_OCCUPANCY = occupancy_table()
+
+
+def to_occupancy(costs):
+    """Return Nav2 costs (uint8 array, any shape) as OccupancyGrid values (int8)."""
+    return _OCCUPANCY[np.asarray(costs, np.uint8)]
+
+
+def static_costs(occupancy, track_unknown_space=False, lethal_cost_threshold=100,
+                 trinary_costmap=True, unknown_cost_value=255):
+    """
+    Return the static layer's costs for an OccupancyGrid's values.
+
+    :param occupancy: int array of OccupancyGrid values (-1 unknown, 0..100).
+    :param track_unknown_space: unknown stays NO_INFORMATION (else FREE).
+    :param lethal_cost_threshold: values at or above it are LETHAL.
+    :param trinary_costmap: other values are FREE (else scaled ``v / threshold * 254``).
+    :param unknown_cost_value: the value read as unknown (255 is -1 read as unsigned).
+    :returns: uint8 costs of the same shape.
+    Source: ``StaticLayer::interpretValue`` (``nav2_costmap_2d/plugins/static_layer.cpp``).
+    """
+    values = np.asarray(occupancy).astype(np.int16) & 0xFF  # -1 -> 255, as Nav2 reads it
+    if trinary_costmap:
+        out = np.zeros(values.shape, np.uint8)
+    else:
+        scaled = np.floor(values / float(lethal_cost_threshold) * LETHAL_OBSTACLE)
+        out = np.clip(scaled, 0, LETHAL_OBSTACLE).astype(np.uint8)
+    out[values >= lethal_cost_threshold] = LETHAL_OBSTACLE
+    unknown = values == unknown_cost_value
+    out[unknown] = NO_INFORMATION if track_unknown_space else FREE_SPACE
+    return out
+
+
+def footprint_from_radius(radius):
+    """Return the 16-gon Nav2 makes of ``robot_radius`` (m): a ``(16, 2)`` array, base frame."""
+    angles = np.arange(16) * (2.0 * math.pi / 16)
+    return np.column_stack((np.cos(angles), np.sin(angles))) * float(radius)
+
+
+def parse_footprint(text):
+    """
+    Return the ``footprint`` parameter (``"[[x1, y1], [x2, y2], ...]"``) as an ``(n, 2)`` array.
+
+    :raises ValueError: (one line) for text that is not at least 3 [x, y] pairs of numbers.
+    Source: ``makeFootprintFromString`` (``nav2_costmap_2d/src/footprint.cpp``).
+    """
+    import yaml
+    try:
+        points = np.array(yaml.safe_load(text), dtype=float)
+    except (yaml.YAMLError, TypeError, ValueError):
+        points = np.zeros((0,))
+    if points.ndim != 2 or points.shape[1] != 2 or len(points) < 3 or \
+            not np.all(np.isfinite(points)):
+        raise ValueError(f'footprint: expected a list of at least 3 [x, y] points, got {text!r}')
+    return points
+
+
+def pad_footprint(points, padding):
+    """Return the footprint moved out by ``padding`` (m) along x and y (``padFootprint``)."""
+    points = np.asarray(points, float)
+    return points + np.sign(points) * float(padding)
+
+
+def footprint_radii(points):
+    """
+    Return ``(inscribed, circumscribed)`` radii (m) of a footprint polygon about its origin.
+
+    Inscribed: the smallest distance from the origin to an edge; circumscribed: the largest to a
+    vertex (``calculateMinAndMaxDistances``).
+    """
+    p = np.asarray(points, float)
+    q = np.roll(p, -1, axis=0)
+    d = q - p
+    t = np.clip(-(p * d).sum(1) / np.maximum((d * d).sum(1), 1e-18), 0.0, 1.0)
+    closest = p + t[:, None] * d
+    return float(np.hypot(*closest.T).min()), float(np.hypot(*p.T).max())
+
+
+def inflate(costs, resolution, inflation_radius=0.55, cost_scaling_factor=10.0,
+            inscribed_radius=0.0, inflate_unknown=False, inflate_around_unknown=False):
+    """
+    Return ``costs`` with Nav2's inflation layer applied (a new uint8 array).
+
+    For a cell at distance ``d`` (m, between cell centres) from the nearest lethal cell, within
+    ``ceil(inflation_radius / resolution)`` cells: 254 at 0, 253 up to ``inscribed_radius``,
+    else ``int(252 * exp(-cost_scaling_factor * (d - inscribed_radius)))``; combined by maximum,
+    an unknown cell taking only 253 and above (any cost with ``inflate_unknown``).
+    Source: ``InflationLayer::computeCost`` and ``updateCosts``
+    (``nav2_costmap_2d/plugins/inflation_layer.cpp``).
+    """
+    costs = np.asarray(costs, np.uint8)
+    sources = costs == LETHAL_OBSTACLE
+    if inflate_around_unknown:
+        sources |= costs == NO_INFORMATION
+    if not sources.any():
+        return costs.copy()
+    cells = ndimage.distance_transform_edt(~sources)
+    reach = math.ceil(inflation_radius / resolution)
+    d = cells * resolution
+    new = np.floor(MAX_NON_OBSTACLE * np.exp(-cost_scaling_factor * (d - inscribed_radius)))
+    new = np.clip(new, 0, MAX_NON_OBSTACLE)
+    new[d <= inscribed_radius] = INSCRIBED_INFLATED_OBSTACLE
+    new[cells == 0] = LETHAL_OBSTACLE
+    new[cells > reach] = 0
+    new = new.astype(np.uint8)
+    out = np.maximum(costs, new)
+    unknown = costs == NO_INFORMATION
+    takes = (new > 0) if inflate_unknown else (new >= INSCRIBED_INFLATED_OBSTACLE)
+    out[unknown & takes] = new[unknown & takes]
+    return out
+
+
+class Costmap:
+    """
+    A grid of Nav2 costs placed in a frame.
+
+    :param costs: ``(height, width)`` uint8 costs.
+    :param resolution: m per cell.
+    :param origin: ``(x, y)`` of cell (0, 0)'s outer corner, m, in ``frame``.
+    :param frame: the costmap's global frame.
+    """
+
+    def __init__(self, costs, resolution, origin=(0.0, 0.0), frame='map'):
+        """Keep the array (not copied)."""
+        self.costs = np.asarray(costs, np.uint8)
+        self.resolution = float(resolution)
+        self.origin = (float(origin[0]), float(origin[1]))
+        self.frame = frame
+
+    @classmethod
+    def empty(cls, width_m, height_m, resolution, origin=(0.0, 0.0), frame='map',
+              value=FREE_SPACE):
+        """Return a costmap of ``width_m`` x ``height_m`` metres filled with ``value``."""
+        shape = (int(round(height_m / resolution)), int(round(width_m / resolution)))
+        return cls(np.full(shape, value, np.uint8), resolution, origin, frame)
+
+    @property
+    def shape(self):
+        """``(height, width)`` in cells."""
+        return self.costs.shape
+
+    def world_to_map(self, x, y):
+        """
+        Return the cell ``(mx, my)`` holding world point ``(x, y)``, or None outside the map.
+
+        Source: ``Costmap2D::worldToMap``.
+        """
+        if not (math.isfinite(x) and math.isfinite(y)):
+            return None
+        mx = math.floor((x - self.origin[0]) / self.resolution)
+        my = math.floor((y - self.origin[1]) / self.resolution)
+        h, w = self.costs.shape
+        if x < self.origin[0] or y < self.origin[1] or mx >= w or my >= h:
+            return None
+        return mx, my
+
+    def map_to_world(self, mx, my):
+        """Return the world ``(x, y)`` of cell ``(mx, my)``'s centre (arrays accepted)."""
+        return (self.origin[0] + (np.asarray(mx) + 0.5) * self.resolution,
+                self.origin[1] + (np.asarray(my) + 0.5) * self.resolution)
+
+    def cost_at(self, x, y):
+        """Return the cost under world point ``(x, y)``, or None outside the map."""
+        cell = self.world_to_map(x, y)
+        return None if cell is None else int(self.costs[cell[1], cell[0]])
+
+    def cells_of(self, points):
+        """
+        Return the cells of world points and which of them are inside the map.
+
+        :param points: ``(n, 2)`` world points, m.
+        :returns: ``(mx, my, inside)`` int arrays and a bool mask.
+        """
+        p = np.asarray(points, float).reshape(-1, 2)
+        m = np.floor((p - np.array(self.origin)) / self.resolution).astype(np.int64)
+        h, w = self.costs.shape
+        inside = (m[:, 0] >= 0) & (m[:, 1] >= 0) & (m[:, 0] < w) & (m[:, 1] < h)
+        return m[:, 0], m[:, 1], inside
+
+    def raytrace(self, sensor, points, max_range=3.0, min_range=0.0):
+        """
+        Clear (to FREE) the cells from ``sensor`` towards each point, the end cell excluded.
+
+        :param sensor: ``(x, y)`` of the sensor origin in the costmap frame, m.
+        :param points: ``(n, 2)`` end points, m; rays are cut at ``max_range``.
+        :param max_range: ``raytrace_max_range``, m. :param min_range: ``raytrace_min_range``.
+        Source: ``ObstacleLayer::raytraceFreespace`` (it clears up to, not including, the cell
+        of the end point).
+        """
+        p = np.asarray(points, float).reshape(-1, 2)
+        if not len(p):
+            return
+        s = np.asarray(sensor, float)
+        v = p - s
+        length = np.hypot(v[:, 0], v[:, 1])
+        reach = np.minimum(length, max_range)
+        step = self.resolution * 0.5
+        n = int(math.ceil(max(reach.max(), 0.0) / step)) + 1
+        t = np.arange(n) * step  # distances along each ray
+        unit = v / np.maximum(length, 1e-12)[:, None]
+        along = (t[None, :] >= min_range) & (t[None, :] < reach[:, None])
+        xs = s[0] + unit[:, :1] * t[None, :]
+        ys = s[1] + unit[:, 1:] * t[None, :]
+        mx, my, inside = self.cells_of(np.column_stack((xs[along], ys[along])))
+        ex, ey, _ = self.cells_of(p)
+        end = np.repeat(ex * 1_000_003 + ey, along.sum(1))
+        keep = inside & (mx * 1_000_003 + my != end)
+        self.costs[my[keep], mx[keep]] = FREE_SPACE
+
+    def mark(self, points, sensor=None, max_range=2.5, min_range=0.0):
+        """
+        Mark LETHAL the cells of the points within ``[min_range, max_range]`` of ``sensor``.
+
+        Source: ``ObstacleLayer::updateBounds`` (``obstacle_max_range``, ``obstacle_min_range``).
+        """
+        p = np.asarray(points, float).reshape(-1, 2)
+        if sensor is not None and len(p):
+            d = np.hypot(*(p - np.asarray(sensor, float)).T)
+            p = p[(d <= max_range) & (d >= min_range)]
+        mx, my, inside = self.cells_of(p)
+        self.costs[my[inside], mx[inside]] = LETHAL_OBSTACLE

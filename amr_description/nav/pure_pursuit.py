@@ -1,0 +1,268 @@
+# Copyright 2026 The amr_description Authors
+# Licensed under the Apache License, Version 2.0
+"""
+Regulated Pure Pursuit (Nav2's ``FollowPath`` controller) and the goal and progress checkers.
+
+:class:`RegulatedPurePursuit` computes ``(v, w)`` (m/s, rad/s, REP 103, base frame) from the
+path in the robot's frame: the carrot is the point at lookahead distance ``L`` along the path
+(the exact circle-segment intersection), the curvature ``2 y / (x^2 + y^2)``; it rotates in
+place towards the path when the carrot is more than ``rotate_to_heading_min_angle`` off, and
+towards the goal's heading once the carrot is within the goal tolerance; otherwise the speed
+starts at ``desired_linear_vel``, is regulated by curvature and by cost (distance to
+obstacles estimated from the inflation cost), floored at ``regulated_linear_scaling_min_speed``,
+slowed on approach, and ``w = v * curvature``. The arc ahead is checked on the local costmap;
+a collision raises :class:`NoValidControl`. Parameters, defaults and formulas:
+``parameter_handler.cpp``, ``regulated_pure_pursuit_controller.cpp``, ``path_handler.cpp``,
+``collision_checker.cpp`` and ``regulation_functions.hpp`` of
+nav2_regulated_pure_pursuit_controller (Jazzy).
+:class:`SimpleGoalChecker` and :class:`SimpleProgressChecker` are ``nav2_controller/plugins``'.
+"""
+
+import math
+
+from amr_description.nav.costmap import INSCRIBED_INFLATED_OBSTACLE
+from amr_description.nav.costmap import LETHAL_OBSTACLE
+from amr_description.nav.costmap import NO_INFORMATION
+import numpy as np
+
+RPP_DEFAULTS = {
+    'desired_linear_vel': 0.5, 'lookahead_dist': 0.6, 'min_lookahead_dist': 0.3,
+    'max_lookahead_dist': 0.9, 'lookahead_time': 1.5, 'rotate_to_heading_angular_vel': 1.8,
+    'transform_tolerance': 0.1, 'use_velocity_scaled_lookahead_dist': False,
+    'min_approach_linear_velocity': 0.05, 'approach_velocity_scaling_dist': 0.6,
+    'use_collision_detection': True, 'max_allowed_time_to_collision_up_to_carrot': 1.0,
+    'use_regulated_linear_velocity_scaling': True,
+    'use_cost_regulated_linear_velocity_scaling': True,
+    'regulated_linear_scaling_min_radius': 0.90, 'regulated_linear_scaling_min_speed': 0.25,
+    'use_fixed_curvature_lookahead': False, 'curvature_lookahead_dist': 0.6,
+    'use_rotate_to_heading': True, 'allow_reversing': False,
+    'rotate_to_heading_min_angle': 0.785, 'max_angular_accel': 3.2, 'cost_scaling_dist': 0.6,
+    'cost_scaling_gain': 1.0, 'inflation_cost_scaling_factor': 3.0,
+    'use_cancel_deceleration': False, 'cancel_deceleration': 3.2,
+    'interpolate_curvature_after_goal': False, 'max_robot_pose_search_dist': -1.0,
+    'stateful': True,
+}
+"""RPP's parameters (under ``<controller_id>.``) and Nav2's code defaults."""
+
+
+class NoValidControl(Exception):
+    """No safe command exists (FollowPath's NO_VALID_CONTROL, 106)."""
+
+
+def carrot(path_xy, distance):
+    """
+    Return the point at ``distance`` (m) from the origin along a path in the robot frame.
+
+    The first pose at least ``distance`` away and the one before it bound a segment; the
+    carrot is where the circle of radius ``distance`` crosses it (the first pose itself when it
+    is the path's first). No such pose: the last pose. ``path_xy`` is ``(n, 2)``, n >= 1.
+    Source: ``getLookAheadPoint`` and ``circleSegmentIntersection``.
+    """
+    p = np.asarray(path_xy, float)
+    d = np.hypot(p[:, 0], p[:, 1])
+    far = np.nonzero(d >= distance)[0]
+    if not len(far):
+        return p[-1].copy()
+    k = int(far[0])
+    if k == 0:
+        return p[0].copy()
+    a, b = p[k - 1], p[k]
+    seg = b - a
+    # |a + t seg| = distance, t in [0, 1]: the larger root
+    qa = seg @ seg
+    qb = 2.0 * (a @ seg)
+    qc = a @ a - distance * distance
+    disc = max(qb * qb - 4.0 * qa * qc, 0.0)
+    t = (-qb + math.sqrt(disc)) / (2.0 * qa) if qa > 0 else 1.0
+    return a + min(max(t, 0.0), 1.0) * seg
+
+
+def curvature(x, y):
+    """Return pure pursuit's curvature ``2 y / (x^2 + y^2)`` (1/m; 0 near the origin)."""
+    d2 = x * x + y * y
+    return 2.0 * y / d2 if d2 > 0.001 else 0.0
+
+
+def cost_distance(cost, inscribed_radius, scaling_factor):
+    """
+    Return the obstacle distance (m) an inflation cost stands for, inverting Nav2's formula.
+
+    ``d = (k * r_inscribed - ln(cost) + ln(253)) / k`` (``costConstraint`` in
+    ``regulation_functions.hpp``).
+    """
+    return (scaling_factor * inscribed_radius - math.log(cost) + math.log(253.0)) / \
+        scaling_factor
+
+
+class RegulatedPurePursuit:
+    """
+    Nav2's Regulated Pure Pursuit on plain arrays.
+
+    :param params: ``{name: value}`` overriding :data:`RPP_DEFAULTS`.
+    :param goal_xy_tolerance: the goal checker's ``xy_goal_tolerance`` (m).
+    :param inscribed_radius: the footprint's inscribed radius (m), for cost regulation.
+    """
+
+    def __init__(self, params=None, goal_xy_tolerance=0.25, inscribed_radius=0.0):
+        """Merge the parameters over the defaults."""
+        self.p = dict(RPP_DEFAULTS)
+        self.p.update(params or {})
+        self.goal_xy_tolerance = float(goal_xy_tolerance)
+        self.inscribed_radius = float(inscribed_radius)
+        self.reset()
+
+    def reset(self):
+        """Forget the latched goal-heading rotation (a new path)."""
+        self.rotating_to_goal = False
+
+    def lookahead(self, speed):
+        """Return the lookahead distance (m) for the current speed (m/s)."""
+        p = self.p
+        if p['use_velocity_scaled_lookahead_dist']:
+            return min(max(abs(speed) * p['lookahead_time'], p['min_lookahead_dist']),
+                       p['max_lookahead_dist'])
+        return p['lookahead_dist']
+
+    def _rotate(self, angle, w_now, dt):
+        p = self.p
+        w = math.copysign(p['rotate_to_heading_angular_vel'], angle)
+        a = p['max_angular_accel']
+        w = min(max(w, w_now - a * dt), w_now + a * dt)
+        limit = math.sqrt(2.0 * a * abs(angle))
+        return 0.0, min(max(w, -limit), limit)
+
+    def compute(self, path, speed=(0.0, 0.0), dt=0.05, cost=0, remaining=None,
+                collision=None):
+        """
+        Return ``(v, w)`` for a path in the robot frame.
+
+        :param path: ``(n, 3)`` poses ``x, y, yaw`` in the robot's base frame (m, rad); the
+            last is the goal.
+        :param speed: the robot's ``(v, w)`` now (m/s, rad/s).
+        :param dt: the control period (s).
+        :param cost: the local costmap's cost under the robot (0..255).
+        :param remaining: the path's length from the robot (m; default: from ``path``).
+        :param collision: ``f(x, y, yaw) -> bool`` in the robot frame, or None (no check).
+        :raises NoValidControl: when the arc to the carrot is in collision.
+        """
+        p = self.p
+        path = np.asarray(path, float)
+        L = self.lookahead(speed[0])
+        goal = path[-1]
+        c = carrot(path[:, :2], L)
+        c_dist = math.hypot(c[0], c[1])
+        if p['use_rotate_to_heading'] and (c_dist < self.goal_xy_tolerance or
+                                           (p['stateful'] and self.rotating_to_goal)):
+            self.rotating_to_goal = p['stateful']
+            yaw = goal[2] if math.isfinite(goal[2]) else 0.0
+            return self._rotate(math.atan2(math.sin(yaw), math.cos(yaw)), speed[1], dt)
+        heading = math.atan2(c[1], c[0])
+        if p['use_rotate_to_heading'] and abs(heading) > p['rotate_to_heading_min_angle']:
+            return self._rotate(heading, speed[1], dt)
+        kappa = curvature(c[0], c[1])
+        v = self._regulate(kappa, cost, path, remaining)
+        w = v * kappa
+        if collision is not None and p['use_collision_detection'] and \
+                self._arc_collides(v, w, c_dist, collision):
+            raise NoValidControl('RegulatedPurePursuitController detected collision ahead!')
+        return v, w
+
+    def _regulate(self, kappa, cost, path, remaining):
+        p = self.p
+        v = p['desired_linear_vel']
+        limits = [v]
+        if p['use_regulated_linear_velocity_scaling'] and kappa != 0.0:
+            radius = abs(1.0 / kappa)
+            r_min = p['regulated_linear_scaling_min_radius']
+            if radius < r_min:
+                limits.append(v * (1.0 - abs(radius - r_min) / r_min))
+        if p['use_cost_regulated_linear_velocity_scaling'] and \
+                cost not in (0, NO_INFORMATION) and cost < LETHAL_OBSTACLE:
+            d = cost_distance(cost, self.inscribed_radius, p['inflation_cost_scaling_factor'])
+            if d < p['cost_scaling_dist']:
+                limits.append(v * p['cost_scaling_gain'] * d / p['cost_scaling_dist'])
+        v = max(min(limits), p['regulated_linear_scaling_min_speed'])
+        if remaining is None:
+            xy = path[:, :2]
+            remaining = math.hypot(*xy[0]) + float(np.hypot(*np.diff(xy, axis=0).T).sum())
+        if remaining < p['approach_velocity_scaling_dist']:
+            end = math.hypot(path[-1, 0], path[-1, 1])
+            v = max(v * end / p['approach_velocity_scaling_dist'],
+                    p['min_approach_linear_velocity'])
+        return min(max(v, 0.0), p['desired_linear_vel'])
+
+    def _arc_collides(self, v, w, c_dist, collision):
+        if abs(v) < 1e-9:
+            return False
+        horizon = min(self.p['max_allowed_time_to_collision_up_to_carrot'], c_dist / abs(v))
+        step = 0.05 / abs(v)  # about one 5 cm cell per step
+        x = y = yaw = 0.0
+        for _ in range(int(math.ceil(horizon / step))):
+            x += v * step * math.cos(yaw)
+            y += v * step * math.sin(yaw)
+            yaw += w * step
+            if collision(x, y, yaw):
+                return True
+        return False
+
+
+def circle_collides(costmap, x, y):
+    """Return True when a round robot's centre cell at ``(x, y)`` is inscribed or lethal."""
+    cost = costmap.cost_at(x, y)
+    return cost is not None and INSCRIBED_INFLATED_OBSTACLE <= cost <= LETHAL_OBSTACLE
+
+
+class SimpleGoalChecker:
+    """
+    ``nav2_controller::SimpleGoalChecker``: xy within tolerance, then yaw (xy latched).
+
+    :param xy_goal_tolerance: m. :param yaw_goal_tolerance: rad.
+    :param stateful: once xy is reached it stays reached until :meth:`reset`.
+    """
+
+    def __init__(self, xy_goal_tolerance=0.25, yaw_goal_tolerance=0.25, stateful=True):
+        """Keep the tolerances."""
+        self.xy = float(xy_goal_tolerance)
+        self.yaw = float(yaw_goal_tolerance)
+        self.stateful = bool(stateful)
+        self.reset()
+
+    def reset(self):
+        """Forget the latched position."""
+        self.xy_reached = False
+
+    def is_goal_reached(self, pose, goal):
+        """Return True for ``pose`` and ``goal`` as ``(x, y, yaw)`` in one frame."""
+        if not self.xy_reached:
+            if (pose[0] - goal[0]) ** 2 + (pose[1] - goal[1]) ** 2 > self.xy * self.xy:
+                return False
+            self.xy_reached = self.stateful
+        d = math.atan2(math.sin(goal[2] - pose[2]), math.cos(goal[2] - pose[2]))
+        return abs(d) <= self.yaw
+
+
+class SimpleProgressChecker:
+    """
+    ``nav2_controller::SimpleProgressChecker``: move far enough in time, or fail.
+
+    The robot must move ``required_movement_radius`` (m) from a baseline pose within
+    ``movement_time_allowance`` (s); the baseline resets each time it does.
+    """
+
+    def __init__(self, required_movement_radius=0.5, movement_time_allowance=10.0):
+        """Keep the limits (m, s)."""
+        self.radius = float(required_movement_radius)
+        self.allowance = float(movement_time_allowance)
+        self.reset()
+
+    def reset(self):
+        """Start over at the next pose."""
+        self.baseline = None
+
+    def check(self, pose, now):
+        """Return False when the robot at ``pose`` (x, y) at ``now`` (s) made no progress."""
+        if self.baseline is None or \
+                math.hypot(pose[0] - self.baseline[0], pose[1] - self.baseline[1]) > self.radius:
+            self.baseline = (pose[0], pose[1], now)
+            return True
+        return now - self.baseline[2] <= self.allowance

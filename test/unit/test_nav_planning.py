@@ -1,0 +1,184 @@
+# Copyright 2026 The amr_description Authors
+# Licensed under the Apache License, Version 2.0
+"""Costmap layers, the GridBased planner and Regulated Pure Pursuit against closed forms."""
+
+import math
+
+from amr_description.nav import costmap as cm
+from amr_description.nav.planner import make_plan
+from amr_description.nav.planner import path_length
+from amr_description.nav.planner import PlanError
+from amr_description.nav.pure_pursuit import carrot
+from amr_description.nav.pure_pursuit import circle_collides
+from amr_description.nav.pure_pursuit import NoValidControl
+from amr_description.nav.pure_pursuit import RegulatedPurePursuit
+from amr_description.nav.pure_pursuit import SimpleGoalChecker
+from amr_description.nav.pure_pursuit import SimpleProgressChecker
+import numpy as np
+import pytest
+
+
+def test_occupancy_translation_is_nav2s():
+    assert list(cm.to_occupancy([0, 1, 252, 253, 254, 255])) == [0, 1, 98, 99, 100, -1]
+    assert cm.to_occupancy([127])[0] == 1 + 97 * 126 // 251
+
+
+def test_static_layer_reads_values_as_nav2():
+    grid = np.array([-1, 0, 50, 99, 100])
+    assert list(cm.static_costs(grid)) == [0, 0, 0, 0, 254]
+    assert list(cm.static_costs(grid, track_unknown_space=True)) == [255, 0, 0, 0, 254]
+    assert list(cm.static_costs(grid, trinary_costmap=False)) == [0, 0, 127, 251, 254]
+
+
+def test_footprints_and_their_radii():
+    square = cm.parse_footprint('[[0.25, 0.15], [0.25, -0.15], [-0.25, -0.15], [-0.25, 0.15]]')
+    inscribed, circumscribed = cm.footprint_radii(square)
+    assert inscribed == pytest.approx(0.15)
+    assert circumscribed == pytest.approx(math.hypot(0.25, 0.15))
+    padded = cm.footprint_radii(cm.pad_footprint(square, 0.01))
+    assert padded[0] == pytest.approx(0.16)
+    # a 16-gon of r: the edge midpoints are at r cos(pi / 16)
+    assert cm.footprint_radii(cm.footprint_from_radius(0.22))[0] == \
+        pytest.approx(0.22 * math.cos(math.pi / 16))
+    with pytest.raises(ValueError, match='footprint: expected'):
+        cm.parse_footprint('[[1, 2], [3]]')
+
+
+def test_inflation_follows_nav2s_formula():
+    costs = np.zeros((41, 41), np.uint8)
+    costs[20, 20] = cm.LETHAL_OBSTACLE
+    out = cm.inflate(costs, 0.05, inflation_radius=0.55, cost_scaling_factor=3.0,
+                     inscribed_radius=0.1)
+    assert out[20, 20] == 254 and out[20, 22] == 253  # 0.10 m: inscribed
+    assert out[20, 24] == int(252 * math.exp(-3.0 * 0.1))  # 0.20 m
+    assert out[23, 24] == int(252 * math.exp(-3.0 * 0.15))  # 5 cells on the diagonal
+    assert out[20, 31] == int(252 * math.exp(-3.0 * 0.45))  # 11 cells = ceil(0.55 / 0.05)
+    assert out[20, 32] == 0  # beyond the inflation radius
+    unknown = costs.copy()
+    unknown[20, 22] = unknown[20, 26] = cm.NO_INFORMATION
+    out = cm.inflate(unknown, 0.05, 0.55, 3.0, 0.1)
+    assert out[20, 22] == 253 and out[20, 26] == 255  # only inscribed costs overwrite unknown
+
+
+def test_obstacle_layer_clears_along_rays_and_marks_their_ends():
+    grid = cm.Costmap(np.full((10, 10), cm.LETHAL_OBSTACLE, np.uint8), 0.1)
+    grid.raytrace((0.05, 0.55), [(0.95, 0.55)], max_range=3.0)
+    assert list(grid.costs[5]) == [0] * 9 + [254]  # the end cell is not cleared
+    assert (grid.costs[4] == 254).all()
+    grid.costs[:] = 0
+    grid.mark([(0.95, 0.55), (0.95, 0.05)], sensor=(0.05, 0.55), max_range=0.95)
+    assert grid.costs[5, 9] == 254 and grid.costs[0, 9] == 0  # the second is 1.03 m away
+    assert grid.world_to_map(-0.01, 0.5) is None and grid.world_to_map(0.99, 0.0) == (9, 0)
+
+
+def _room(width=5.0, height=5.0, res=0.05):
+    return cm.Costmap.empty(width, height, res)
+
+
+def test_plan_on_free_ground_is_the_straight_line():
+    path = make_plan(_room(), (0.5, 0.5), (4.5, 0.5, 1.0))
+    assert path_length(path) == pytest.approx(4.0, abs=1e-9)
+    assert path[-1, 2] == 1.0 and np.isnan(path[0, 2])
+    diagonal = make_plan(_room(), (0.525, 0.525), (3.525, 3.525, 0.0))
+    assert path_length(diagonal) == pytest.approx(3.0 * math.sqrt(2), abs=1e-9)
+
+
+def test_plan_goes_through_the_gap_of_a_wall():
+    room = _room()
+    room.costs[:80, 50] = cm.LETHAL_OBSTACLE  # x = 2.5 m, from y = 0 to 4 m
+    room.costs = cm.inflate(room.costs, 0.05, 0.3, 10.0, 0.1)
+    path = make_plan(room, (0.5, 0.5), (4.5, 0.5, 0.0))
+    shortest = 2 * math.hypot(2.0, 4.0 + 0.1 - 0.5)  # around the inscribed end of the wall
+    # 8-connected steps are up to 8.2 % longer than the straight line (1 / cos(22.5 deg)), and
+    # NavFn's costs keep the path off the inflated cells
+    assert shortest < path_length(path) < 1.15 * shortest
+    assert path[:, 1].max() > 4.0
+    cells = [room.world_to_map(x, y) for x, y in path[:, :2]]
+    assert all(room.costs[my, mx] < 253 for mx, my in cells)
+
+
+def test_plan_errors_and_tolerance():
+    room = _room()
+    with pytest.raises(PlanError) as e:
+        make_plan(room, (0.5, 0.5), (5.5, 0.5, 0.0))
+    assert e.value.code == 'GOAL_OUTSIDE_MAP'
+    with pytest.raises(PlanError) as e:
+        make_plan(room, (-0.5, 0.5), (1.5, 0.5, 0.0))
+    assert e.value.code == 'START_OUTSIDE_MAP'
+    room.costs[40:61, 40:61] = cm.LETHAL_OBSTACLE  # a 1.05 m block from 2.0 to 3.05 m
+    with pytest.raises(PlanError) as e:
+        make_plan(room, (0.5, 0.5), (2.5, 2.5, 0.0), tolerance=0.0)
+    assert e.value.code == 'GOAL_OCCUPIED'
+    near = make_plan(room, (0.5, 0.5), (2.1, 2.5, 0.0), tolerance=0.5)
+    assert near[-1, 0] == pytest.approx(1.975) and near[-1, 1] == pytest.approx(2.525)
+    with pytest.raises(PlanError) as e:
+        make_plan(room, (0.5, 0.5), (2.5, 2.5, 0.0), tolerance=0.3)
+    assert e.value.code == 'NO_VALID_PATH'
+
+
+def test_unknown_space_only_when_allowed():
+    room = _room()
+    room.costs[:, 50] = cm.NO_INFORMATION
+    assert len(make_plan(room, (0.5, 0.5), (4.5, 0.5, 0.0), allow_unknown=True))
+    with pytest.raises(PlanError) as e:
+        make_plan(room, (0.5, 0.5), (4.5, 0.5, 0.0), allow_unknown=False, tolerance=0.0)
+    assert e.value.code == 'NO_VALID_PATH'
+
+
+def _line(y=0.0, length=3.0, step=0.05):
+    xs = np.arange(0.0, length + 1e-9, step)
+    return np.column_stack((xs, np.full_like(xs, y), np.zeros_like(xs)))
+
+
+def test_carrot_is_on_the_lookahead_circle():
+    assert carrot(_line()[:, :2], 0.6) == pytest.approx([0.6, 0.0])
+    c = carrot(_line(0.3)[:, :2], 0.6)
+    assert c == pytest.approx([math.sqrt(0.27), 0.3])
+    assert carrot(_line(length=0.3)[:, :2], 0.6) == pytest.approx([0.3, 0.0])
+
+
+def test_rpp_speeds():
+    rpp = RegulatedPurePursuit()
+    assert rpp.compute(_line()) == pytest.approx((0.5, 0.0))
+    # carrot (sqrt(0.27), 0.3): curvature 0.6 / 0.36; radius 0.6 < 0.9 slows to 0.5 * 2 / 3
+    v, w = rpp.compute(_line(0.3))
+    assert v == pytest.approx(0.5 * (1 - 0.3 / 0.9)) and w == pytest.approx(v * 0.6 / 0.36)
+    # cost 200 near an obstacle: d = (3 r - ln 200 + ln 253) / 3
+    rpp = RegulatedPurePursuit(inscribed_radius=0.2255)
+    d = (3 * 0.2255 - math.log(200) + math.log(253)) / 3
+    assert rpp.compute(_line(), cost=200)[0] == pytest.approx(0.5 * d / 0.6)
+    # approach: 0.3 m of path left scales by 0.3 / 0.6
+    assert rpp.compute(_line(length=0.3))[0] == pytest.approx(0.25)
+
+
+def test_rpp_rotates_in_place_with_its_acceleration_limit():
+    rpp = RegulatedPurePursuit()
+    behind = -_line()
+    assert rpp.compute(behind, speed=(0.0, 0.0), dt=0.05) == pytest.approx((0.0, 0.16))
+    assert rpp.compute(behind, speed=(0.0, 1.8), dt=0.05) == pytest.approx((0.0, 1.8))
+    # at the goal position: turn to the goal's heading, then keep turning (stateful)
+    at_goal = np.array([[0.1, 0.0, -1.0]])
+    v, w = rpp.compute(at_goal, speed=(0.0, -1.8))
+    assert v == 0.0 and w == pytest.approx(-1.8)
+    assert rpp.rotating_to_goal
+
+
+def test_rpp_refuses_an_arc_into_an_obstacle():
+    local = cm.Costmap.empty(3.0, 3.0, 0.05, origin=(-1.5, -1.5), frame='odom')
+    local.costs[:, 40] = cm.LETHAL_OBSTACLE  # a wall 0.5 m ahead
+    rpp = RegulatedPurePursuit()
+    with pytest.raises(NoValidControl):
+        rpp.compute(_line(), collision=lambda x, y, yaw: circle_collides(local, x, y))
+    local.costs[:] = 0
+    assert rpp.compute(_line(), collision=lambda x, y, yaw: circle_collides(local, x, y))[0] == 0.5
+
+
+def test_goal_and_progress_checkers():
+    goal = SimpleGoalChecker()
+    assert not goal.is_goal_reached((0.3, 0.0, 0.0), (0.0, 0.0, 0.0))
+    assert not goal.is_goal_reached((0.2, 0.0, 1.0), (0.0, 0.0, 0.0))  # xy now latched
+    assert goal.is_goal_reached((0.3, 0.0, 0.2), (0.0, 0.0, 0.0))
+    progress = SimpleProgressChecker()
+    assert progress.check((0.0, 0.0), 0.0) and progress.check((0.4, 0.0), 9.0)
+    assert progress.check((0.6, 0.0), 10.5)  # moved 0.6 m: a new baseline at 10.5 s
+    assert progress.check((0.7, 0.0), 20.5) and not progress.check((0.7, 0.0), 20.6)
