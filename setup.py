@@ -61,6 +61,7 @@ setup(
             'amr_description.nodes.static_transform_publisher:main',
             'lifecycle_manager = amr_description.nodes.lifecycle_manager:main',
             'map_server = amr_description.nodes.map_server:main',
+            'planner_server = amr_description.nodes.planner_server:main',
             'map_saver_server = amr_description.nodes.map_saver:server_main',
             'map_saver_cli = amr_description.nodes.map_saver:cli_main',
             'async_slam_toolbox_node = amr_description.nodes.slam_toolbox:main',

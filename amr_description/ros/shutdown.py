@@ -267,18 +267,26 @@ def run(factory, args=None, threads=1):
     :param args: command-line arguments for rclpy (default ``sys.argv``).
     :param threads: 1 spins the node on a single-threaded executor; more use rclpy's
         ``MultiThreadedExecutor`` with that many threads (a node whose callbacks wait for
-        other callbacks, e.g. a service that waits for a message).
+        other callbacks, e.g. a service that waits for a message). A node's
+        ``companion_nodes`` (Nav2's costmap nodes beside their server) are spun with it on the
+        same executor and destroyed before it.
     """
     from rclpy.executors import MultiThreadedExecutor
     init(args)
     node = executor = None
+    companions = []
     try:
         node = create(factory)
+        companions = list(getattr(node, 'companion_nodes', ()))
         if threads > 1:
             executor = MultiThreadedExecutor(num_threads=threads, context=node.context)
-            executor.add_node(node)
+        elif companions:
+            executor = SingleThreadedExecutor(context=node.context)
+        if executor is not None:
+            for each in [node] + companions:
+                executor.add_node(each)
         spin(executor or node)
     except KeyboardInterrupt:
         pass
     finally:
-        shutdown(node, executor=executor)
+        shutdown(*companions, node, executor=executor)

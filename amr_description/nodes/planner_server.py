@@ -1,0 +1,201 @@
+# Copyright 2026 The amr_description Authors
+# Licensed under the Apache License, Version 2.0
+"""
+``planner_server``: nav2_planner's planner server (Jazzy), a managed (lifecycle) node.
+
+It runs the global costmap beside itself (:class:`amr_description.nodes.costmap_2d.CostmapNode`
+``global_costmap``, started and stopped with the server) and the planners named in
+``planner_plugins`` (default ``[GridBased]``), each from ``<id>.plugin``:
+``nav2_navfn_planner::NavfnPlanner`` (or ``nav2_navfn_planner/NavfnPlanner``) with
+``<id>.tolerance`` (0.5 m), ``<id>.use_astar`` (false; the search is Dijkstra's either way,
+said once), ``<id>.allow_unknown`` (true), ``<id>.use_final_approach_orientation`` (false);
+another plugin, e.g. ``nav2_smac_planner::SmacPlanner2D``, is said in one line and runs as
+NavFn with its ``tolerance`` and ``allow_unknown`` (:mod:`amr_description.nav.planner`).
+``expected_planner_frequency`` (1.0 Hz) is read; a plan slower than its period is warned.
+
+Action ``compute_path_to_pose`` (nav2_msgs/action/ComputePathToPose): the start is the
+robot's pose in the costmap's global frame from TF unless ``use_start``; the goal is
+transformed into that frame; an unknown ``planner_id`` fails with INVALID_PLANNER, an empty one
+uses the only planner; an untransformable pose fails with TF_ERROR, a NaN goal with
+GOAL_OUTSIDE_MAP; the result's path (frame = the costmap's) is also published on ``plan``
+(nav_msgs/Path, depth 1). Source: ``nav2_planner/src/planner_server.cpp``.
+"""
+
+import math
+import time
+
+from amr_description.core.tf_buffer import TransformBuffer
+from amr_description.core.tf_buffer import TransformException
+from amr_description.nav.planner import make_plan
+from amr_description.nav.planner import PlanError
+from amr_description.nodes.costmap_2d import CostmapNode
+from amr_description.ros import shutdown
+from amr_description.ros.managed_node import ManagedNode
+from amr_description.ros.transforms import planar_pose
+from amr_description.ros.transforms import set_yaw
+from amr_description.ros.transforms import TransformListener
+from amr_description.ros.transforms import yaw_of
+from geometry_msgs.msg import PoseStamped
+from nav2_msgs.action import ComputePathToPose
+from nav_msgs.msg import Path
+import numpy as np
+from rclpy.action import ActionServer
+from rclpy.duration import Duration
+
+NAVFN = 'NavfnPlanner'
+
+
+class PlannerServer(ManagedNode):
+    """Node ``planner_server``; see the module docstring."""
+
+    def __init__(self):
+        """Declare the parameters and make the global costmap node."""
+        super().__init__('planner_server')
+        self.ids = list(self.declare_parameter('planner_plugins', ['GridBased']).value)
+        self.frequency = float(self.declare_parameter('expected_planner_frequency', 1.0).value)
+        self.planners = {}
+        for pid in self.ids:
+            kind = str(self.declare_parameter(
+                f'{pid}.plugin', 'nav2_navfn_planner::NavfnPlanner').value)
+            default_tol = 0.125 if 'Smac' in kind else 0.5
+            self.planners[pid] = {
+                'plugin': kind,
+                'tolerance': float(self.declare_parameter(f'{pid}.tolerance', default_tol).value),
+                'allow_unknown': bool(self.declare_parameter(f'{pid}.allow_unknown', True).value),
+                'use_astar': bool(self.declare_parameter(f'{pid}.use_astar', False).value),
+                'use_final_approach_orientation': bool(self.declare_parameter(
+                    f'{pid}.use_final_approach_orientation', False).value)}
+        self.tf_buffer = TransformBuffer()
+        self.costmap = CostmapNode('global_costmap', self.tf_buffer, self.get_namespace()
+                                   if self.get_namespace() != '/' else '')
+        self.companion_nodes = [self.costmap]
+        self._listener = self._action = self._plan_pub = None
+
+    def configure(self):
+        """Say which planner runs for each id; listen to TF."""
+        self.get_logger().info('Configuring')
+        for pid, planner in self.planners.items():
+            kind = planner['plugin'].replace('/', '::')
+            if kind.split('::')[-1] != NAVFN:
+                self.get_logger().info(
+                    f"{pid}: plugin '{planner['plugin']}' runs as NavFn (GridBased) here, "
+                    f"with tolerance {planner['tolerance']:g} and allow_unknown "
+                    f"{str(planner['allow_unknown']).lower()}")
+            elif planner['use_astar']:
+                self.get_logger().info(f'{pid}: use_astar: the search runs as Dijkstra here')
+            else:
+                self.get_logger().info(f'Created global planner plugin {pid} of type {kind}')
+        self._listener = TransformListener(self, self.tf_buffer, spin_thread=True)
+
+    def activate(self):
+        """Start the costmap, the action server and the plan publisher."""
+        self.get_logger().info('Activating')
+        self.costmap.start()
+        self._plan_pub = self.create_publisher(Path, 'plan', 1)
+        self._action = ActionServer(self, ComputePathToPose, 'compute_path_to_pose',
+                                    self._execute)
+
+    def deactivate(self):
+        """Stop the action server and the costmap."""
+        self.get_logger().info('Deactivating')
+        if self._action is not None:
+            self._action.destroy()
+            self._action = None
+        if self._plan_pub is not None:
+            self.destroy_publisher(self._plan_pub)
+            self._plan_pub = None
+        self.costmap.stop()
+
+    def cleanup(self):
+        """Stop listening to TF."""
+        self.get_logger().info('Cleaning up')
+        if self._listener is not None:
+            self._listener.destroy()
+            self._listener = None
+
+    def _in_frame(self, pose_stamped, frame):
+        """Return ``(x, y, yaw)`` of a PoseStamped in ``frame`` (latest TF)."""
+        p = pose_stamped.pose
+        values = (p.position.x, p.position.y, p.orientation.x, p.orientation.y,
+                  p.orientation.z, p.orientation.w)
+        if not all(math.isfinite(v) for v in values):
+            raise ValueError('pose has a NaN or infinite value')
+        source = pose_stamped.header.frame_id or frame
+        T, _ = self.tf_buffer.lookup(frame, source)
+        yaw = yaw_of(p.orientation)
+        x, y = T[:2, :2] @ (p.position.x, p.position.y) + T[:2, 3]
+        return float(x), float(y), yaw + math.atan2(T[1, 0], T[0, 0])
+
+    def _execute(self, handle):
+        goal = handle.request
+        result = ComputePathToPose.Result()
+        codes = ComputePathToPose.Result
+        t0 = time.perf_counter()
+        frame = self.costmap.p['global_frame']
+        pid = goal.planner_id or (self.ids[0] if len(self.ids) == 1 else '')
+        try:
+            if pid not in self.planners:
+                raise PlanError('INVALID_PLANNER',
+                                f'planner id {goal.planner_id!r} is not one of {self.ids}')
+            if self.costmap.static is None and not self.costmap.p['rolling_window']:
+                self.costmap.update()
+            try:
+                goal_pose = self._in_frame(goal.goal, frame)
+                if goal.use_start:
+                    start = self._in_frame(goal.start, frame)
+                else:
+                    T, _ = self.tf_buffer.lookup(frame, self.costmap.p['robot_base_frame'])
+                    start = tuple(planar_pose(T))
+            except TransformException as exc:
+                raise PlanError('TF_ERROR', f'Could not transform the pose: {str(exc).strip()}')
+            except ValueError as exc:
+                raise PlanError('GOAL_OUTSIDE_MAP', f'Invalid goal: {exc}')
+            planner = self.planners[pid]
+            path = make_plan(self.costmap.grid, start[:2], goal_pose, planner['tolerance'],
+                             planner['allow_unknown'],
+                             planner['use_final_approach_orientation'])
+        except PlanError as exc:
+            self.get_logger().warning(f'{pid or "GridBased"}: {exc}')
+            result.error_code = getattr(codes, exc.code)
+            result.error_msg = str(exc)
+            handle.abort()
+            return result
+        elapsed = time.perf_counter() - t0
+        if self.frequency > 0 and elapsed > 1.0 / self.frequency:
+            self.get_logger().warning(
+                f'Planner loop missed its desired rate of {self.frequency:.4f} Hz. '
+                f'Current loop rate is {1.0 / elapsed:.4f} Hz')
+        result.path = self.path_message(path, frame)
+        result.planning_time = Duration(nanoseconds=int(elapsed * 1e9)).to_msg()
+        self._plan_pub.publish(result.path)
+        handle.succeed()
+        return result
+
+    def path_message(self, path, frame):
+        """Return a nav_msgs/Path of ``(n, 3)`` poses; NaN yaws stay the identity."""
+        msg = Path()
+        msg.header.frame_id = frame
+        msg.header.stamp = self.get_clock().now().to_msg()
+        for x, y, yaw in np.asarray(path, float):
+            pose = PoseStamped()
+            pose.header = msg.header
+            pose.pose.position.x, pose.pose.position.y = float(x), float(y)
+            if math.isfinite(yaw):
+                set_yaw(pose.pose.orientation, float(yaw))
+            else:
+                pose.pose.orientation.w = 1.0
+            msg.poses.append(pose)
+        return msg
+
+
+def main(args=None):
+    """
+    Run the planner server and its global costmap until Ctrl-C.
+
+    :param args: command-line arguments for rclpy (default ``sys.argv``).
+    """
+    shutdown.run(PlannerServer, args)
+
+
+if __name__ == '__main__':
+    main()
