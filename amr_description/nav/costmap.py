@@ -157,6 +157,26 @@ def inflate(costs, resolution, inflation_radius=0.55, cost_scaling_factor=10.0,
     return out
 
 
+def scan_rays(ranges, angle_min, angle_increment, range_min, range_max, inf_is_valid=False,
+              inf_range=0.0):
+    """
+    Return the end points of a LaserScan's rays in the scan's frame, and which ones are hits.
+
+    Finite readings within ``[range_min, range_max]`` (REP 117) are hits; with
+    ``inf_is_valid``, infinite readings are rays of ``inf_range`` m that hit nothing (they only
+    clear); the rest are dropped. ``angle_min`` and ``angle_increment`` are in rad.
+
+    :returns: ``(points (n, 2) m, hit (n,) bool)``.
+    """
+    r = np.asarray(ranges, float)
+    a = angle_min + angle_increment * np.arange(len(r))
+    hit = np.isfinite(r) & (r >= range_min) & (r <= range_max)
+    keep = hit | (np.isinf(r) & bool(inf_is_valid))
+    d = np.where(hit, r, inf_range)[keep]
+    a = a[keep]
+    return np.column_stack((d * np.cos(a), d * np.sin(a))), hit[keep]
+
+
 class Costmap:
     """
     A grid of Nav2 costs placed in a frame.
@@ -250,8 +270,8 @@ class Costmap:
         ys = s[1] + unit[:, 1:] * t[None, :]
         mx, my, inside = self.cells_of(np.column_stack((xs[along], ys[along])))
         ex, ey, _ = self.cells_of(p)
-        end = np.repeat(ex * 1_000_003 + ey, along.sum(1))
-        keep = inside & (mx * 1_000_003 + my != end)
+        per_ray = along.sum(1)
+        keep = inside & ((mx != np.repeat(ex, per_ray)) | (my != np.repeat(ey, per_ray)))
         self.costs[my[keep], mx[keep]] = FREE_SPACE
 
     def mark(self, points, sensor=None, max_range=2.5, min_range=0.0):

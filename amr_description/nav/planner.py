@@ -91,7 +91,8 @@ def make_plan(costmap, start, goal, tolerance=0.5, allow_unknown=True,
         x, y = costmap.map_to_world(*s_cell)
         return np.array([[float(x), float(y), goal[2]]])
     travel = travel_costs(costs, allow_unknown)
-    travel[s_cell[1], s_cell[0]] = max(travel[s_cell[1], s_cell[0]], COST_NEUTRAL)  # NavFn
+    # the robot's own cell is passable even when inflated or lethal (NavFn's clearRobotCell)
+    travel[s_cell[1], s_cell[0]] = max(travel[s_cell[1], s_cell[0]], COST_NEUTRAL)
     mcp = MCP_Geometric(travel, fully_connected=True)
     start_rc, goal_rc = (s_cell[1], s_cell[0]), (g_cell[1], g_cell[0])
     if travel[goal_rc] >= 0:

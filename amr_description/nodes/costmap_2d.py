@@ -258,19 +258,16 @@ class CostmapNode(Node):
                 self.get_logger().warning(f"{sp['topic']}: {str(exc).strip()}",
                                           throttle_duration_sec=5.0)
                 continue
-            r = np.asarray(scan.ranges, float)
-            a = scan.angle_min + scan.angle_increment * np.arange(len(r))
-            ok = np.isfinite(r) & (r >= scan.range_min) & (r <= scan.range_max)
-            clear_r = np.where(np.isinf(r) & sp['inf_is_valid'], sp['raytrace_max_range'], r)
-            local = np.stack([np.cos(a), np.sin(a), np.zeros_like(a)]) * clear_r
-            world = (T[:3, :3] @ local).T[:, :2] + T[:2, 3]
+            points, hit = cm.scan_rays(scan.ranges, scan.angle_min, scan.angle_increment,
+                                       scan.range_min, scan.range_max, sp['inf_is_valid'],
+                                       sp['raytrace_max_range'])
+            world = points @ T[:2, :2].T + T[:2, 3]
             origin = T[:2, 3]
             if sp['clearing']:
-                valid = ok | (np.isinf(r) & sp['inf_is_valid'])
-                layer.raytrace(origin, world[valid], sp['raytrace_max_range'],
+                layer.raytrace(origin, world, sp['raytrace_max_range'],
                                sp['raytrace_min_range'])
             if sp['marking']:
-                layer.mark(world[ok], origin, sp['obstacle_max_range'],
+                layer.mark(world[hit], origin, sp['obstacle_max_range'],
                            sp['obstacle_min_range'])
         self.scans.clear()
         if params['footprint_clearing_enabled'] and self.robot is not None:
@@ -316,13 +313,17 @@ class CostmapNode(Node):
                                self.p['global_frame'])
 
     def _paint_static(self, master):
-        g = self.grid
+        g, static = self.grid, self.static
+        if static.costs.shape == g.shape and static.origin == g.origin and \
+                static.resolution == g.resolution:
+            master[:] = static.costs  # the global costmap: the map's own geometry
+            return
         h, w = g.shape
         ii, jj = np.meshgrid(np.arange(w), np.arange(h))
         cx, cy = g.map_to_world(ii, jj)
-        mx, my, inside = self.static.cells_of(np.column_stack((cx.ravel(), cy.ravel())))
+        mx, my, inside = static.cells_of(np.column_stack((cx.ravel(), cy.ravel())))
         flat = master.reshape(-1)
-        flat[inside] = self.static.costs[my[inside], mx[inside]]
+        flat[inside] = static.costs[my[inside], mx[inside]]
 
     # outputs
     def messages(self):

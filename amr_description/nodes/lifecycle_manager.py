@@ -13,9 +13,9 @@ success when the managed nodes are active).
 Each node is driven through its ``<node>/change_state`` and checked with ``<node>/get_state``
 (the plan is :mod:`amr_description.core.lifecycle_plan`); a transition that fails, or leaves
 the node in another state, stops the command with ``Failed to change state for node: X``.
-Unlike Nav2, a node is first asked ``get_state`` (every second, for up to 10 s) until it
-answers, and a ``change_state`` that gets no answer counts as done when ``get_state`` then
-reports the goal state: rmw_fastrtps drops a service response whose client reader the server
+Unlike Nav2, before each transition a node is asked ``get_state`` (every second, for up to
+10 s) until it answers, and a ``change_state`` that gets no answer counts as done when
+``get_state`` then reports the goal state: rmw_fastrtps drops a service response whose client reader the server
 has not matched within 100 ms ("failed to send response ... (timeout)", also reported against
 Nav2's bring-up in ros2/rmw_fastrtps#706), which a loaded machine met in one of six bring-ups.
 After a node is activated and ``bond_timeout`` is above 0, a bond (topic ``bond``, id = the
@@ -64,7 +64,6 @@ class _Managed:
         self.change_state = node.create_client(ChangeState, f'{name}/change_state',
                                                callback_group=group)
         self.get_state = node.create_client(GetState, f'{name}/get_state', callback_group=group)
-        self.answered = False
 
     def ready(self):
         return self.change_state.service_is_ready() and self.get_state.service_is_ready()
@@ -186,13 +185,12 @@ class LifecycleManager(Node):
         deadline = time.monotonic() + CALL_TIMEOUT
         while time.monotonic() < deadline and self.context.ok() and not shutdown.interrupted():
             if self._call(managed.get_state, GetState.Request(), FIRST_CALL_RETRY) is not None:
-                managed.answered = True
                 return True
         return False
 
     def _change(self, step):
         managed = self.managed[step.node]
-        if not managed.answered and not self._first_answer(managed):
+        if not self._first_answer(managed):  # a respawned node is a new process: ask each time
             return False
         request = ChangeState.Request()
         request.transition = Transition(id=step.transition)

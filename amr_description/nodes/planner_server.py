@@ -137,8 +137,6 @@ class PlannerServer(ManagedNode):
             if pid not in self.planners:
                 raise PlanError('INVALID_PLANNER',
                                 f'planner id {goal.planner_id!r} is not one of {self.ids}')
-            if self.costmap.static is None and not self.costmap.p['rolling_window']:
-                self.costmap.update()
             try:
                 goal_pose = self._in_frame(goal.goal, frame)
                 if goal.use_start:

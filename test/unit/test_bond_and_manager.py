@@ -99,7 +99,7 @@ def test_manager_counts_an_unanswered_transition_done_when_get_state_says_so(ros
     manager = LifecycleManager.__new__(LifecycleManager)
     rclpy.node.Node.__init__(manager, 'lifecycle_manager_t', context=make('unused').context)
     manager.node_names, manager.bonds = ['m'], {}
-    manager.managed = {'m': type('Managed', (), {'answered': True, 'change_state': 'change',
+    manager.managed = {'m': type('Managed', (), {'change_state': 'change',
                                                  'get_state': 'get'})()}
     reports = {'state': lp.ACTIVE}
 

@@ -71,6 +71,16 @@ def test_obstacle_layer_clears_along_rays_and_marks_their_ends():
     assert grid.world_to_map(-0.01, 0.5) is None and grid.world_to_map(0.99, 0.0) == (9, 0)
 
 
+def test_scan_rays_hits_and_clearing_only_rays():
+    ranges = [1.0, float('inf'), 0.05, float('nan'), 2.0]
+    points, hit = cm.scan_rays(ranges, 0.0, math.pi / 2, 0.1, 1.5)
+    assert points == pytest.approx(np.array([[1.0, 0.0]])) and list(hit) == [True]
+    points, hit = cm.scan_rays(ranges, 0.0, math.pi / 2, 0.1, 1.5, inf_is_valid=True,
+                               inf_range=3.0)
+    assert points == pytest.approx(np.array([[1.0, 0.0], [0.0, 3.0]]))
+    assert list(hit) == [True, False]
+
+
 def _room(width=5.0, height=5.0, res=0.05):
     return cm.Costmap.empty(width, height, res)
 
