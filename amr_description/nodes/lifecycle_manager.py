@@ -15,9 +15,10 @@ Each node is driven through its ``<node>/change_state`` and checked with ``<node
 the node in another state, stops the command with ``Failed to change state for node: X``.
 Unlike Nav2, before each transition a node is asked ``get_state`` (every second, for up to
 10 s) until it answers, and a ``change_state`` that gets no answer counts as done when
-``get_state`` then reports the goal state: rmw_fastrtps drops a service response whose client reader the server
-has not matched within 100 ms ("failed to send response ... (timeout)", also reported against
-Nav2's bring-up in ros2/rmw_fastrtps#706), which a loaded machine met in one of six bring-ups.
+``get_state`` then reports the goal state: rmw_fastrtps drops a service response whose client
+reader the server has not matched within 100 ms ("failed to send response ... (timeout)", also
+reported against Nav2's bring-up in ros2/rmw_fastrtps#706), which a loaded machine met in one
+of six bring-ups.
 After a node is activated and ``bond_timeout`` is above 0, a bond (topic ``bond``, id = the
 node's name, heartbeat period 0.1 s, timeout ``bond_timeout``) must form within
 ``bond_timeout / 2``. While the system is active the bonds are checked every 0.2 s; a broken
