@@ -127,3 +127,141 @@ def online_async(args):
         actions.append(Node(PACKAGE, 'lifecycle_autostart', output='screen',
                             arguments=['/slam_toolbox', 'configure', 'activate']))
     return actions
+
+
+NAVIGATION_ARGUMENTS = [
+    DeclareLaunchArgument('namespace', '', 'Top-level namespace'),
+    DeclareLaunchArgument('use_sim_time', 'false',
+                          'Use simulation (Gazebo) clock if true'),
+    DeclareLaunchArgument('params_file', '',
+                          'Full path to the ROS2 parameters file to use for all launched nodes '
+                          "(default: the package's config/nav2_params.yaml)"),
+    DeclareLaunchArgument('autostart', 'true',
+                          'Automatically startup the nav2 stack'),
+    DeclareLaunchArgument('use_composition', 'False',
+                          'Use composed bringup if True (here: one process each either way)'),
+    DeclareLaunchArgument('container_name', 'nav2_container',
+                          'the name of conatiner that nodes will load in if use composition'),
+    DeclareLaunchArgument('use_respawn', 'False',
+                          'Whether to respawn if a node crashes. Applied when composition is '
+                          'disabled.'),
+    DeclareLaunchArgument('log_level', 'info', 'log level'),
+]
+"""nav2_bringup's ``navigation_launch.py`` arguments (names, defaults, descriptions)."""
+
+NAVIGATION_NODES = ['controller_server', 'planner_server', 'behavior_server',
+                    'velocity_smoother', 'bt_navigator']
+"""The servers, in nav2_bringup's ``lifecycle_nodes`` order (those built here)."""
+
+ROBOT_CMD_VEL = 'diff_drive_controller/cmd_vel'
+"""Where the smoothed command goes: the robot's diff_drive_controller (no collision monitor)."""
+
+
+def _params_file(args):
+    params = os.path.expanduser(args['params_file'] or share_file('config', 'nav2_params.yaml'))
+    if not os.path.isfile(params):
+        raise LaunchError(f"launch argument 'params_file': no such file '{params}'")
+    return params
+
+
+def navigation(args):
+    """
+    Describe the ``navigation_launch`` stack (nav2_bringup's ``navigation_launch.py``).
+
+    controller_server, planner_server, behavior_server, velocity_smoother and bt_navigator
+    reading ``params_file`` (default ``config/nav2_params.yaml``) in ``namespace``, and
+    ``lifecycle_manager_navigation`` (``autostart``). As upstream, controller_server,
+    behavior_server and velocity_smoother have ``cmd_vel`` remapped to ``cmd_vel_nav``; the
+    smoother's ``cmd_vel_smoothed`` goes to :data:`ROBOT_CMD_VEL` (upstream sends it through
+    the collision monitor, not built here). ``use_composition`` is accepted; each server runs
+    in its own process.
+
+    :param args: dict of launch-argument values (see ``NAVIGATION_ARGUMENTS``).
+    :returns: list of actions.
+    :raises LaunchError: on a bad argument value or a missing file.
+    """
+    args = with_defaults(NAVIGATION_ARGUMENTS, args)
+    use_sim_time = parse_bool(args['use_sim_time'], 'use_sim_time')
+    autostart = parse_bool(args['autostart'], 'autostart')
+    respawn = parse_bool(args['use_respawn'], 'use_respawn')
+    parse_bool(args['use_composition'], 'use_composition')
+    params = _params_file(args)
+    ns = args['namespace'].strip('/') or None
+    common = {'use_sim_time': use_sim_time}
+    options = {'output': 'screen', 'respawn': respawn, 'respawn_delay': 2.0, 'namespace': ns,
+               'parameters': [params, common]}
+    to_nav = [('cmd_vel', 'cmd_vel_nav')]
+    return [
+        Node(PACKAGE, 'controller_server', name='controller_server', remappings=to_nav,
+             **options),
+        Node(PACKAGE, 'planner_server', name='planner_server', **options),
+        Node(PACKAGE, 'behavior_server', name='behavior_server', remappings=to_nav,
+             **options),
+        Node(PACKAGE, 'velocity_smoother', name='velocity_smoother',
+             remappings=to_nav + [('cmd_vel_smoothed', ROBOT_CMD_VEL)], **options),
+        Node(PACKAGE, 'bt_navigator', name='bt_navigator', **options),
+        Node(PACKAGE, 'lifecycle_manager', name='lifecycle_manager_navigation',
+             output='screen', namespace=ns,
+             parameters=[{'autostart': autostart, 'node_names': NAVIGATION_NODES, **common}]),
+    ]
+
+
+BRINGUP_ARGUMENTS = [
+    DeclareLaunchArgument('namespace', '', 'Top-level namespace'),
+    DeclareLaunchArgument('use_namespace', 'false',
+                          'Whether to apply a namespace to the navigation stack'),
+    DeclareLaunchArgument('slam', 'False', 'Whether run a SLAM'),
+    DeclareLaunchArgument('map', '', 'Full path to map yaml file to load'),
+    DeclareLaunchArgument('use_localization', 'True',
+                          'Whether to enable localization or not'),
+    DeclareLaunchArgument('use_sim_time', 'false', 'Use simulation (Gazebo) clock if true'),
+    DeclareLaunchArgument('params_file', '',
+                          'Full path to the ROS2 parameters file to use for all launched nodes '
+                          "(default: the package's config/nav2_params.yaml)"),
+    DeclareLaunchArgument('autostart', 'true', 'Automatically startup the nav2 stack'),
+    DeclareLaunchArgument('use_composition', 'True',
+                          'Whether to use composed bringup (here: one process each)'),
+    DeclareLaunchArgument('use_respawn', 'False',
+                          'Whether to respawn if a node crashes. Applied when composition is '
+                          'disabled.'),
+    DeclareLaunchArgument('log_level', 'info', 'log level'),
+]
+"""nav2_bringup's ``bringup_launch.py`` arguments (names, defaults, descriptions)."""
+
+
+def bringup(args):
+    """
+    Describe the ``bringup`` stack (nav2_bringup's ``bringup_launch.py``).
+
+    ``slam`` false: :func:`localization` (map_server with ``map`` + amcl) when
+    ``use_localization``; true: slam_toolbox (:func:`online_async`, managed by no lifecycle
+    manager, as ``slam_launch.py`` runs it with autostart). Then :func:`navigation`.
+    ``namespace`` applies when ``use_namespace`` is true.
+
+    :param args: dict of launch-argument values (see ``BRINGUP_ARGUMENTS``).
+    :returns: list of actions.
+    :raises LaunchError: on a bad argument value or a missing file.
+    """
+    args = with_defaults(BRINGUP_ARGUMENTS, args)
+    slam = parse_bool(args['slam'], 'slam')
+    use_ns = parse_bool(args['use_namespace'], 'use_namespace')
+    shared = {k: args[k] for k in ('use_sim_time', 'params_file', 'autostart', 'use_respawn')}
+    actions = []
+    if slam:
+        actions += online_async({'use_sim_time': args['use_sim_time'],
+                                 'autostart': args['autostart']})
+    elif parse_bool(args['use_localization'], 'use_localization'):
+        actions += localization({**shared, 'map': args['map']})
+    return actions + navigation({**shared, 'namespace': args['namespace'] if use_ns else '',
+                                 'use_composition': args['use_composition']})
+
+
+NAV2_STACKS = {
+    'localization': (localization, LOCALIZATION_ARGUMENTS,
+                     "nav2_bringup's map_server + amcl + lifecycle_manager_localization"),
+    'navigation_launch': (navigation, NAVIGATION_ARGUMENTS,
+                          "nav2_bringup's navigation servers + lifecycle_manager_navigation"),
+    'bringup': (bringup, BRINGUP_ARGUMENTS,
+                "nav2_bringup's localization (or SLAM) + navigation on a running simulator"),
+}
+"""nav2_bringup's launch files as stacks (see :data:`amr_description.launch.stacks.STACKS`)."""

@@ -32,8 +32,7 @@ from amr_description.launch.actions import parse_bool
 from amr_description.launch.actions import parse_float
 from amr_description.launch.actions import parse_launch_arguments
 from amr_description.launch.actions import with_defaults
-from amr_description.launch.nav_stacks import localization
-from amr_description.launch.nav_stacks import LOCALIZATION_ARGUMENTS
+from amr_description.launch.nav_stacks import NAV2_STACKS
 from amr_description.launch.nav_stacks import online_async
 from amr_description.launch.nav_stacks import share_file
 from amr_description.launch.nav_stacks import SLAM_ARGUMENTS
@@ -442,10 +441,9 @@ STACKS = {
               'MuJoCo simulation with N namespaced robots (r1 ... rN) on a grid'),
     'online_async': (online_async, SLAM_ARGUMENTS,
                      "slam_toolbox's online asynchronous mapper, configured and activated"),
-    'localization': (localization, LOCALIZATION_ARGUMENTS,
-                     "nav2_bringup's map_server + amcl + lifecycle_manager_localization"),
     'slam': (slam, SIM_ARGUMENTS + SLAM_ARGUMENTS[1:],
              'the sim stack (world:=, viewer) with SLAM from its lidar'),
+    **NAV2_STACKS,
 }
 
 
@@ -458,6 +456,8 @@ def stack_name(name):
     :raises LaunchError: when no such stack exists.
     """
     base = os.path.basename(name)
+    if base.endswith('_launch.py') and base[:-3] in STACKS:
+        return base[:-3]  # navigation_launch.py: upstream's file, not our 'navigation'
     for suffix in ('.launch.py', '_launch.py', '.py'):
         if base.endswith(suffix):
             base = base[:-len(suffix)]

@@ -286,3 +286,31 @@ class Costmap:
             p = p[(d <= max_range) & (d >= min_range)]
         mx, my, inside = self.cells_of(p)
         self.costs[my[inside], mx[inside]] = LETHAL_OBSTACLE
+
+
+def footprint_cost(costmap, footprint, pose):
+    """
+    Return the highest cost under a footprint's outline placed at ``pose``.
+
+    :param costmap: a :class:`Costmap`.
+    :param footprint: ``(n, 2)`` polygon in the robot frame, m (n >= 3), or ``(1, 2)`` for a
+        point.
+    :param pose: ``(x, y, yaw)`` of the robot in the costmap's frame (m, rad).
+    :returns: 0..255; LETHAL_OBSTACLE when a vertex is off the map.
+    Source: ``FootprintCollisionChecker::footprintCost`` (the cells of the lines between
+    consecutive vertices, closing the polygon).
+    """
+    from skimage.draw import line
+    x, y, yaw = pose
+    c, s = math.cos(yaw), math.sin(yaw)
+    pts = np.asarray(footprint, float) @ np.array([[c, s], [-s, c]]) + (x, y)
+    mx, my, inside = costmap.cells_of(pts)
+    if not inside.all():
+        return LETHAL_OBSTACLE
+    if len(pts) == 1:
+        return int(costmap.costs[my[0], mx[0]])
+    best = 0
+    for k in range(len(pts)):
+        rr, cc = line(int(my[k - 1]), int(mx[k - 1]), int(my[k]), int(mx[k]))
+        best = max(best, int(costmap.costs[rr, cc].max()))
+    return best

@@ -59,3 +59,22 @@ def grid_from_message(msg):
     data = np.asarray(msg.data, dtype=np.int8).reshape(height, width)
     origin = (msg.info.origin.position.x, msg.info.origin.position.y, yaw)
     return GridMap(data, float(msg.info.resolution), origin)
+
+
+def costmap_from_message(msg):
+    """
+    Return a :class:`amr_description.nav.costmap.Costmap` of a nav2_msgs/Costmap.
+
+    :raises ValueError: when ``data`` does not hold ``size_x * size_y`` cells or the resolution
+        is not positive.
+    """
+    from amr_description.nav.costmap import Costmap
+    meta = msg.metadata
+    w, h = int(meta.size_x), int(meta.size_y)
+    if len(msg.data) != w * h:
+        raise ValueError(f'costmap has {len(msg.data)} cells, expected {w} x {h}')
+    if not meta.resolution > 0.0:
+        raise ValueError(f'costmap resolution {meta.resolution} is not positive')
+    costs = np.frombuffer(bytes(msg.data), np.uint8).reshape(h, w).copy()
+    return Costmap(costs, meta.resolution, (meta.origin.position.x, meta.origin.position.y),
+                   msg.header.frame_id)

@@ -266,3 +266,32 @@ class SimpleProgressChecker:
             self.baseline = (pose[0], pose[1], now)
             return True
         return now - self.baseline[2] <= self.allowance
+
+
+def to_robot_frame(path, pose):
+    """
+    Return ``(n, 3)`` poses ``x, y, yaw`` expressed in the robot's frame.
+
+    :param path: ``(n, 3)`` poses in the frame of ``pose`` (m, rad; NaN yaws stay NaN).
+    :param pose: the robot's ``(x, y, yaw)``.
+    """
+    p = np.asarray(path, float).reshape(-1, 3)
+    c, s = math.cos(pose[2]), math.sin(pose[2])
+    dx, dy = p[:, 0] - pose[0], p[:, 1] - pose[1]
+    yaw = np.arctan2(np.sin(p[:, 2] - pose[2]), np.cos(p[:, 2] - pose[2]))
+    return np.column_stack((c * dx + s * dy, -s * dx + c * dy, yaw))
+
+
+def closest_pose(path, pose, search_dist):
+    """
+    Return the index of the path pose closest to the robot, searching ``search_dist`` (m).
+
+    The search runs from the first pose along the path until the integrated distance exceeds
+    ``search_dist`` (upstream's ``max_robot_pose_search_dist``; the local costmap's half
+    width by default). Source: RPP's ``PathHandler::transformGlobalPlan``.
+    """
+    p = np.asarray(path, float).reshape(-1, 3)
+    along = np.concatenate(([0.0], np.cumsum(np.hypot(*np.diff(p[:, :2], axis=0).T))))
+    n = max(int(np.searchsorted(along, search_dist, side='right')), 1)
+    d = np.hypot(p[:n, 0] - pose[0], p[:n, 1] - pose[1])
+    return int(np.argmin(d))

@@ -88,7 +88,11 @@ class CostmapNode(Node):
     def __init__(self, name, tf_buffer, namespace=''):
         """Declare the parameters and the layers' parameters."""
         ns = f'{namespace.rstrip("/")}/{name}' if namespace else name
-        super().__init__(name, namespace=ns)
+        # node-local remaps win over the process's ``-r __node:=<server>`` (as Nav2's
+        # Costmap2DROS does with ``<name>:__node:=<name>``)
+        ns = '/' + ns.lstrip('/')
+        super().__init__(name, namespace=ns,
+                         cli_args=['--ros-args', '-r', f'__node:={name}', '-r', f'__ns:={ns}'])
         self.name = name
         self.parent_ns = namespace.rstrip('/')
         self.tf = tf_buffer

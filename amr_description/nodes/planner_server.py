@@ -18,7 +18,9 @@ robot's pose in the costmap's global frame from TF unless ``use_start``; the goa
 transformed into that frame; an unknown ``planner_id`` fails with INVALID_PLANNER, an empty one
 uses the only planner; an untransformable pose fails with TF_ERROR, a NaN goal with
 GOAL_OUTSIDE_MAP; the result's path (frame = the costmap's) is also published on ``plan``
-(nav_msgs/Path, depth 1). Source: ``nav2_planner/src/planner_server.cpp``.
+(nav_msgs/Path, depth 1). Action ``compute_path_through_poses``
+(ComputePathThroughPoses) plans each leg from the previous goal and joins them; no goals is
+NO_VIAPOINTS_GIVEN. Source: ``nav2_planner/src/planner_server.cpp``.
 """
 
 import math
@@ -36,6 +38,7 @@ from amr_description.ros.transforms import set_yaw
 from amr_description.ros.transforms import TransformListener
 from amr_description.ros.transforms import yaw_of
 from geometry_msgs.msg import PoseStamped
+from nav2_msgs.action import ComputePathThroughPoses
 from nav2_msgs.action import ComputePathToPose
 from nav_msgs.msg import Path
 import numpy as np
@@ -94,13 +97,16 @@ class PlannerServer(ManagedNode):
         self._plan_pub = self.create_publisher(Path, 'plan', 1)
         self._action = ActionServer(self, ComputePathToPose, 'compute_path_to_pose',
                                     self._execute)
+        self._through = ActionServer(self, ComputePathThroughPoses,
+                                     'compute_path_through_poses', self._execute_through)
 
     def deactivate(self):
         """Stop the action server and the costmap."""
         self.get_logger().info('Deactivating')
         if self._action is not None:
             self._action.destroy()
-            self._action = None
+            self._through.destroy()
+            self._action = self._through = None
         if self._plan_pub is not None:
             self.destroy_publisher(self._plan_pub)
             self._plan_pub = None
@@ -127,9 +133,14 @@ class PlannerServer(ManagedNode):
         return float(x), float(y), yaw + math.atan2(T[1, 0], T[0, 0])
 
     def _execute(self, handle):
+        return self._serve(handle, ComputePathToPose, [handle.request.goal])
+
+    def _execute_through(self, handle):
+        return self._serve(handle, ComputePathThroughPoses, list(handle.request.goals))
+
+    def _serve(self, handle, action, goals):
         goal = handle.request
-        result = ComputePathToPose.Result()
-        codes = ComputePathToPose.Result
+        result = action.Result()
         t0 = time.perf_counter()
         frame = self.costmap.p['global_frame']
         pid = goal.planner_id or (self.ids[0] if len(self.ids) == 1 else '')
@@ -137,8 +148,10 @@ class PlannerServer(ManagedNode):
             if pid not in self.planners:
                 raise PlanError('INVALID_PLANNER',
                                 f'planner id {goal.planner_id!r} is not one of {self.ids}')
+            if not goals:
+                raise PlanError('NO_VIAPOINTS_GIVEN', 'No viapoints given')
             try:
-                goal_pose = self._in_frame(goal.goal, frame)
+                targets = [self._in_frame(g, frame) for g in goals]
                 if goal.use_start:
                     start = self._in_frame(goal.start, frame)
                 else:
@@ -149,12 +162,17 @@ class PlannerServer(ManagedNode):
             except ValueError as exc:
                 raise PlanError('GOAL_OUTSIDE_MAP', f'Invalid goal: {exc}')
             planner = self.planners[pid]
-            path = make_plan(self.costmap.grid, start[:2], goal_pose, planner['tolerance'],
-                             planner['allow_unknown'],
-                             planner['use_final_approach_orientation'])
+            pieces = []
+            for target in targets:
+                piece = make_plan(self.costmap.grid, start[:2], target, planner['tolerance'],
+                                  planner['allow_unknown'],
+                                  planner['use_final_approach_orientation'])
+                pieces.append(piece if not pieces else piece[1:])
+                start = target
+            path = np.concatenate(pieces)
         except PlanError as exc:
             self.get_logger().warning(f'{pid or "GridBased"}: {exc}')
-            result.error_code = getattr(codes, exc.code)
+            result.error_code = getattr(action.Result, exc.code)
             result.error_msg = str(exc)
             handle.abort()
             return result

@@ -1,0 +1,353 @@
+# Copyright 2026 The amr_description Authors
+# Licensed under the Apache License, Version 2.0
+"""
+``controller_server``: nav2_controller's controller server (Jazzy), a managed (lifecycle) node.
+
+It runs the local costmap beside itself (:class:`amr_description.nodes.costmap_2d.CostmapNode`
+``local_costmap`` in ``local_costmap``, usually a rolling window in ``odom``) and follows paths
+with Regulated Pure Pursuit (:mod:`amr_description.nav.pure_pursuit`). Parameters, with Nav2's
+code defaults: ``controller_frequency`` (20.0 Hz), ``controller_plugins`` ([FollowPath]) and
+``<id>.plugin``; ``nav2_regulated_pure_pursuit_controller::RegulatedPurePursuitController``
+reads all of RPP's parameters under ``<id>.``; a DWB or MPPI section is said in one line and
+runs as RPP with its desired speed (DWB ``max_vel_x``, MPPI ``vx_max``);
+``goal_checker_plugins`` ([goal_checker]; SimpleGoalChecker or StoppedGoalChecker with
+``xy_goal_tolerance`` 0.25, ``yaw_goal_tolerance`` 0.25, ``stateful`` true),
+``progress_checker_plugins`` ([progress_checker]; ``required_movement_radius`` 0.5,
+``movement_time_allowance`` 10.0), ``min_x_velocity_threshold``,
+``min_theta_velocity_threshold`` (0.0001), ``failure_tolerance`` (0.0 s; -1 forever),
+``odom_topic`` (odom), ``speed_limit_topic`` (speed_limit, nav2_msgs/SpeedLimit),
+``enable_stamped_cmd_vel`` (false: geometry_msgs/Twist; true: TwistStamped in the robot base
+frame) and ``publish_zero_velocity`` (true).
+
+Action ``follow_path`` (nav2_msgs/action/FollowPath), one goal at a time, a new one replacing
+the path (:class:`amr_description.ros.goal_server.SingleGoalServer`). Each cycle: the robot's
+pose from TF, the progress check (FAILED_TO_MAKE_PROGRESS), the path pruned to the pose
+nearest the robot and put in the robot's frame, RPP's command with the collision check on the
+local costmap's footprint cost (NO_VALID_CONTROL after ``failure_tolerance``), feedback
+(``distance_to_goal`` along the path, ``speed``), ``cmd_vel`` (reliable, depth 1), then the
+goal check against the path's last pose; a reached goal, a failure or a cancel publishes a zero
+command. An empty or NaN path is INVALID_PATH, an unknown ``controller_id`` INVALID_CONTROLLER,
+a missing transform TF_ERROR. Source: ``nav2_controller/src/controller_server.cpp``.
+"""
+
+import math
+
+from amr_description.core.tf_buffer import TransformBuffer
+from amr_description.core.tf_buffer import TransformException
+from amr_description.nav import pure_pursuit as rpp
+from amr_description.nav.costmap import footprint_cost
+from amr_description.nav.costmap import LETHAL_OBSTACLE
+from amr_description.nav.costmap import NO_INFORMATION
+from amr_description.nav.planner import path_length
+from amr_description.nodes.costmap_2d import CostmapNode
+from amr_description.ros import shutdown
+from amr_description.ros.goal_server import SingleGoalServer
+from amr_description.ros.managed_node import ManagedNode
+from amr_description.ros.transforms import planar_pose
+from amr_description.ros.transforms import TransformListener
+from amr_description.ros.transforms import yaw_of
+from amr_description.ros.twist_io import TwistPublisher
+from nav2_msgs.action import FollowPath
+from nav2_msgs.msg import SpeedLimit
+from nav_msgs.msg import Odometry
+import numpy as np
+from rclpy.qos import qos_profile_sensor_data
+
+RPP = 'RegulatedPurePursuitController'
+OTHER_SPEEDS = {'DWBLocalPlanner': 'max_vel_x', 'MPPIController': 'vx_max'}
+"""Controllers run as RPP here, and the parameter giving their desired speed."""
+
+
+def plugin_kind(name):
+    """Return the class part of a plugin name (``pkg::Class`` or ``pkg/Class``)."""
+    return name.replace('/', '::').split('::')[-1]
+
+
+def path_array(path_msg):
+    """
+    Return ``(n, 3)`` poses ``x, y, yaw`` of a nav_msgs/Path.
+
+    :raises ValueError: when the path is empty or holds a NaN or infinite value.
+    """
+    poses = [(p.pose.position.x, p.pose.position.y, yaw_of(p.pose.orientation))
+             for p in path_msg.poses]
+    if not poses:
+        raise ValueError('Path is empty.')
+    out = np.array(poses, float)
+    if not np.isfinite(out).all():
+        raise ValueError('Path has a NaN or infinite value.')
+    return out
+
+
+class ControllerServer(ManagedNode):
+    """Node ``controller_server``; see the module docstring."""
+
+    def __init__(self):
+        """Declare the parameters and make the local costmap node."""
+        super().__init__('controller_server')
+        d = self.declare_parameter
+        self.frequency = float(d('controller_frequency', 20.0).value)
+        self.min_v = float(d('min_x_velocity_threshold', 0.0001).value)
+        d('min_y_velocity_threshold', 0.0001)
+        self.min_w = float(d('min_theta_velocity_threshold', 0.0001).value)
+        self.failure_tolerance = float(d('failure_tolerance', 0.0).value)
+        self.odom_topic = str(d('odom_topic', 'odom').value)
+        self.speed_limit_topic = str(d('speed_limit_topic', 'speed_limit').value)
+        self.stamped = bool(d('enable_stamped_cmd_vel', False).value)
+        self.zero_on_stop = bool(d('publish_zero_velocity', True).value)
+        d('use_realtime_priority', False)
+        d('costmap_update_timeout', 0.30)
+        self.controllers = {cid: self._controller_params(cid) for cid in
+                            d('controller_plugins', ['FollowPath']).value}
+        self.goal_checkers = {gid: {
+            'plugin': str(d(f'{gid}.plugin', 'nav2_controller::SimpleGoalChecker').value),
+            'xy': float(d(f'{gid}.xy_goal_tolerance', 0.25).value),
+            'yaw': float(d(f'{gid}.yaw_goal_tolerance', 0.25).value),
+            'stateful': bool(d(f'{gid}.stateful', True).value)}
+            for gid in d('goal_checker_plugins', ['goal_checker']).value}
+        self.progress_checkers = {pid: {
+            'plugin': str(d(f'{pid}.plugin', 'nav2_controller::SimpleProgressChecker').value),
+            'radius': float(d(f'{pid}.required_movement_radius', 0.5).value),
+            'time': float(d(f'{pid}.movement_time_allowance', 10.0).value)}
+            for pid in d('progress_checker_plugins', ['progress_checker']).value}
+        self.tf_buffer = TransformBuffer()
+        ns = self.get_namespace()
+        self.costmap = CostmapNode('local_costmap', self.tf_buffer, ns if ns != '/' else '')
+        self.companion_nodes = [self.costmap]
+        self._listener = self._server = self._cmd_pub = None
+        self._entities = []
+        self.speed = (0.0, 0.0)
+        self.speed_limit = None
+        self.run = None
+
+    def _controller_params(self, cid):
+        d = self.declare_parameter
+        kind = str(d(f'{cid}.plugin', 'dwb_core::DWBLocalPlanner').value)
+        params = {}
+        if plugin_kind(kind) == RPP:
+            for name, default in rpp.RPP_DEFAULTS.items():
+                params[name] = d(f'{cid}.{name}', default).value
+        elif plugin_kind(kind) in OTHER_SPEEDS:
+            speed = float(d(f'{cid}.{OTHER_SPEEDS[plugin_kind(kind)]}', 0.0).value)
+            if speed > 0.0:
+                params['desired_linear_vel'] = speed
+        return {'plugin': kind, 'params': params}
+
+    def configure(self):
+        """Say which controller runs for each id; listen to TF."""
+        self.get_logger().info('Configuring controller interface')
+        for cid, c in self.controllers.items():
+            if plugin_kind(c['plugin']) == RPP:
+                self.get_logger().info(f"Created controller : {cid} of type {c['plugin']}")
+            else:
+                speed = c['params'].get('desired_linear_vel', rpp.RPP_DEFAULTS[
+                    'desired_linear_vel'])
+                self.get_logger().info(
+                    f"{cid}: plugin '{c['plugin']}' runs as Regulated Pure Pursuit here, with "
+                    f"desired_linear_vel {speed:g} and the goal checker's tolerances")
+        self._listener = TransformListener(self, self.tf_buffer, spin_thread=True)
+
+    def activate(self):
+        """Start the costmap, the action server, the command publisher and the loop."""
+        self.get_logger().info('Activating')
+        self.costmap.start()
+        self._cmd_pub = TwistPublisher(self, 'cmd_vel', self.stamped,
+                                       self.costmap.p['robot_base_frame'])
+        self._entities = [
+            self._cmd_pub.pub,
+            self.create_subscription(Odometry, self.odom_topic, self._on_odom,
+                                     qos_profile_sensor_data),
+            self.create_subscription(SpeedLimit, self.speed_limit_topic, self._on_speed_limit,
+                                     10),
+            self.create_timer(1.0 / max(self.frequency, 1e-3), self._cycle)]
+        self._server = SingleGoalServer(self, FollowPath, 'follow_path', self._on_goal)
+
+    def deactivate(self):
+        """Stop the robot, the action server and the costmap."""
+        self.get_logger().info('Deactivating')
+        if self._server is not None:
+            self._stop_robot()
+            self._server.destroy()
+            self._server = None
+        for entity in self._entities:
+            for destroy in (self.destroy_subscription, self.destroy_publisher,
+                            self.destroy_timer):
+                if destroy(entity):
+                    break
+        self._entities = []
+        self._cmd_pub = None
+        self.costmap.stop()
+
+    def cleanup(self):
+        """Stop listening to TF."""
+        self.get_logger().info('Cleaning up')
+        if self._listener is not None:
+            self._listener.destroy()
+            self._listener = None
+
+    # inputs
+    def _on_odom(self, msg):
+        t = msg.twist.twist
+        v = t.linear.x if abs(t.linear.x) >= self.min_v else 0.0
+        w = t.angular.z if abs(t.angular.z) >= self.min_w else 0.0
+        self.speed = (v, w) if math.isfinite(v) and math.isfinite(w) else (0.0, 0.0)
+
+    def _on_speed_limit(self, msg):
+        limit = float(msg.speed_limit)
+        if not math.isfinite(limit) or limit <= 0.0:
+            self.speed_limit = None  # NO_SPEED_LIMIT
+        else:
+            self.speed_limit = (limit, bool(msg.percentage))
+
+    def _pick(self, table, wanted, what):
+        if wanted in table:
+            return wanted
+        if not wanted and len(table) == 1:
+            return next(iter(table))
+        raise LookupError(f'FollowPath called with {what} name {wanted!r}, which does not '
+                          f'exist. Available: {list(table)}')
+
+    def _on_goal(self, handle):
+        goal = handle.request
+        codes = FollowPath.Result
+        try:
+            cid = self._pick(self.controllers, goal.controller_id, 'controller')
+            gid = self._pick(self.goal_checkers, goal.goal_checker_id, 'goal checker')
+            pid = self._pick(self.progress_checkers, goal.progress_checker_id,
+                             'progress checker')
+        except LookupError as exc:
+            return self._fail(codes.INVALID_CONTROLLER, str(exc))
+        try:
+            path = path_array(goal.path)
+        except ValueError as exc:
+            return self._fail(codes.INVALID_PATH, str(exc))
+        same = self.run is not None and self.run['cid'] == cid
+        if not same:
+            gc, pc = self.goal_checkers[gid], self.progress_checkers[pid]
+            controller = rpp.RegulatedPurePursuit(
+                self.controllers[cid]['params'], gc['xy'], self.costmap.inscribed)
+            self.run = {'cid': cid, 'rpp': controller, 'failing_since': None,
+                        'goal': rpp.SimpleGoalChecker(gc['xy'], gc['yaw'], gc['stateful']),
+                        'progress': rpp.SimpleProgressChecker(pc['radius'], pc['time'])}
+            self.get_logger().info('Received a goal, begin computing control effort.')
+        else:
+            self.get_logger().info('Passing new path to controller.')
+            self.run['goal'].reset()
+        self.run['path'] = path
+        self.run['frame'] = goal.path.header.frame_id or self.costmap.p['global_frame']
+
+    # the loop
+    def _now(self):
+        return self.get_clock().now().nanoseconds * 1e-9
+
+    def _cycle(self):
+        server = self._server
+        if server is None or not server.active:
+            return
+        if server.cancel_requested:
+            self.get_logger().info('Goal was canceled. Stopping the robot.')
+            self._stop_robot()
+            server.finish_current('canceled', FollowPath.Result())
+            self.run = None
+            return
+        codes = FollowPath.Result
+        run = self.run
+        base = self.costmap.p['robot_base_frame']
+        try:
+            T_path, _ = self.tf_buffer.lookup(run['frame'], base)
+            T_cost, _ = self.tf_buffer.lookup(self.costmap.p['global_frame'], base)
+        except TransformException as exc:
+            return self._fail(codes.TF_ERROR, f'Unable to transform the robot pose: '
+                                              f'{str(exc).strip()}')
+        robot, robot_cost = planar_pose(T_path), planar_pose(T_cost)
+        if not run['progress'].check(robot_cost[:2], self._now()):
+            return self._fail(codes.FAILED_TO_MAKE_PROGRESS, 'Failed to make progress')
+        path = run['path']
+        search = run['rpp'].p['max_robot_pose_search_dist']
+        if search <= 0.0:
+            h, w = self.costmap.grid.shape
+            search = max(h, w) * self.costmap.grid.resolution / 2.0
+        k = rpp.closest_pose(path, robot, search)
+        run['path'] = path = path[k:]
+        local = rpp.to_robot_frame(path, robot)
+        remaining = path_length(local)
+        try:
+            v, w = self._command(run['rpp'], local, robot_cost, remaining)
+            run['failing_since'] = None
+        except rpp.NoValidControl as exc:
+            now = self._now()
+            if run['failing_since'] is None:
+                run['failing_since'] = now
+            tolerance = self.failure_tolerance
+            if tolerance == 0.0 or (tolerance > 0.0 and now - run['failing_since'] > tolerance):
+                return self._fail(codes.NO_VALID_CONTROL, str(exc))
+            v = w = 0.0
+        feedback = FollowPath.Feedback()
+        feedback.speed = float(abs(v))
+        feedback.distance_to_goal = float(remaining + math.hypot(*local[0, :2]))
+        self._server.feedback(feedback)
+        self._publish(v, w)
+        if run['goal'].is_goal_reached(robot, path[-1]):
+            self.get_logger().info('Reached the goal!')
+            self._stop_robot()
+            self._server.finish_current('succeed', FollowPath.Result())
+            self.run = None
+
+    def _command(self, controller, local, robot_cost, remaining):
+        grid = self.costmap.grid
+        cost = grid.cost_at(robot_cost[0], robot_cost[1]) or 0
+        if self.speed_limit is not None:
+            base = self.controllers[self.run['cid']]['params'].get(
+                'desired_linear_vel', rpp.RPP_DEFAULTS['desired_linear_vel'])
+            limit, percent = self.speed_limit
+            controller.p['desired_linear_vel'] = min(base, base * limit / 100.0
+                                                     if percent else limit)
+        c, s = math.cos(robot_cost[2]), math.sin(robot_cost[2])
+        circular = self.costmap.p['footprint'] in ('', '[]')
+        footprint = self.costmap.footprint
+        track_unknown = self.costmap.p['track_unknown_space']
+
+        def collides(x, y, yaw):
+            pose = (robot_cost[0] + c * x - s * y, robot_cost[1] + s * x + c * y,
+                    robot_cost[2] + yaw)
+            if circular:
+                return rpp.circle_collides(grid, pose[0], pose[1])
+            value = footprint_cost(grid, footprint, pose)
+            if value == NO_INFORMATION and track_unknown:
+                return False
+            return value >= LETHAL_OBSTACLE
+
+        return controller.compute(local, self.speed, 1.0 / self.frequency, cost, remaining,
+                                  collides)
+
+    # outputs
+    def _publish(self, v, w):
+        if self._cmd_pub is not None:
+            self._cmd_pub.publish(v, w)
+
+    def _stop_robot(self):
+        if self.zero_on_stop:
+            self._publish(0.0, 0.0)
+
+    def _fail(self, code, message):
+        self.get_logger().error(message)
+        self._stop_robot()
+        result = FollowPath.Result()
+        result.error_code = code
+        result.error_msg = message
+        if self._server is not None:
+            self._server.finish_current('abort', result)
+        self.run = None
+
+
+def main(args=None):
+    """
+    Run the controller server and its local costmap until Ctrl-C.
+
+    :param args: command-line arguments for rclpy (default ``sys.argv``).
+    """
+    shutdown.run(ControllerServer, args)
+
+
+if __name__ == '__main__':
+    main()

@@ -1,0 +1,118 @@
+# Copyright 2026 The amr_description Authors
+# Licensed under the Apache License, Version 2.0
+"""
+``velocity_smoother``: nav2_velocity_smoother (Jazzy), a managed (lifecycle) node.
+
+Takes ``cmd_vel`` (Twist, or TwistStamped with ``enable_stamped_cmd_vel``) and publishes
+``cmd_vel_smoothed`` (reliable, depth 1) at ``smoothing_frequency`` (20.0 Hz), each axis clamped
+to ``[min_velocity, max_velocity]`` ([-0.5, 0, -2.5] .. [0.5, 0, 2.5]) and its change limited by
+``max_accel`` ([2.5, 0, 3.2]) and ``max_decel`` ([-2.5, 0, -3.2]) (OPEN_LOOP feedback: from the
+last smoothed command); ``deadband_velocity`` ([0, 0, 0]); with no command for
+``velocity_timeout`` (1.0 s) it brakes to zero and then stops publishing. ``feedback``
+CLOSED_LOOP is said in one line and runs open loop. Arithmetic:
+:mod:`amr_description.nav.smoothing`. Source: ``nav2_velocity_smoother/src/velocity_smoother.cpp``.
+"""
+
+from amr_description.nav.smoothing import smooth
+from amr_description.ros import shutdown
+from amr_description.ros.managed_node import ManagedNode
+from amr_description.ros.twist_io import subscribe_twist
+from amr_description.ros.twist_io import TwistPublisher
+import numpy as np
+
+
+class VelocitySmoother(ManagedNode):
+    """Node ``velocity_smoother``; see the module docstring."""
+
+    def __init__(self):
+        """Declare the parameters."""
+        super().__init__('velocity_smoother')
+        d = self.declare_parameter
+        self.p = {k: d(k, v).value for k, v in {
+            'smoothing_frequency': 20.0, 'feedback': 'OPEN_LOOP', 'scale_velocities': False,
+            'max_velocity': [0.5, 0.0, 2.5], 'min_velocity': [-0.5, 0.0, -2.5],
+            'max_accel': [2.5, 0.0, 3.2], 'max_decel': [-2.5, 0.0, -3.2],
+            'odom_topic': 'odom', 'odom_duration': 0.1,
+            'deadband_velocity': [0.0, 0.0, 0.0], 'velocity_timeout': 1.0,
+            'enable_stamped_cmd_vel': False, 'use_realtime_priority': False,
+            'stamp_smoothed_velocity_with_smoothing_time': False}.items()}
+        self._entities = []
+        self._pub = None
+        self.current = np.zeros(3)
+        self.command = None
+        self.last_command = None
+
+    def configure(self):
+        """Check the limits' shapes and signs."""
+        self.get_logger().info('Configuring velocity smoother')
+        for key in ('max_velocity', 'min_velocity', 'max_accel', 'max_decel',
+                    'deadband_velocity'):
+            if len(self.p[key]) != 3:
+                raise ValueError(f'{key} must have 3 values (x, y, theta), got '
+                                 f'{list(self.p[key])}')
+        if any(a <= 0.0 for a, limit in zip(self.p['max_accel'], self.p['max_velocity'])
+               if limit != 0.0):
+            raise ValueError('Positive values set of acceleration! These should be positive to '
+                             'speed up!')
+        if str(self.p['feedback']).upper() == 'CLOSED_LOOP':
+            self.get_logger().info('feedback CLOSED_LOOP: the smoother runs open loop here')
+
+    def activate(self):
+        """Subscribe, publish and start the smoothing timer."""
+        self.get_logger().info('Activating')
+        stamped = self.p['enable_stamped_cmd_vel']
+        self._pub = TwistPublisher(self, 'cmd_vel_smoothed', stamped)
+        self._entities = [
+            self._pub.pub,
+            subscribe_twist(self, 'cmd_vel', stamped, self._on_command),
+            self.create_timer(1.0 / max(self.p['smoothing_frequency'], 1e-3), self._tick)]
+
+    def deactivate(self):
+        """Stop smoothing."""
+        self.get_logger().info('Deactivating')
+        for entity in self._entities:
+            for destroy in (self.destroy_subscription, self.destroy_publisher,
+                            self.destroy_timer):
+                if destroy(entity):
+                    break
+        self._entities = []
+        self._pub = None
+        self.command = None
+        self.current = np.zeros(3)
+
+    def _now(self):
+        return self.get_clock().now().nanoseconds * 1e-9
+
+    def _on_command(self, vx, vy, wz):
+        self.command = np.array([vx, vy, wz])
+        self.last_command = self._now()
+
+    def _tick(self):
+        if self.command is None:
+            return
+        timed_out = self._now() - self.last_command > self.p['velocity_timeout']
+        if timed_out:
+            if not self.current.any():
+                self.command = None  # braked: stop publishing
+                return
+            target = np.zeros(3)
+        else:
+            target = self.command
+        p = self.p
+        self.current = smooth(self.current, target, 1.0 / p['smoothing_frequency'],
+                              p['max_velocity'], p['min_velocity'], p['max_accel'],
+                              p['max_decel'], p['deadband_velocity'])
+        self._pub.publish(self.current[0], self.current[2], self.current[1])
+
+
+def main(args=None):
+    """
+    Run the velocity smoother until Ctrl-C.
+
+    :param args: command-line arguments for rclpy (default ``sys.argv``).
+    """
+    shutdown.run(VelocitySmoother, args)
+
+
+if __name__ == '__main__':
+    main()

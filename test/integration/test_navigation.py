@@ -1,0 +1,158 @@
+# Copyright 2026 The amr_description Authors
+# Licensed under the Apache License, Version 2.0
+"""
+Navigation as nav2_bringup starts it, over real DDS, on the simulated robot in arena.sdf.
+
+One stack: ``sim.launch.py world:=arena`` and ``bringup_launch.py map:=<arena map>`` (map_server,
+amcl, controller_server, planner_server, behavior_server, velocity_smoother, bt_navigator and
+both lifecycle managers, config/nav2_params.yaml). After the initial pose: goals outside the map
+and with NaN end at once with GOAL_OUTSIDE_MAP (204) and the stack keeps running; a
+NavigateToPose goal past the centre pillar succeeds with the robot's ground truth within Nav2's
+goal tolerances (plus AMCL's error) and feedback filled (distance remaining falling, navigation
+time rising, an estimated time); a goal on ``/goal_pose`` starts a navigation; a cancel stops
+the robot with status CANCELED.
+"""
+
+import math
+
+import pytest
+from test_sim import Peer  # noqa: I100 - the simulator tests' DDS peer
+
+pytest.importorskip('nav2_msgs.action')
+
+
+class NavPeer(Peer):
+    """Peer plus /initialpose, /amcl_pose, /goal_pose and the navigate_to_pose action."""
+
+    def __init__(self, domain_id):
+        from geometry_msgs.msg import PolygonStamped
+        from geometry_msgs.msg import PoseStamped
+        from geometry_msgs.msg import PoseWithCovarianceStamped
+        from nav2_msgs.action import NavigateToPose
+        from rclpy.action import ActionClient
+        from rclpy.qos import DurabilityPolicy
+        from rclpy.qos import QoSProfile
+        super().__init__(domain_id)
+        self.PoseStamped, self.PoseCov, self.Action = (PoseStamped, PoseWithCovarianceStamped,
+                                                       NavigateToPose)
+        self.amcl = []
+        self.node.create_subscription(PoseWithCovarianceStamped, '/amcl_pose', self.amcl.append,
+                                      QoSProfile(depth=1,
+                                                 durability=DurabilityPolicy.TRANSIENT_LOCAL))
+        self.initial = self.node.create_publisher(PoseWithCovarianceStamped, '/initialpose', 10)
+        self.goal_pose = self.node.create_publisher(PoseStamped, '/goal_pose', 10)
+        self.action = ActionClient(self.node, NavigateToPose, '/navigate_to_pose')
+        self.feedback = []
+        self.footprints = []
+        self.node.create_subscription(PolygonStamped, '/global_costmap/published_footprint',
+                                      self.footprints.append, 10)
+
+    def truth(self):
+        p = self.odom[-1].pose.pose
+        return (p.position.x, p.position.y,
+                2.0 * math.atan2(p.orientation.z, p.orientation.w))
+
+    def set_initial_pose(self):
+        msg = self.PoseCov()
+        msg.header.frame_id = 'map'
+        msg.pose.pose = self.odom[-1].pose.pose
+        msg.pose.covariance[0] = msg.pose.covariance[7] = msg.pose.covariance[35] = 0.01
+        self.initial.publish(msg)
+
+    def pose(self, x, y, yaw=0.0, cls=None):
+        msg = (cls or self.PoseStamped)()
+        msg.header.frame_id = 'map'
+        msg.pose.position.x, msg.pose.position.y = float(x), float(y)
+        msg.pose.orientation.z = math.sin(yaw / 2.0) if math.isfinite(yaw) else yaw
+        msg.pose.orientation.w = math.cos(yaw / 2.0) if math.isfinite(yaw) else 1.0
+        return msg
+
+    def send(self, x, y, yaw=0.0):
+        """Send a NavigateToPose goal; return its goal handle."""
+        goal = self.Action.Goal()
+        goal.pose = self.pose(x, y, yaw)
+        self.feedback = []
+        assert self.action.wait_for_server(timeout_sec=60.0)
+        sent = self.action.send_goal_async(goal, feedback_callback=lambda m: self.feedback
+                                           .append(m.feedback))
+        assert self.spin_until(sent.done, 60.0)
+        assert sent.result().accepted
+        return sent.result()
+
+    def result(self, handle, timeout):
+        future = handle.get_result_async()
+        assert self.spin_until(future.done, timeout), 'no result in time'
+        return future.result().status, future.result().result
+
+
+def _seconds(duration):
+    return duration.sec + duration.nanosec * 1e-9
+
+
+def test_navigate_to_pose_on_the_simulated_robot(procs, exe, ros_env, tmp_path):
+    from action_msgs.msg import GoalStatus
+    from amr_description.nav import map_io
+    from amr_description.tools.benchmark.amcl_accuracy import arena_map
+    from nav2_msgs.action import ComputePathToPose
+    map_io.save_map(str(tmp_path / 'arena'), arena_map())
+    sim = procs.start([exe('ros2'), 'launch', 'amr_description', 'sim.launch.py',
+                       'world:=arena', 'viewer:=false'], ros_env)
+    nav = procs.start([exe('ros2'), 'launch', 'amr_description', 'bringup_launch.py',
+                       f'map:={tmp_path}/arena.yaml', 'use_sim_time:=true'], ros_env)
+    peer = NavPeer(int(ros_env['ROS_DOMAIN_ID']))
+    try:
+        assert nav.wait_for_output('[lifecycle_manager_navigation]: Managed nodes are active',
+                                   240.0), nav.output[-3000:]
+        assert nav.wait_for_output('[lifecycle_manager_localization]: Managed nodes are '
+                                   'active', 60.0), nav.output[-3000:]
+        assert peer.spin_until(lambda: peer.odom, 120.0), sim.output[-2000:]
+        assert peer.spin_until(lambda: peer.set_initial_pose() or peer.amcl, 120.0)
+        # the planner knows the robot's pose in map once the global costmap shows its footprint
+        assert peer.spin_until(lambda: peer.footprints, 120.0), nav.output[-3000:]
+
+        # bad goals end at once with the planner's code; nothing stops
+        codes = ComputePathToPose.Result
+        for x, y in ((50.0, 0.0), (float('nan'), 0.0)):
+            handle = peer.send(x, y)
+            status, result = peer.result(handle, 60.0)
+            assert status == GoalStatus.STATUS_ABORTED, (x, y, status)
+            assert result.error_code == codes.GOAL_OUTSIDE_MAP, (x, y, result.error_code)
+
+        # past the centre pillar at (1, 0) to (2.5, 0.5), facing +y
+        start = peer.now
+        handle = peer.send(2.5, 0.5, math.pi / 2)
+        status, result = peer.result(handle, 300.0)
+        x, y, yaw = peer.truth()
+        print(f'reached ({x:.3f}, {y:.3f}, {yaw:.3f}) in {peer.now - start:.1f} s of sim time')
+        assert status == GoalStatus.STATUS_SUCCEEDED, (result.error_code, nav.output[-3000:])
+        # Nav2's default tolerances, 0.25 m and 0.25 rad, plus AMCL's error (under 0.1 m)
+        assert math.hypot(x - 2.5, y - 0.5) < 0.35
+        assert abs(math.remainder(yaw - math.pi / 2, math.tau)) < 0.35
+        remaining = [f.distance_remaining for f in peer.feedback if f.distance_remaining > 0]
+        assert len(remaining) > 5 and remaining[0] > 2.0 and remaining[-1] < 1.0
+        times = [_seconds(f.navigation_time) for f in peer.feedback]
+        assert times == sorted(times) and times[-1] > 3.0
+        assert any(_seconds(f.estimated_time_remaining) > 0.0 for f in peer.feedback)
+        assert peer.feedback[-1].current_pose.header.frame_id == 'map'
+
+        # RViz's 2D Goal Pose: a PoseStamped on /goal_pose starts a navigation
+        peer.goal_pose.publish(peer.pose(1.5, 0.6, math.pi))
+        assert nav.wait_for_output('Received goal pose on goal_pose', 60.0)
+        assert peer.spin_until(lambda: math.hypot(peer.truth()[0] - 2.5,
+                                                  peer.truth()[1] - 0.5) > 0.3, 120.0)
+
+        # a new goal pre-empts it; a cancel stops the robot
+        handle = peer.send(-0.5, -0.5)
+        assert peer.spin_until(lambda: len(peer.feedback) > 20 and
+                               peer.feedback[-1].distance_remaining > 0.5, 120.0)
+        cancel = handle.cancel_goal_async()
+        assert peer.spin_until(cancel.done, 60.0)
+        status, _ = peer.result(handle, 60.0)
+        assert status == GoalStatus.STATUS_CANCELED
+        settled = peer.now
+        assert peer.spin_until(lambda: peer.now > settled + 2.0, 60.0)
+        twist = peer.odom[-1].twist.twist
+        assert math.hypot(twist.linear.x, twist.linear.y) < 0.02 and abs(twist.angular.z) < 0.05
+        assert sim.popen.poll() is None and nav.popen.poll() is None
+    finally:
+        peer.close()
