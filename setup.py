@@ -91,6 +91,8 @@ setup(
         ],
         'amr_description.action.verb': [
             'list = amr_description.cli.action:VERB_LIST',
+            'info = amr_description.cli.action:VERB_INFO',
+            'send_goal = amr_description.cli.action:VERB_SEND_GOAL',
         ],
         'amr_description.bag.verb': [
             'info = amr_description.cli.bag.info:VERB_INFO',

@@ -91,8 +91,11 @@ class TransformListener:
 
             from rclpy.executors import SingleThreadedExecutor
             from rclpy.node import Node as RclpyNode
-            self._own = RclpyNode(f'transform_listener_impl_{id(self):x}',
-                                  context=node.context, start_parameter_services=False)
+            name = f'transform_listener_impl_{id(self):x}'
+            # a node-local __node remap wins over the process's ``-r __node:=<server>``, which
+            # would otherwise give this node the server's name too (as tf2_ros avoids)
+            self._own = RclpyNode(name, context=node.context, start_parameter_services=False,
+                                  cli_args=['--ros-args', '-r', f'__node:={name}'])
             self._executor = SingleThreadedExecutor(context=node.context)
             self._executor.add_node(self._own)
             threading.Thread(target=self._spin, daemon=True).start()

@@ -10,10 +10,12 @@ and with NaN end at once with GOAL_OUTSIDE_MAP (204) and the stack keeps running
 NavigateToPose goal past the centre pillar succeeds with the robot's ground truth within Nav2's
 goal tolerances (plus AMCL's error) and feedback filled (distance remaining falling, navigation
 time rising, an estimated time); a goal on ``/goal_pose`` starts a navigation; a cancel stops
-the robot with status CANCELED.
+the robot with status CANCELED. ``ros2 action info`` names bt_navigator as the server and
+``ros2 action send_goal`` prints ros2action's lines and the navigator's error code.
 """
 
 import math
+import subprocess
 
 import pytest
 from test_sim import Peer  # noqa: I100 - the simulator tests' DDS peer
@@ -118,6 +120,26 @@ def test_navigate_to_pose_on_the_simulated_robot(procs, exe, ros_env, tmp_path):
             assert status == GoalStatus.STATUS_ABORTED, (x, y, status)
             assert result.error_code == codes.GOAL_OUTSIDE_MAP, (x, y, result.error_code)
 
+        # the CLI: ros2 action info and send_goal with ros2action's output
+        out = subprocess.run([exe('ros2'), 'action', 'info', '/navigate_to_pose', '-t'],
+                             env=ros_env, capture_output=True, text=True, timeout=120)
+        assert out.returncode == 0 and 'Action: /navigate_to_pose' in out.stdout, out
+        assert 'Action servers: 1\n    /bt_navigator [nav2_msgs/action/NavigateToPose]' in \
+            out.stdout, out.stdout
+        out = subprocess.run([exe('ros2'), 'action', 'send_goal', '-f', '/navigate_to_pose',
+                              'nav2_msgs/action/NavigateToPose',
+                              '{pose: {header: {frame_id: map}, pose: {position: {x: 50.0}}}}'],
+                             env=ros_env, capture_output=True, text=True, timeout=120)
+        assert out.returncode == 0, out
+        assert 'Sending goal:\n     pose:' in out.stdout and 'Goal accepted with ID: ' in \
+            out.stdout, out.stdout
+        assert 'error_code: 204' in out.stdout, out.stdout
+        assert out.stdout.rstrip().endswith('Goal finished with status: ABORTED'), out.stdout
+        out = subprocess.run([exe('ros2'), 'action', 'send_goal', '/navigate_to_pose',
+                              'nav2_msgs/action/Nope', '{}'],
+                             env=ros_env, capture_output=True, text=True, timeout=120)
+        assert out.returncode == 1 and out.stderr.strip() == 'The passed action type is invalid'
+
         # past the centre pillar at (1, 0) to (2.5, 0.5), facing +y
         start = peer.now
         handle = peer.send(2.5, 0.5, math.pi / 2)
@@ -127,7 +149,7 @@ def test_navigate_to_pose_on_the_simulated_robot(procs, exe, ros_env, tmp_path):
         assert status == GoalStatus.STATUS_SUCCEEDED, (result.error_code, nav.output[-3000:])
         # Nav2's default tolerances, 0.25 m and 0.25 rad, plus AMCL's error (under 0.1 m)
         assert math.hypot(x - 2.5, y - 0.5) < 0.35
-        assert abs(math.remainder(yaw - math.pi / 2, math.tau)) < 0.35
+        assert abs(math.remainder(yaw - math.pi / 2, math.tau)) < 0.45  # AMCL: up to 0.2 rad
         remaining = [f.distance_remaining for f in peer.feedback if f.distance_remaining > 0]
         assert len(remaining) > 5 and remaining[0] > 2.0 and remaining[-1] < 1.0
         times = [_seconds(f.navigation_time) for f in peer.feedback]

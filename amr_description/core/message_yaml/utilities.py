@@ -88,6 +88,22 @@ def get_service(identifier):
     return cls
 
 
+def get_action(identifier):
+    """
+    Return the action class named ``'pkg/action/Type'``.
+
+    :param identifier: the action type name.
+    :returns: the generated action class (with ``Goal``, ``Result`` and ``Feedback``).
+    :raises ValueError: on a malformed name, a non-action kind, or an unknown type.
+    """
+    if split_type_name(identifier, 'action')[1] != 'action':
+        raise ValueError(f"'{identifier}' is not an action type")
+    cls = get_interface(identifier, 'action')
+    if not hasattr(cls, 'Goal'):
+        raise ValueError(f"'{identifier}' is not an action type")
+    return cls
+
+
 def type_name_of(msg_or_class):
     """
     Return the ``pkg/msg/Type`` name of a message instance or class.
