@@ -10,7 +10,8 @@ import pytest
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 # Lint our sources only: the repository root also holds .venv/, build/, install/ and log/.
-PATHS = [os.path.join(ROOT, name) for name in ('amr_description', 'test', 'setup.py')]
+PATHS = [os.path.join(ROOT, name) for name in ('amr_description', 'nav2_simple_commander', 'test',
+                                               'setup.py')]
 
 
 @pytest.mark.flake8

@@ -9,7 +9,8 @@ from ament_pep257.main import main
 import pytest
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-PATHS = [os.path.join(ROOT, name) for name in ('amr_description', 'test', 'setup.py')]
+PATHS = [os.path.join(ROOT, name) for name in ('amr_description', 'nav2_simple_commander', 'test',
+                                               'setup.py')]
 
 
 @pytest.mark.linter

@@ -11,11 +11,13 @@ NavigateToPose goal past the centre pillar succeeds with the robot's ground trut
 goal tolerances (plus AMCL's error) and feedback filled (distance remaining falling, navigation
 time rising, an estimated time); a goal on ``/goal_pose`` starts a navigation; a cancel stops
 the robot with status CANCELED. ``ros2 action info`` names bt_navigator as the server and
-``ros2 action send_goal`` prints ros2action's lines and the navigator's error code.
+``ros2 action send_goal`` prints ros2action's lines and the navigator's error code; a
+nav2_simple_commander script in upstream's example pattern drives the robot to a goal.
 """
 
 import math
 import subprocess
+import sys
 
 import pytest
 from test_sim import Peer  # noqa: I100 - the simulator tests' DDS peer
@@ -85,6 +87,51 @@ class NavPeer(Peer):
         future = handle.get_result_async()
         assert self.spin_until(future.done, timeout), 'no result in time'
         return future.result().status, future.result().result
+
+
+COMMANDER_SCRIPT = '''
+import math
+import sys
+
+from geometry_msgs.msg import PoseStamped
+from nav2_simple_commander.robot_navigator import BasicNavigator, TaskResult
+import rclpy
+
+rclpy.init()
+navigator = BasicNavigator()
+x, y, yaw = map(float, sys.argv[1:4])
+initial_pose = PoseStamped()
+initial_pose.header.frame_id = 'map'
+initial_pose.header.stamp = navigator.get_clock().now().to_msg()
+initial_pose.pose.position.x, initial_pose.pose.position.y = x, y
+initial_pose.pose.orientation.z, initial_pose.pose.orientation.w = (math.sin(yaw / 2),
+                                                                    math.cos(yaw / 2))
+navigator.setInitialPose(initial_pose)
+navigator.waitUntilNav2Active()
+goal_pose = PoseStamped()
+goal_pose.header.frame_id = 'map'
+goal_pose.header.stamp = navigator.get_clock().now().to_msg()
+goal_pose.pose.position.x, goal_pose.pose.position.y = 1.5, -0.5
+goal_pose.pose.orientation.w = 1.0
+navigator.goToPose(goal_pose)
+i = 0
+while not navigator.isTaskComplete():
+    i += 1
+    feedback = navigator.getFeedback()
+    if feedback and i % 5 == 0:
+        print('distance remaining: ' + '{:.2f}'.format(feedback.distance_remaining), flush=True)
+result = navigator.getResult()
+if result == TaskResult.SUCCEEDED:
+    print('Goal succeeded!')
+elif result == TaskResult.CANCELED:
+    print('Goal was canceled!')
+elif result == TaskResult.FAILED:
+    print('Goal failed!')
+navigator.destroy_node()
+rclpy.shutdown()
+sys.exit(0 if result == TaskResult.SUCCEEDED else 1)
+'''
+"""A script as nav2_simple_commander's examples write them (example_nav_to_pose.py)."""
 
 
 def _seconds(duration):
@@ -175,6 +222,24 @@ def test_navigate_to_pose_on_the_simulated_robot(procs, exe, ros_env, tmp_path):
         assert peer.spin_until(lambda: peer.now > settled + 2.0, 60.0)
         twist = peer.odom[-1].twist.twist
         assert math.hypot(twist.linear.x, twist.linear.y) < 0.02 and abs(twist.angular.z) < 0.05
+
+        # upstream's nav2_simple_commander example pattern, unchanged, as a user's script
+        x, y, yaw = peer.truth()
+        before = peer.now
+        script = tmp_path / 'go.py'
+        script.write_text(COMMANDER_SCRIPT)
+        out = subprocess.run([sys.executable, str(script), str(x), str(y), str(yaw)],
+                             env=ros_env, capture_output=True, text=True, timeout=400)
+        assert out.returncode == 0, out.stdout + out.stderr + nav.output[-3000:]
+        assert 'Nav2 is ready for use!' in out.stderr and 'Goal succeeded!' in out.stdout
+        assert 'distance remaining:' in out.stdout
+
+        def fresh():  # the peer did not spin while the script ran: read up to now
+            last = peer.odom[-1].header.stamp
+            return peer.now > before + 1.0 and last.sec + last.nanosec * 1e-9 > peer.now - 0.2
+
+        assert peer.spin_until(fresh, 60.0)
+        assert math.hypot(peer.truth()[0] - 1.5, peer.truth()[1] + 0.5) < 0.35
         assert sim.popen.poll() is None and nav.popen.poll() is None
     finally:
         peer.close()
