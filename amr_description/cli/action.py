@@ -90,10 +90,11 @@ def _clients_and_servers(node, action):
 
 def _info(args):
     action = args.action_name if args.action_name.startswith('/') else '/' + args.action_name
-    with graph_node(args, default_node_name()) as node:
+    # a node of its own: rclpy's per-node action queries need an rcl node, not the daemon's
+    with cli_node(default_node_name()) as node:
         clients, servers = wait_for_graph(node, lambda n: _clients_and_servers(n, action),
-                                          settle=args.spin_time, minimum=args.spin_time,
-                                          maximum=args.spin_time)
+                                          settle=0.4, minimum=max(args.spin_time, 0.3),
+                                          maximum=max(args.spin_time, 3.0))
     print(f'Action: {action}')
     for label, table in (('Action clients', clients), ('Action servers', servers)):
         print(f'{label}: {len(table)}')
