@@ -32,20 +32,29 @@ SLAM_ARGUMENTS = [
 """slam_toolbox's ``online_async_launch.py`` arguments, its names, defaults and descriptions."""
 
 
-LOCALIZATION_ARGUMENTS = [
-    DeclareLaunchArgument('map', '', 'Full path to map yaml file to load'),
-    DeclareLaunchArgument('use_sim_time', 'false',
-                          'Use simulation (Gazebo) clock if true'),
-    DeclareLaunchArgument('params_file', '',
-                          'Full path to the ROS2 parameters file to use for all launched nodes '
-                          "(default: the package's config/nav2_params.yaml)"),
-    DeclareLaunchArgument('autostart', 'true',
-                          'Automatically startup the nav2 stack'),
-    DeclareLaunchArgument('use_respawn', 'False',
-                          'Whether to respawn if a node crashes. Applied when composition is '
-                          'disabled.'),
-]
+MAP_ARGUMENT = DeclareLaunchArgument('map', '', 'Full path to map yaml file to load')
+USE_SIM_TIME_ARGUMENT = DeclareLaunchArgument('use_sim_time', 'false',
+                                              'Use simulation (Gazebo) clock if true')
+PARAMS_FILE_ARGUMENT = DeclareLaunchArgument(
+    'params_file', '', 'Full path to the ROS2 parameters file to use for all launched nodes '
+    "(default: the package's config/nav2_params.yaml)")
+AUTOSTART_ARGUMENT = DeclareLaunchArgument('autostart', 'true',
+                                           'Automatically startup the nav2 stack')
+USE_RESPAWN_ARGUMENT = DeclareLaunchArgument(
+    'use_respawn', 'False',
+    'Whether to respawn if a node crashes. Applied when composition is disabled.')
+# the arguments nav2_bringup's launch files declare alike (names, defaults, descriptions)
+
+LOCALIZATION_ARGUMENTS = [MAP_ARGUMENT, USE_SIM_TIME_ARGUMENT, PARAMS_FILE_ARGUMENT,
+                          AUTOSTART_ARGUMENT, USE_RESPAWN_ARGUMENT]
 """nav2_bringup's ``localization_launch.py`` arguments (names, defaults, descriptions)."""
+
+
+def _params_file(args):
+    params = os.path.expanduser(args['params_file'] or share_file('config', 'nav2_params.yaml'))
+    if not os.path.isfile(params):
+        raise LaunchError(f"launch argument 'params_file': no such file '{params}'")
+    return params
 
 
 def localization(args):
@@ -64,9 +73,7 @@ def localization(args):
     use_sim_time = parse_bool(args['use_sim_time'], 'use_sim_time')
     autostart = parse_bool(args['autostart'], 'autostart')
     respawn = parse_bool(args['use_respawn'], 'use_respawn')
-    params = os.path.expanduser(args['params_file'] or share_file('config', 'nav2_params.yaml'))
-    if not os.path.isfile(params):
-        raise LaunchError(f"launch argument 'params_file': no such file '{params}'")
+    params = _params_file(args)
     map_yaml = os.path.expanduser(args['map'])
     if map_yaml and not os.path.isfile(map_yaml):
         raise LaunchError(f"launch argument 'map': no such file '{args['map']}'")
@@ -129,23 +136,16 @@ def online_async(args):
     return actions
 
 
+NAMESPACE_ARGUMENT = DeclareLaunchArgument('namespace', '', 'Top-level namespace')
+LOG_LEVEL_ARGUMENT = DeclareLaunchArgument('log_level', 'info', 'log level')
+
 NAVIGATION_ARGUMENTS = [
-    DeclareLaunchArgument('namespace', '', 'Top-level namespace'),
-    DeclareLaunchArgument('use_sim_time', 'false',
-                          'Use simulation (Gazebo) clock if true'),
-    DeclareLaunchArgument('params_file', '',
-                          'Full path to the ROS2 parameters file to use for all launched nodes '
-                          "(default: the package's config/nav2_params.yaml)"),
-    DeclareLaunchArgument('autostart', 'true',
-                          'Automatically startup the nav2 stack'),
+    NAMESPACE_ARGUMENT, USE_SIM_TIME_ARGUMENT, PARAMS_FILE_ARGUMENT, AUTOSTART_ARGUMENT,
     DeclareLaunchArgument('use_composition', 'False',
                           'Use composed bringup if True (here: one process each either way)'),
     DeclareLaunchArgument('container_name', 'nav2_container',
                           'the name of conatiner that nodes will load in if use composition'),
-    DeclareLaunchArgument('use_respawn', 'False',
-                          'Whether to respawn if a node crashes. Applied when composition is '
-                          'disabled.'),
-    DeclareLaunchArgument('log_level', 'info', 'log level'),
+    USE_RESPAWN_ARGUMENT, LOG_LEVEL_ARGUMENT,
 ]
 """nav2_bringup's ``navigation_launch.py`` arguments (names, defaults, descriptions)."""
 
@@ -155,13 +155,6 @@ NAVIGATION_NODES = ['controller_server', 'planner_server', 'behavior_server',
 
 ROBOT_CMD_VEL = 'diff_drive_controller/cmd_vel'
 """Where the smoothed command goes: the robot's diff_drive_controller (no collision monitor)."""
-
-
-def _params_file(args):
-    params = os.path.expanduser(args['params_file'] or share_file('config', 'nav2_params.yaml'))
-    if not os.path.isfile(params):
-        raise LaunchError(f"launch argument 'params_file': no such file '{params}'")
-    return params
 
 
 def navigation(args):
@@ -207,24 +200,17 @@ def navigation(args):
 
 
 BRINGUP_ARGUMENTS = [
-    DeclareLaunchArgument('namespace', '', 'Top-level namespace'),
+    NAMESPACE_ARGUMENT,
     DeclareLaunchArgument('use_namespace', 'false',
                           'Whether to apply a namespace to the navigation stack'),
     DeclareLaunchArgument('slam', 'False', 'Whether run a SLAM'),
-    DeclareLaunchArgument('map', '', 'Full path to map yaml file to load'),
+    MAP_ARGUMENT,
     DeclareLaunchArgument('use_localization', 'True',
                           'Whether to enable localization or not'),
-    DeclareLaunchArgument('use_sim_time', 'false', 'Use simulation (Gazebo) clock if true'),
-    DeclareLaunchArgument('params_file', '',
-                          'Full path to the ROS2 parameters file to use for all launched nodes '
-                          "(default: the package's config/nav2_params.yaml)"),
-    DeclareLaunchArgument('autostart', 'true', 'Automatically startup the nav2 stack'),
+    USE_SIM_TIME_ARGUMENT, PARAMS_FILE_ARGUMENT, AUTOSTART_ARGUMENT,
     DeclareLaunchArgument('use_composition', 'True',
                           'Whether to use composed bringup (here: one process each)'),
-    DeclareLaunchArgument('use_respawn', 'False',
-                          'Whether to respawn if a node crashes. Applied when composition is '
-                          'disabled.'),
-    DeclareLaunchArgument('log_level', 'info', 'log level'),
+    USE_RESPAWN_ARGUMENT, LOG_LEVEL_ARGUMENT,
 ]
 """nav2_bringup's ``bringup_launch.py`` arguments (names, defaults, descriptions)."""
 

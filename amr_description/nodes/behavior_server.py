@@ -36,6 +36,7 @@ from amr_description.nav.grid_message import costmap_from_message
 from amr_description.ros import shutdown
 from amr_description.ros.goal_server import SingleGoalServer
 from amr_description.ros.managed_node import ManagedNode
+from amr_description.ros.stamps import msg_to_time
 from amr_description.ros.transforms import planar_pose
 from amr_description.ros.transforms import TransformListener
 from amr_description.ros.twist_io import TwistPublisher
@@ -56,11 +57,6 @@ DEFAULT_PLUGINS = {'spin': 'Spin', 'backup': 'BackUp', 'drive_on_heading': 'Driv
                    'wait': 'Wait'}
 LATCHED = QoSProfile(depth=1, reliability=ReliabilityPolicy.RELIABLE,
                      durability=DurabilityPolicy.TRANSIENT_LOCAL)
-
-
-def seconds(duration):
-    """Convert a builtin_interfaces/Duration to a float (s)."""
-    return duration.sec + duration.nanosec * 1e-9
 
 
 class BehaviorServer(ManagedNode):
@@ -130,11 +126,7 @@ class BehaviorServer(ManagedNode):
         for _, server in self.servers.values():
             server.destroy()
         self.servers, self.runs = {}, {}
-        for entity in self._entities:
-            for destroy in (self.destroy_subscription, self.destroy_publisher,
-                            self.destroy_timer):
-                if destroy(entity):
-                    break
+        self.destroy_entities(self._entities)
         self._entities = []
         self._cmd = None
 
@@ -180,7 +172,7 @@ class BehaviorServer(ManagedNode):
             return self._end(bid, 'abort', 'TF_ERROR', f'Initial robot pose is not available: '
                              f'{str(exc).strip()}')
         self.get_logger().info(f'Running {bid}')
-        allowance = 0.0 if kind == 'Wait' else seconds(goal.time_allowance)
+        allowance = 0.0 if kind == 'Wait' else msg_to_time(goal.time_allowance)
         self.runs[bid] = {'start': start, 't0': self._now(), 'allowance': allowance,
                           'last_yaw': start[2], 'turned': 0.0}
 
@@ -218,7 +210,7 @@ class BehaviorServer(ManagedNode):
                           f'{bid} has exceeded its time allowance of {run["allowance"]:g} s')
                 continue
             if kind == 'Wait':
-                left = seconds(server.goal.time) - elapsed
+                left = msg_to_time(server.goal.time) - elapsed
                 if left <= 0.0:
                     self._end(bid, 'succeed', None)
                 else:

@@ -40,8 +40,8 @@ from amr_description.ros.goal_server import SingleGoalServer
 from amr_description.ros.managed_node import ManagedNode
 from amr_description.ros.transforms import planar_pose
 from amr_description.ros.transforms import set_yaw
+from amr_description.ros.transforms import transform_planar
 from amr_description.ros.transforms import TransformListener
-from amr_description.ros.transforms import yaw_of
 from geometry_msgs.msg import PoseStamped
 from nav2_msgs.action import BackUp
 from nav2_msgs.action import ComputePathThroughPoses
@@ -149,9 +149,7 @@ class BtNavigator(ManagedNode):
         for server in self.servers.values():
             server.destroy()
         self.servers = {}
-        for entity in self._entities:
-            if not self.destroy_subscription(entity):
-                self.destroy_timer(entity)
+        self.destroy_entities(self._entities)
         self._entities = []
 
     def cleanup(self):
@@ -195,11 +193,9 @@ class BtNavigator(ManagedNode):
         out = PoseStamped()
         out.header.frame_id = frame
         out.header.stamp = pose.header.stamp
-        p = pose.pose.position
-        out.pose.position.x, out.pose.position.y = (
-            float(v) for v in T[:2, :2] @ (p.x, p.y) + T[:2, 3])
-        set_yaw(out.pose.orientation, yaw_of(pose.pose.orientation) +
-                math.atan2(T[1, 0], T[0, 0]))
+        x, y, yaw = transform_planar(T, pose.pose)
+        out.pose.position.x, out.pose.position.y = x, y
+        set_yaw(out.pose.orientation, yaw)
         return out
 
     def _robot(self):
@@ -222,9 +218,12 @@ class BtNavigator(ManagedNode):
                                    "tree's behaviour runs here")
         poses = [goal.pose] if action is NavigateToPose else list(goal.poses)
         if not poses:
-            self.nav = {'server': self.servers[nid], 'action': action}
-            return self._end('abort', 'No goals given', code=ComputePathThroughPoses.Result
-                             .NO_VIAPOINTS_GIVEN)
+            self.nav = None
+            result = action.Result()
+            result.error_code = ComputePathThroughPoses.Result.NO_VIAPOINTS_GIVEN
+            result.error_msg = 'No goals given'
+            self.get_logger().error('Goal failed: No goals given')
+            return self.servers[nid].finish_current('abort', result)
         goals = [self._in_global(p) for p in poses]
         g = goals[-1].pose.position
         self.get_logger().info(f'Begin navigating from the current location to '
@@ -240,15 +239,13 @@ class BtNavigator(ManagedNode):
             if client.busy or client.handle is not None:
                 client.cancel()
 
-    def _end(self, outcome, message='', code=None):
+    def _end(self, outcome, message=''):
         nav, self.nav = self.nav, None
         self._stop_clients()
         result = nav['action'].Result()
-        if code is None and 'compute' in nav:
-            names = {'follow_path_error_code': nav['follow'],
-                     'compute_path_error_code': nav['compute']}
-            code = logic.error_code(names.get(n, 0) for n in self.p['error_code_names'])
-        result.error_code = int(code or 0)
+        names = {'follow_path_error_code': nav['follow'],
+                 'compute_path_error_code': nav['compute']}
+        result.error_code = logic.error_code(names.get(n, 0) for n in self.p['error_code_names'])
         result.error_msg = message
         if outcome == 'succeed':
             self.get_logger().info('Goal succeeded')
@@ -319,6 +316,8 @@ class BtNavigator(ManagedNode):
         if status == GoalStatus.STATUS_SUCCEEDED:
             nav['compute'], nav['plan_retry'] = 0, False
             nav['path'] = result.path
+            nav['path_xy'] = np.array([(p.pose.position.x, p.pose.position.y)
+                                       for p in result.path.poses]).reshape(-1, 2)
             goal = FollowPath.Goal()
             goal.path = result.path
             goal.controller_id = 'FollowPath'
@@ -419,9 +418,8 @@ class BtNavigator(ManagedNode):
         fb.navigation_time = duration(now - nav['t0'])
         fb.number_of_recoveries = int(nav['recoveries'])
         distance = 0.0
-        if nav['path'] is not None and nav['path'].poses:
-            xy = np.array([(p.pose.position.x, p.pose.position.y) for p in nav['path'].poses])
-            distance = logic.remaining_distance(xy, robot[:2])
+        if nav['path'] is not None:  # its xy made once per plan, not per tick
+            distance = logic.remaining_distance(nav['path_xy'], robot[:2])
         fb.distance_remaining = float(distance)
         fb.estimated_time_remaining = duration(logic.time_remaining(distance, self.speed))
         if nav['action'] is NavigateThroughPoses:

@@ -169,11 +169,7 @@ class ControllerServer(ManagedNode):
             self._stop_robot()
             self._server.destroy()
             self._server = None
-        for entity in self._entities:
-            for destroy in (self.destroy_subscription, self.destroy_publisher,
-                            self.destroy_timer):
-                if destroy(entity):
-                    break
+        self.destroy_entities(self._entities)
         self._entities = []
         self._cmd_pub = None
         self.costmap.stop()

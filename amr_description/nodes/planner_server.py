@@ -35,8 +35,8 @@ from amr_description.ros import shutdown
 from amr_description.ros.managed_node import ManagedNode
 from amr_description.ros.transforms import planar_pose
 from amr_description.ros.transforms import set_yaw
+from amr_description.ros.transforms import transform_planar
 from amr_description.ros.transforms import TransformListener
-from amr_description.ros.transforms import yaw_of
 from geometry_msgs.msg import PoseStamped
 from nav2_msgs.action import ComputePathThroughPoses
 from nav2_msgs.action import ComputePathToPose
@@ -128,9 +128,7 @@ class PlannerServer(ManagedNode):
             raise ValueError('pose has a NaN or infinite value')
         source = pose_stamped.header.frame_id or frame
         T, _ = self.tf_buffer.lookup(frame, source)
-        yaw = yaw_of(p.orientation)
-        x, y = T[:2, :2] @ (p.position.x, p.position.y) + T[:2, 3]
-        return float(x), float(y), yaw + math.atan2(T[1, 0], T[0, 0])
+        return transform_planar(T, p)
 
     def _execute(self, handle):
         return self._serve(handle, ComputePathToPose, [handle.request.goal])

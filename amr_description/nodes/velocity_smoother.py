@@ -70,11 +70,7 @@ class VelocitySmoother(ManagedNode):
     def deactivate(self):
         """Stop smoothing."""
         self.get_logger().info('Deactivating')
-        for entity in self._entities:
-            for destroy in (self.destroy_subscription, self.destroy_publisher,
-                            self.destroy_timer):
-                if destroy(entity):
-                    break
+        self.destroy_entities(self._entities)
         self._entities = []
         self._pub = None
         self.command = None

@@ -22,7 +22,6 @@ from action_msgs.msg import GoalStatus
 from rclpy.action import ActionClient
 from rclpy.action import ActionServer
 from rclpy.action import CancelResponse
-from rclpy.action import GoalResponse
 from rclpy.impl.implementation_singleton import rclpy_implementation as _rclpy
 
 
@@ -34,28 +33,18 @@ class SingleGoalServer:
     :param action_type: e.g. ``nav2_msgs.action.FollowPath``.
     :param name: the action name (relative to the node's namespace).
     :param on_goal: ``f(handle)`` called when a goal becomes the current one.
-    :param check: ``f(goal) -> str or None``; a string rejects the goal with that reason.
     """
 
-    def __init__(self, node, action_type, name, on_goal, check=None):
+    def __init__(self, node, action_type, name, on_goal):
         """Create the rclpy action server."""
         self.node = node
         self.type = action_type
         self.name = name
         self.on_goal = on_goal
-        self.check = check
         self.current = None
         self.server = ActionServer(node, action_type, name, execute_callback=self._late,
-                                   goal_callback=self._on_request,
                                    handle_accepted_callback=self._on_accepted,
                                    cancel_callback=lambda handle: CancelResponse.ACCEPT)
-
-    def _on_request(self, goal):
-        reason = self.check(goal) if self.check is not None else None
-        if reason:
-            self.node.get_logger().warning(f'{self.name}: goal rejected: {reason}')
-            return GoalResponse.REJECT
-        return GoalResponse.ACCEPT
 
     def _on_accepted(self, handle):
         previous = self.current
@@ -119,7 +108,7 @@ class SingleGoalServer:
 
 class GoalClient:
     """
-    An action client used from timers: send, cancel, and know how the last goal ended.
+    An action client used from timers: send a goal, hear how it ended, cancel it.
 
     :param node: the rclpy node.
     :param action_type: the action type.
@@ -133,21 +122,13 @@ class GoalClient:
         self.name = name
         self.client = ActionClient(node, action_type, name)
         self.handle = None
-        self.pending = False
-        self.status = None  # GoalStatus value of the last goal once it ended
-        self.result = None
-        self.feedback = None
+        self.busy = False  # from send() until the goal ends (or is rejected)
         self._serial = 0
         self._cancelled = 0  # goals sent up to this serial were cancelled
 
     def ready(self):
         """Return True when the server is discovered."""
         return self.client.server_is_ready()
-
-    @property
-    def busy(self):
-        """Return True from :meth:`send` until the goal ends (or is rejected)."""
-        return self.pending
 
     def send(self, goal, on_done=None):
         """
@@ -158,15 +139,9 @@ class GoalClient:
         """
         self._serial += 1
         serial = self._serial
-        self.pending = True
-        self.status = self.result = None
-        future = self.client.send_goal_async(
-            goal, feedback_callback=lambda m: self._on_feedback(serial, m))
+        self.busy = True
+        future = self.client.send_goal_async(goal)
         future.add_done_callback(lambda f: self._on_response(serial, f, on_done))
-
-    def _on_feedback(self, serial, message):
-        if serial == self._serial:
-            self.feedback = message.feedback
 
     def _on_response(self, serial, future, on_done):
         handle = future.result()
@@ -184,9 +159,8 @@ class GoalClient:
     def _end(self, serial, status, result, on_done):
         if serial != self._serial:
             return
-        self.pending = False
+        self.busy = False
         self.handle = None
-        self.status, self.result = status, result
         if on_done is not None:
             on_done(status, result)
 
@@ -194,7 +168,7 @@ class GoalClient:
         """Cancel the goal in flight (its end is not reported) and forget it."""
         self._serial += 1
         self._cancelled = self._serial - 1
-        self.pending = False
+        self.busy = False
         if self.handle is not None:
             self.handle.cancel_goal_async()
         self.handle = None

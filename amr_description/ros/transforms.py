@@ -44,6 +44,17 @@ def planar_pose(T):
     return np.array([T[0, 3], T[1, 3], math.atan2(T[1, 0], T[0, 0])])
 
 
+def transform_planar(T, pose):
+    """
+    Return ``(x, y, yaw)`` of a geometry_msgs/Pose moved by a 4x4 transform (rotation about z).
+
+    :param T: the transform from the pose's frame to the target frame (4x4 array).
+    :param pose: a geometry_msgs/Pose; only its x, y and yaw are used.
+    """
+    x, y = T[:2, :2] @ (pose.position.x, pose.position.y) + T[:2, 3]
+    return float(x), float(y), yaw_of(pose.orientation) + math.atan2(T[1, 0], T[0, 0])
+
+
 def planar_transform(parent, child, stamp, pose):
     """
     Return a ``geometry_msgs/TransformStamped`` of ``child`` in ``parent``.
