@@ -66,6 +66,7 @@ setup(
             'behavior_server = amr_description.nodes.behavior_server:main',
             'bt_navigator = amr_description.nodes.bt_navigator:main',
             'velocity_smoother = amr_description.nodes.velocity_smoother:main',
+            'waypoint_follower = amr_description.nodes.waypoint_follower:main',
             'map_saver_server = amr_description.nodes.map_saver:server_main',
             'map_saver_cli = amr_description.nodes.map_saver:cli_main',
             'async_slam_toolbox_node = amr_description.nodes.slam_toolbox:main',
@@ -197,6 +198,9 @@ setup(
             'pose_covariance = '
             'amr_description.web.displays.pose_covariance:PoseWithCovarianceDisplay',
             'pose_tool = amr_description.web.displays.pose_tool:PoseToolDisplay',
+            'path = amr_description.web.displays.path:PathDisplay',
+            'polygon = amr_description.web.displays.path:PolygonDisplay',
+            'nav_panel = amr_description.web.displays.nav_panel:NavigationPanelDisplay',
             'point_cloud = amr_description.web.displays.point_cloud:PointCloudDisplay',
             'imu = amr_description.web.displays.imu:ImuDisplay',
             'image = amr_description.web.displays.image:ImageDisplay',

@@ -5,7 +5,7 @@
 ``ros2 launch PACKAGE STACK [name:=value ...]``: run one of the package's stacks.
 
 Stands in for ros2launch: the "launch files" are the Python stack descriptions in
-:mod:`amr_description.launch.stacks` (``sim`` or ``sim.launch.py``, ``display``).
+:mod:`amr_description.launch.registry` (``sim`` or ``sim.launch.py``, ``display``).
 """
 
 from amr_description.cli.common import fail

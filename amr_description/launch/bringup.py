@@ -14,9 +14,9 @@ import sys
 from amr_description.launch.actions import format_arguments
 from amr_description.launch.actions import LaunchError
 from amr_description.launch.orchestrator import Orchestrator
-from amr_description.launch.stacks import describe
-from amr_description.launch.stacks import stack_name
-from amr_description.launch.stacks import STACKS
+from amr_description.launch.registry import describe
+from amr_description.launch.registry import stack_name
+from amr_description.launch.registry import STACKS
 
 
 def add_arguments(parser):

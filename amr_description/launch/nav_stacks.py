@@ -3,7 +3,7 @@
 """
 The mapping and localization stacks: slam_toolbox's and nav2_bringup's launch files.
 
-Registered in :data:`amr_description.launch.stacks.STACKS` with their declared arguments
+Registered in :data:`amr_description.launch.registry.STACKS` with their declared arguments
 (upstream's names and defaults); the ``slam`` stack (``sim`` + ``online_async``) is in
 :mod:`.stacks`, which imports this module.
 """
@@ -150,7 +150,7 @@ NAVIGATION_ARGUMENTS = [
 """nav2_bringup's ``navigation_launch.py`` arguments (names, defaults, descriptions)."""
 
 NAVIGATION_NODES = ['controller_server', 'planner_server', 'behavior_server',
-                    'velocity_smoother', 'bt_navigator']
+                    'velocity_smoother', 'bt_navigator', 'waypoint_follower']
 """The servers, in nav2_bringup's ``lifecycle_nodes`` order (those built here)."""
 
 ROBOT_CMD_VEL = 'diff_drive_controller/cmd_vel'
@@ -161,13 +161,13 @@ def navigation(args):
     """
     Describe the ``navigation_launch`` stack (nav2_bringup's ``navigation_launch.py``).
 
-    controller_server, planner_server, behavior_server, velocity_smoother and bt_navigator
-    reading ``params_file`` (default ``config/nav2_params.yaml``) in ``namespace``, and
-    ``lifecycle_manager_navigation`` (``autostart``). As upstream, controller_server,
-    behavior_server and velocity_smoother have ``cmd_vel`` remapped to ``cmd_vel_nav``; the
-    smoother's ``cmd_vel_smoothed`` goes to :data:`ROBOT_CMD_VEL` (upstream sends it through
-    the collision monitor, not built here). ``use_composition`` is accepted; each server runs
-    in its own process.
+    controller_server, planner_server, behavior_server, velocity_smoother, bt_navigator and
+    waypoint_follower reading ``params_file`` (default ``config/nav2_params.yaml``) in
+    ``namespace``, and ``lifecycle_manager_navigation`` (``autostart``). As upstream,
+    controller_server, behavior_server and velocity_smoother have ``cmd_vel`` remapped to
+    ``cmd_vel_nav``; the smoother's ``cmd_vel_smoothed`` goes to :data:`ROBOT_CMD_VEL` (upstream
+    sends it through the collision monitor, not built here). ``use_composition`` is accepted; each
+    server runs in its own process.
 
     :param args: dict of launch-argument values (see ``NAVIGATION_ARGUMENTS``).
     :returns: list of actions.
@@ -193,6 +193,7 @@ def navigation(args):
         Node(PACKAGE, 'velocity_smoother', name='velocity_smoother',
              remappings=to_nav + [('cmd_vel_smoothed', ROBOT_CMD_VEL)], **options),
         Node(PACKAGE, 'bt_navigator', name='bt_navigator', **options),
+        Node(PACKAGE, 'waypoint_follower', name='waypoint_follower', **options),
         Node(PACKAGE, 'lifecycle_manager', name='lifecycle_manager_navigation',
              output='screen', namespace=ns,
              parameters=[{'autostart': autostart, 'node_names': NAVIGATION_NODES, **common}]),
@@ -250,4 +251,4 @@ NAV2_STACKS = {
     'bringup': (bringup, BRINGUP_ARGUMENTS,
                 "nav2_bringup's localization (or SLAM) + navigation on a running simulator"),
 }
-"""nav2_bringup's launch files as stacks (see :data:`amr_description.launch.stacks.STACKS`)."""
+"""nav2_bringup's launch files as stacks (see :data:`amr_description.launch.registry.STACKS`)."""

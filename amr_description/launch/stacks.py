@@ -5,8 +5,8 @@
 The stacks that replace the tutorial's launch files: ``display``, ``sim`` and ``fleet``.
 
 Each stack is a function ``stack(arguments) -> list of actions`` plus its declared launch
-arguments (``STACKS[name] = (function, declared_arguments, description)``). Arguments are the
-str values of ``name:=value`` pairs (see
+arguments, registered in :data:`amr_description.launch.registry.STACKS`. Arguments are the str
+values of ``name:=value`` pairs (see
 :func:`amr_description.launch.actions.parse_launch_arguments`). Run a stack with
 :class:`amr_description.launch.orchestrator.Orchestrator`::
 
@@ -21,7 +21,6 @@ import os
 from amr_description.core.description.files import parse_xacro_args
 from amr_description.core.description.files import read_description
 from amr_description.core.description.urdf_model import parse_xml
-from amr_description.launch.actions import Arguments
 from amr_description.launch.actions import ComposableNode
 from amr_description.launch.actions import ComposableNodeContainer
 from amr_description.launch.actions import DeclareLaunchArgument
@@ -30,12 +29,8 @@ from amr_description.launch.actions import Node
 from amr_description.launch.actions import OnProcessExit
 from amr_description.launch.actions import parse_bool
 from amr_description.launch.actions import parse_float
-from amr_description.launch.actions import parse_launch_arguments
 from amr_description.launch.actions import with_defaults
-from amr_description.launch.nav_stacks import NAV2_STACKS
-from amr_description.launch.nav_stacks import online_async
 from amr_description.launch.nav_stacks import share_file
-from amr_description.launch.nav_stacks import SLAM_ARGUMENTS
 from amr_description.web.server import PORT_ARGUMENT
 
 PACKAGE = 'amr_description'
@@ -414,84 +409,3 @@ def fleet(args):
             'frame_id': f'{names[0]}/base_link'}],
             remappings=[('/joint_states', f'/{names[0]}/joint_states')]))
     return actions
-
-
-def slam(args):
-    """
-    Describe the ``slam`` stack: ``sim`` (world, robot, controllers, viewer) + ``online_async``.
-
-    The viewer reads ``config/nav2_default_view.rviz`` unless ``rviz_config`` names a file.
-
-    :param args: dict of launch-argument values (``SIM_ARGUMENTS`` and ``SLAM_ARGUMENTS``).
-    :returns: list of actions.
-    :raises LaunchError: on a bad argument value.
-    """
-    args = with_defaults(SIM_ARGUMENTS + SLAM_ARGUMENTS[1:], args)
-    args['rviz_config'] = args['rviz_config'] or 'nav2_default_view.rviz'
-    return sim(args) + online_async(args)
-
-
-STACKS = {
-    'display': (display, DISPLAY_ARGUMENTS,
-                'robot_state_publisher + joint_state_publisher(_gui) + viewer for the '
-                'installed URDF'),
-    'sim': (sim, SIM_ARGUMENTS,
-            'MuJoCo simulation, robot_state_publisher, spawn and ros2_control controllers'),
-    'fleet': (fleet, FLEET_ARGUMENTS,
-              'MuJoCo simulation with N namespaced robots (r1 ... rN) on a grid'),
-    'online_async': (online_async, SLAM_ARGUMENTS,
-                     "slam_toolbox's online asynchronous mapper, configured and activated"),
-    'slam': (slam, SIM_ARGUMENTS + SLAM_ARGUMENTS[1:],
-             'the sim stack (world:=, viewer) with SLAM from its lidar'),
-    **NAV2_STACKS,
-}
-
-
-def stack_name(name):
-    """
-    Map ``sim``, ``sim.launch.py`` or ``sim_launch.py`` to a stack name.
-
-    :param name: what the user typed.
-    :returns: the key of :data:`STACKS`.
-    :raises LaunchError: when no such stack exists.
-    """
-    base = os.path.basename(name)
-    if base.endswith('_launch.py') and base[:-3] in STACKS:
-        return base[:-3]  # navigation_launch.py: upstream's file, not our 'navigation'
-    for suffix in ('.launch.py', '_launch.py', '.py'):
-        if base.endswith(suffix):
-            base = base[:-len(suffix)]
-            break
-    if base not in STACKS:
-        raise LaunchError(f"file '{name}' was not found in the share directory of package "
-                          f"'{PACKAGE}' (stacks: {', '.join(sorted(STACKS))})")
-    return base
-
-
-def resolve(name, argv=()):
-    """
-    Parse ``name:=value`` arguments for a stack.
-
-    :param name: stack name (see :func:`stack_name`).
-    :param argv: list of ``'name:=value'``.
-    :returns: dict of argument values with defaults filled in; its ``given`` attribute holds
-        the names set in ``argv`` (a port left at its default may move to the next free one).
-    :raises LaunchError: on an unknown stack or a bad argument.
-    """
-    _, declared, _ = STACKS[stack_name(name)]
-    values = Arguments(parse_launch_arguments(declared, list(argv)))
-    values.given = frozenset(arg.partition(':=')[0] for arg in argv)
-    return values
-
-
-def describe(name, argv=()):
-    """
-    Return the actions of stack ``name`` for ``name:=value`` arguments ``argv``.
-
-    :param name: stack name (see :func:`stack_name`).
-    :param argv: list of ``'name:=value'``.
-    :returns: list of actions for :class:`~amr_description.launch.orchestrator.Orchestrator`.
-    :raises LaunchError: on an unknown stack, a bad argument or an unreadable URDF.
-    """
-    function = STACKS[stack_name(name)][0]
-    return function(resolve(name, argv))

@@ -235,7 +235,9 @@ class BtNavigator(ManagedNode):
                     'to_send': {}, 'clearing': 0}
 
     def _stop_clients(self):
-        for client in self.goal_clients.values():
+        for name, client in self.goal_clients.items():
+            if name == 'goal_pose':
+                continue  # the goal being run may be the one it sent on behalf of /goal_pose
             if client.busy or client.handle is not None:
                 client.cancel()
 

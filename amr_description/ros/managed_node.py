@@ -11,6 +11,10 @@ offers ``~/change_state``, ``~/get_state``, ``~/get_available_states``,
 that is above 0, creates a bond on topic ``bond`` with its own name as id on activate (heartbeat
 timeout 4 s) and destroys it on deactivate, cleanup and shutdown.
 
+On the first activation the params file's entries the node never declared are listed in one
+line (:func:`amr_description.ros.parameters.unused_overrides`), so that a Nav2 params file's
+parameters that do nothing here are said once.
+
 Subclasses implement :meth:`ManagedNode.configure`, :meth:`ManagedNode.activate`,
 :meth:`ManagedNode.deactivate` and :meth:`ManagedNode.cleanup`; an exception they raise
 (``ValueError``, ``OSError``, ``RuntimeError``) is logged as one error line and the transition
@@ -20,6 +24,7 @@ fails, the node staying where it was, as a Nav2 node whose callback returns FAIL
 from amr_description.ros.bond import Bond
 from amr_description.ros.bond import prepare_bonds
 from amr_description.ros.node import LifecycleNode
+from amr_description.ros.parameters import unused_overrides
 from rclpy.lifecycle import TransitionCallbackReturn
 
 BOND_TOPIC = 'bond'
@@ -80,7 +85,17 @@ class ManagedNode(LifecycleNode):
         if result == TransitionCallbackReturn.SUCCESS:
             super().on_activate(state)  # activates the lifecycle publishers
             self._create_bond()
+            self._say_unused()
         return result
+
+    def _say_unused(self):
+        if getattr(self, '_said_unused', False):
+            return
+        self._said_unused = True
+        unused = unused_overrides(self)
+        if unused:
+            self.get_logger().info('Parameters not used by this implementation: '
+                                   + ', '.join(unused))
 
     def on_deactivate(self, state):
         """Run :meth:`deactivate` and destroy the bond."""

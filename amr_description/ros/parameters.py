@@ -62,3 +62,19 @@ def unused_parameters(node, known):
     skip = {'use_sim_time', 'bond_heartbeat_period', 'start_type_description_service'}
     names = node.list_parameters([], 0).names
     return sorted(name for name in names if name not in known and name not in skip)
+
+
+def unused_overrides(node):
+    """
+    Return the sorted names a params file gave the node that it never declared.
+
+    For a node built without ``automatically_declare_parameters_from_overrides``: rclpy keeps
+    every value of its params files (``Node._parameter_overrides``) and silently drops those
+    the node does not declare. The names :func:`unused_parameters` leaves out are left out.
+
+    :param node: an rclpy node, after it declared what it reads.
+    """
+    skip = {'use_sim_time', 'bond_heartbeat_period', 'start_type_description_service'}
+    overrides = getattr(node, '_parameter_overrides', None) or {}
+    return sorted(name for name in overrides
+                  if name not in skip and not node.has_parameter(name))

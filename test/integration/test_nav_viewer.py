@@ -11,7 +11,9 @@ fixed frame ``map`` exists only through the map, which is drawn (its dark walls 
 checkbox is cleared). After a first pose the robot is drawn where it is; a drag from the
 robot's pixels with the tool publishes ``/initialpose`` in ``map`` with RViz's covariance at
 the robot's ground-truth position (the tool's ground point is the pixel's), AMCL takes it,
-and the particles and the covariance ellipse are drawn.
+and the particles and the covariance ellipse are drawn. Then ``navigation_launch.py``: the
+Navigation 2 panel shows both lifecycle managers active and a goal's feedback, the global plan
+and the footprint are drawn, and the panel's Cancel cancels the goal.
 """
 
 import math
@@ -84,7 +86,30 @@ def _mask(page, rgb, tolerance=40):
     return mask
 
 
+def _red(view):
+    """Return how many pixels are the global plan's red (255, 0, 0)."""
+    r, g, b = view[..., 0], view[..., 1], view[..., 2]
+    return int(np.count_nonzero((r > 190) & (g < 70) & (b < 70)))
+
+
+def _green(view):
+    """Return how many pixels are the footprint's green (25, 255, 0), blended with the floor."""
+    r, g, b = view[..., 0], view[..., 1], view[..., 2]
+    return int(np.count_nonzero((g > 180) & (g - r > 40) & (g - b > 60)))
+
+
+def _shown_minus_hidden(page, label, measure):
+    """Return ``measure`` of the view with the display ``label`` minus without it."""
+    shown = measure(_view(page.pixels()))
+    page.page.get_by_text(label, exact=True).click()
+    page.page.wait_for_timeout(1000)
+    hidden = measure(_view(page.pixels()))
+    page.page.get_by_text(label, exact=True).click()
+    return shown - hidden
+
+
 def test_map_particles_and_the_pose_estimate_tool(procs, exe, ros_env, tmp_path):
+    from geometry_msgs.msg import PoseStamped
     from test_slam import _yaw
     port = free_port()
     map_yaml = _arena_map(tmp_path)
@@ -167,6 +192,45 @@ def test_map_particles_and_the_pose_estimate_tool(procs, exe, ros_env, tmp_path)
                 page.page.get_by_text('ParticleCloud', exact=True).click()
                 particles = _reddish(image) - without
             assert particles >= 300 and ellipse >= 300, (particles, ellipse)
+
+            # the navigation servers beside it: the Navigation 2 panel says both managers are
+            # active; a goal on /goal_pose shows its feedback, the red /plan and the green
+            # footprint (each gone with its checkbox); Cancel cancels it
+            nav = procs.start([exe('ros2'), 'launch', 'amr_description', 'navigation_launch.py',
+                               'use_sim_time:=true'], ros_env)
+            assert nav.wait_for_output('Managed nodes are active', 240.0), nav.output[-3000:]
+            assert page.wait_for_text('Navigation: active', 60.0)
+            assert page.wait_for_text('Localization: active', 60.0)
+            goal = peer.node.create_publisher(PoseStamped, '/goal_pose', 10)
+
+            def send(x, y):
+                msg = PoseStamped()
+                msg.header.frame_id = 'map'
+                msg.pose.position.x, msg.pose.position.y, msg.pose.orientation.w = x, y, 1.0
+                goal.publish(msg)
+                assert nav.wait_for_output(f'Begin navigating from the current location to '
+                                           f'({x:.2f}, {y:.2f})', 60.0), nav.output[-3000:]
+
+            send(2.8, 2.2)  # around the centre pillar: a long plan
+            assert page.wait_for_text('Feedback: active', 60.0), page.page.inner_text('body')
+            assert page.wait_for_text('Distance remaining:', 60.0)
+            for label in ('ParticleCloud', 'Map', 'LaserScan'):  # their colours, out of the way
+                page.page.get_by_text(label, exact=True).click()
+            # the plan may start behind the robot or a pillar; the last plan stays drawn after
+            # the goal ends (planner_server publishes /plan only for a path it found)
+            deadline = time.monotonic() + 90.0
+            drawn = _shown_minus_hidden(page, 'Path', _red)
+            while drawn < 100 and time.monotonic() < deadline:
+                page.pixels(str(tmp_path / 'path.png'))
+                drawn = _shown_minus_hidden(page, 'Path', _red)
+            send(1.0, -1.0)  # in a pillar: planned to its edge, then recoveries for tens of s
+            page.page.get_by_text('Cancel', exact=True).click()  # once enabled
+            assert page.wait_for_text('Feedback: canceled', 60.0), page.page.inner_text('body')
+            assert nav.wait_for_output('Goal canceled', 30.0)
+            outline = _shown_minus_hidden(page, 'Polygon', _green)
+            print(f'pixels drawn: path {drawn}, footprint {outline}')
+            assert drawn >= 100 and outline >= 15, (drawn, outline)
+            assert nav.interrupt(60) is not None
     finally:
         peer.close()
         assert loc is None or loc.interrupt(60) is not None

@@ -4,15 +4,16 @@
 Navigation as nav2_bringup starts it, over real DDS, on the simulated robot in arena.sdf.
 
 One stack: ``sim.launch.py world:=arena`` and ``bringup_launch.py map:=<arena map>`` (map_server,
-amcl, controller_server, planner_server, behavior_server, velocity_smoother, bt_navigator and
-both lifecycle managers, config/nav2_params.yaml). After the initial pose: goals outside the map
-and with NaN end at once with GOAL_OUTSIDE_MAP (204) and the stack keeps running; a
-NavigateToPose goal past the centre pillar succeeds with the robot's ground truth within Nav2's
-goal tolerances (plus AMCL's error) and feedback filled (distance remaining falling, navigation
-time rising, an estimated time); a goal on ``/goal_pose`` starts a navigation; a cancel stops
-the robot with status CANCELED. ``ros2 action info`` names bt_navigator as the server and
+amcl, controller_server, planner_server, behavior_server, velocity_smoother, bt_navigator,
+waypoint_follower and both lifecycle managers, config/nav2_params.yaml). After the initial pose:
+goals outside the map and with NaN end at once with GOAL_OUTSIDE_MAP (204) and the stack keeps
+running; a NavigateToPose goal past the centre pillar succeeds with the robot's ground truth within
+Nav2's goal tolerances (plus AMCL's error) and feedback filled (distance remaining falling,
+navigation time rising, an estimated time); a goal on ``/goal_pose`` starts a navigation; a cancel
+stops the robot with status CANCELED. ``ros2 action info`` names bt_navigator as the server and
 ``ros2 action send_goal`` prints ros2action's lines and the navigator's error code; a
-nav2_simple_commander script in upstream's example pattern drives the robot to a goal.
+nav2_simple_commander script in upstream's example pattern drives the robot to a goal;
+waypoint_follower goes through two waypoints, the one outside the map listed as missed.
 """
 
 import math
@@ -82,6 +83,20 @@ class NavPeer(Peer):
                                            .append(m.feedback))
         assert self.spin_until(sent.done, 60.0)
         assert sent.result().accepted
+        return sent.result()
+
+    def follow_waypoints(self, points):
+        """Send a FollowWaypoints goal through ``points`` [(x, y), ...]; return its handle."""
+        from nav2_msgs.action import FollowWaypoints
+        from rclpy.action import ActionClient
+        client = ActionClient(self.node, FollowWaypoints, '/follow_waypoints')
+        assert client.wait_for_server(timeout_sec=60.0)
+        self.waypoint_feedback = []
+        sent = client.send_goal_async(
+            FollowWaypoints.Goal(poses=[self.pose(x, y) for x, y in points]),
+            feedback_callback=lambda m: self.waypoint_feedback.append(
+                m.feedback.current_waypoint))
+        assert self.spin_until(sent.done, 60.0) and sent.result().accepted
         return sent.result()
 
     def result(self, handle, timeout):
@@ -250,6 +265,16 @@ def test_navigate_to_pose_on_the_simulated_robot(procs, exe, ros_env, tmp_path):
 
         assert peer.spin_until(fresh, 60.0)
         assert math.hypot(peer.truth()[0] - 1.5, peer.truth()[1] + 0.5) < 0.35
+
+        # follow_waypoints (stop_on_failure false in config/nav2_params.yaml): the second
+        # waypoint is outside the map, missed with the navigator's code, and the goal succeeds
+        waypoints = peer.follow_waypoints([(2.0, -0.5), (50.0, 0.0)])
+        status, result = peer.result(waypoints, 300.0)
+        assert status == GoalStatus.STATUS_SUCCEEDED, nav.output[-3000:]
+        assert [(m.index, m.error_code, m.goal.pose.position.x)
+                for m in result.missed_waypoints] == [(1, codes.GOAL_OUTSIDE_MAP, 50.0)]
+        assert sorted(set(peer.waypoint_feedback)) == [0, 1]
+        assert math.hypot(peer.truth()[0] - 2.0, peer.truth()[1] + 0.5) < 0.35
         assert sim.popen.poll() is None and nav.popen.poll() is None
     finally:
         peer.close()

@@ -7,6 +7,7 @@ import math
 import re
 
 from amr_description.core.course import square_course
+from amr_description.launch import registry
 from amr_description.launch import stacks
 from amr_description.launch.actions import ComposableNodeContainer
 from amr_description.launch.actions import LaunchError
@@ -29,7 +30,7 @@ def test_fleet_grid_fills_rows_of_ceil_sqrt():
 
 
 def _actions(argv):
-    return stacks.describe('fleet', argv)
+    return registry.describe('fleet', argv)
 
 
 def test_fleet_stack_namespaces_every_robot():
@@ -124,7 +125,7 @@ def test_fleet_stack_rejects_bad_arguments(argv, field):
 
 
 def test_sim_stack_keeps_the_robot_without_namespace():
-    nodes = [a for a in stacks.describe('sim', []) if isinstance(a, Node)]
+    nodes = [a for a in registry.describe('sim', []) if isinstance(a, Node)]
     assert all(n.namespace in (None, '', '/') for n in nodes)
     create_node = [n for n in nodes if n.executable == 'create'][0]
     assert '-robot_namespace' not in create_node.arguments

@@ -132,28 +132,29 @@ def test_a_xacro_error_is_one_line_naming_the_file(tmp_path, content, words):
 
 
 def test_stacks_take_a_xacro_description_its_arguments_and_the_controllers():
+    from amr_description.launch import registry
     from amr_description.launch import stacks
     from amr_description.launch.actions import LaunchError
     controllers = os.path.join(DATA, 'controllers.yaml')
-    args = stacks.resolve('sim', [f'description:={DATA}/robot.urdf.xacro',
-                                  f'xacro_args:=controllers:={controllers} prefix:=',
-                                  'controllers:=joint_state_broadcaster', 'viewer:=false'])
+    args = registry.resolve('sim', [f'description:={DATA}/robot.urdf.xacro',
+                                    f'xacro_args:=controllers:={controllers} prefix:=',
+                                    'controllers:=joint_state_broadcaster', 'viewer:=false'])
     mujoco_sim, rsp, create, on_create = stacks.sim(args)
     description = rsp.parameters[0]['robot_description']
     assert 'tutorial_bot' in description and controllers in description
     assert on_create.on_exit[0].arguments == ['joint_state_broadcaster']
-    display = stacks.display(stacks.resolve('display', [f'model:={DATA}/robot.urdf.xacro']))
+    display = stacks.display(registry.resolve('display', [f'model:={DATA}/robot.urdf.xacro']))
     assert 'tutorial_bot' in display[0].parameters[0]['robot_description']
     # a robot driven by gz-sim systems (no <ros2_control>) gets no spawner; bridge_config
     caster = os.path.join(ROOT, 'test', 'data', 'gz_diff_drive', 'robot.urdf.xacro')
-    actions = stacks.sim(stacks.resolve('sim', [f'description:={caster}', 'viewer:=false',
-                                                'bridge_config:=/b.yaml']))
+    actions = stacks.sim(registry.resolve('sim', [f'description:={caster}', 'viewer:=false',
+                                                  'bridge_config:=/b.yaml']))
     assert [a.executable for a in actions] == ['mujoco_sim', 'robot_state_publisher', 'create']
     assert actions[0].parameters[0]['bridge_config'] == '/b.yaml'
     with pytest.raises(LaunchError, match="launch argument 'controllers'"):
-        stacks.sim(stacks.resolve('sim', ['controllers:= , ']))
+        stacks.sim(registry.resolve('sim', ['controllers:= , ']))
     with pytest.raises(LaunchError, match="cannot read URDF '/nothing.urdf.xacro'"):
-        stacks.sim(stacks.resolve('sim', ['description:=/nothing.urdf.xacro']))
+        stacks.sim(registry.resolve('sim', ['description:=/nothing.urdf.xacro']))
 
 
 def test_check_model_reads_the_dialect(tmp_path, capsys):

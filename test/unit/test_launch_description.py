@@ -5,6 +5,7 @@
 
 import os
 
+from amr_description.launch import registry
 from amr_description.launch import stacks
 from amr_description.launch.actions import DeclareLaunchArgument
 from amr_description.launch.actions import format_arguments
@@ -107,17 +108,17 @@ def test_launch_arguments():
 
 
 def test_stack_names():
-    assert stacks.stack_name('sim') == 'sim'
-    assert stacks.stack_name('sim.launch.py') == 'sim'
-    assert stacks.stack_name('display.launch.py') == 'display'
+    assert registry.stack_name('sim') == 'sim'
+    assert registry.stack_name('sim.launch.py') == 'sim'
+    assert registry.stack_name('display.launch.py') == 'display'
     with pytest.raises(LaunchError, match="file 'nope' was not found"):
-        stacks.stack_name('nope')
+        registry.stack_name('nope')
 
 
 def test_sim_stack_layout(monkeypatch):
     urdf = '<robot name="amr"><ros2_control name="s" type="system"/></robot>'
     monkeypatch.setattr(stacks, 'read_urdf', lambda path=None, xacro_args='': urdf)
-    args = stacks.resolve('sim', ['rtf:=0', 'robot:=r2', 'x:=1', 'yaw:=1.57', 'viewer:=false'])
+    args = registry.resolve('sim', ['rtf:=0', 'robot:=r2', 'x:=1', 'yaw:=1.57', 'viewer:=false'])
     mujoco_sim, rsp, create, on_create = stacks.sim(args)
     assert mujoco_sim.executable == 'mujoco_sim'
     assert mujoco_sim.parameters == [{'real_time_factor': 0.0, 'headless': True,
@@ -132,43 +133,43 @@ def test_sim_stack_layout(monkeypatch):
     assert spawner.executable == 'spawner'
     assert spawner.arguments == ['joint_state_broadcaster', 'diff_drive_controller']
     with pytest.raises(LaunchError, match="launch argument 'rtf': expected a number"):
-        stacks.sim(stacks.resolve('sim', ['rtf:=fast']))
+        stacks.sim(registry.resolve('sim', ['rtf:=fast']))
     with pytest.raises(LaunchError, match="launch argument 'headless': expected true or false"):
-        stacks.sim(stacks.resolve('sim', ['headless:=maybe']))
-    *_, viewer = stacks.sim(stacks.resolve('sim', ['viewer_port:=18080']))
+        stacks.sim(registry.resolve('sim', ['headless:=maybe']))
+    *_, viewer = stacks.sim(registry.resolve('sim', ['viewer_port:=18080']))
     assert viewer.executable == 'viewer'
     assert viewer.parameters == [{'use_sim_time': True, 'fixed_frame': 'odom', 'port': 18080,
                                   'world': 'empty'}]
     with pytest.raises(LaunchError, match="launch argument 'viewer_port': expected a TCP port"):
-        stacks.sim(stacks.resolve('sim', ['viewer_port:=http']))
+        stacks.sim(registry.resolve('sim', ['viewer_port:=http']))
 
 
 def test_display_stack_layout(monkeypatch):
     monkeypatch.setattr(stacks, 'read_urdf',
                         lambda path=None, xacro_args='': '<robot name="amr"/>')
-    rsp, jsp = stacks.display(stacks.resolve('display', ['gui:=false', 'viewer:=false']))
+    rsp, jsp = stacks.display(registry.resolve('display', ['gui:=false', 'viewer:=false']))
     assert (rsp.executable, jsp.executable) == ('robot_state_publisher', 'joint_state_publisher')
     assert rsp.parameters == [{'robot_description': '<robot name="amr"/>',
                                'use_sim_time': False}]
     # ports left at their defaults: each page takes 8081 / 8080 or the next free port
-    rsp, gui, viewer = stacks.display(stacks.resolve('display'))
+    rsp, gui, viewer = stacks.display(registry.resolve('display'))
     assert gui.executable == 'joint_state_publisher_gui'
     assert gui.parameters == [{'use_sim_time': False}]
     assert viewer.executable == 'viewer'
     assert viewer.parameters == [{'use_sim_time': False, 'fixed_frame': 'base_footprint'}]
     # given, even with the default's value: exactly that port
-    rsp, gui, viewer = stacks.display(stacks.resolve('display', ['gui_port:=8081',
-                                                                 'viewer_port:=8080']))
+    rsp, gui, viewer = stacks.display(registry.resolve('display', ['gui_port:=8081',
+                                                                   'viewer_port:=8080']))
     assert gui.parameters == [{'use_sim_time': False, 'port': 8081}]
     assert viewer.parameters[0]['port'] == 8080
 
 
-@pytest.mark.parametrize('name', sorted(stacks.STACKS))
+@pytest.mark.parametrize('name', sorted(registry.STACKS))
 def test_a_port_left_at_its_default_is_not_passed_as_chosen(name):
-    declared = {d.name for d in stacks.STACKS[name][1]}
+    declared = {d.name for d in registry.STACKS[name][1]}
     ports = {arg for arg in declared if arg.endswith('_port')}
     argv = ['robots:=2'] if 'robots' in declared else []
-    pages = [a for a in stacks.describe(name, argv)
+    pages = [a for a in registry.describe(name, argv)
              if getattr(a, 'executable', None) in ('viewer', 'joint_state_publisher_gui')]
     assert bool(ports) == bool(pages), (name, ports, pages)
     for page in pages:

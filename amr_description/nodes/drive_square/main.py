@@ -61,7 +61,7 @@ def _bringup(rtf, robots, log_path, viewer_port=None, world='empty'):
     URL is printed once its node prints it; ``viewer_port`` 0 leaves it out. ``world`` is the
     stack's ``world``.
     """
-    from amr_description.launch import stacks
+    from amr_description.launch import registry
     from amr_description.launch.orchestrator import Orchestrator
 
     argv = [f'rtf:={rtf}', 'headless:=true', f'world:={world}']
@@ -72,14 +72,14 @@ def _bringup(rtf, robots, log_path, viewer_port=None, world='empty'):
         name = 'sim'
         x, y, yaw = START_POSES.get(world, (0.0, 0.0, 0.0))
         argv += [f'x:={x!r}', f'y:={y!r}', f'yaw:={yaw!r}']
-    declared = {d.name for d in stacks.STACKS[name][1]}
+    declared = {d.name for d in registry.STACKS[name][1]}
     if 'viewer' in declared:
         if viewer_port == 0:
             argv.append('viewer:=false')
         elif viewer_port is not None:
             argv.append(f'viewer_port:={viewer_port}')
     log = _StackLog(open(log_path, 'w'))
-    orchestrator = Orchestrator(stacks.describe(name, argv), stream=log)
+    orchestrator = Orchestrator(registry.describe(name, argv), stream=log)
     orchestrator.start()
     return orchestrator, log
 

@@ -88,10 +88,10 @@ class _Observer:
 
 
 def _start(name, argv, env, log):
-    from amr_description.launch import stacks
+    from amr_description.launch import registry
     from amr_description.launch.orchestrator import Orchestrator
     lines = []
-    orchestrator = Orchestrator(stacks.describe(name, argv), stream=log, env=env,
+    orchestrator = Orchestrator(registry.describe(name, argv), stream=log, env=env,
                                 line_callback=lambda label, line: lines.append(line))
     orchestrator.start()
     return orchestrator, lines

@@ -23,7 +23,7 @@ class Stack:
         :param domain_id: ROS domain.
         :param extra: more launch arguments (``name:=value``).
         """
-        from amr_description.launch import stacks
+        from amr_description.launch import registry
         from amr_description.launch.orchestrator import Orchestrator
 
         self.count = count
@@ -32,14 +32,14 @@ class Stack:
         argv = [f'rtf:={rtf:g}', 'headless:=true']
         if count > 1:
             argv += [f'robots:={count}', f'spacing:={SPACING:g}']
-        if 'viewer' in {d.name for d in stacks.STACKS[name][1]}:
+        if 'viewer' in {d.name for d in registry.STACKS[name][1]}:
             argv.append('viewer:=false')
         argv += list(extra)
         self.lines = {}
         env = dict(os.environ, ROS_DOMAIN_ID=str(domain_id),
                    ROS_AUTOMATIC_DISCOVERY_RANGE='LOCALHOST')
         self._log = tempfile.TemporaryFile(mode='w+')
-        self.orchestrator = Orchestrator(stacks.describe(name, argv), stream=self._log,
+        self.orchestrator = Orchestrator(registry.describe(name, argv), stream=self._log,
                                          env=env, line_callback=self._line)
         self.started = time.monotonic()
         self.orchestrator.start()

@@ -17,6 +17,7 @@ Both subscribe with the sensor-data QoS (AMCL publishes best effort).
 
 from amr_description.core.kinematics import quaternions_to_matrices
 from amr_description.web.displays.discovery import AUTO
+from amr_description.web.displays.sensor_topics import draw_segments
 from amr_description.web.displays.sensor_topics import SensorTopicsDisplay
 from geometry_msgs.msg import PoseArray
 from nav2_msgs.msg import ParticleCloud
@@ -76,16 +77,7 @@ def particle_lengths(weights):
 
 def draw_arrows(server, name, segments, T, node):
     """Create or update the line-segment node of arrows placed with ``T`` (4x4)."""
-    if len(segments) == 0:
-        segments = np.zeros((1, 2, 3), np.float32)  # viser needs one segment
-    points = (segments @ T[:3, :3].T + T[:3, 3]).astype(np.float32)
-    colours = np.broadcast_to(np.array(COLOUR, np.uint8), points.shape).copy()
-    if node is None:
-        return server.scene.add_line_segments(name, points, colours, thickness=THICKNESS,
-                                              thickness_units='screen')
-    node.points = points
-    node.colors = colours
-    return node
+    return draw_segments(server, name, segments, T, COLOUR, node, THICKNESS)
 
 
 class PoseArrayDisplay(SensorTopicsDisplay):
