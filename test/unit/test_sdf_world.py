@@ -319,7 +319,7 @@ def test_a_robot_with_a_ground_contact_pair_meets_a_shelf_with_its_wheels():
     from amr_description.sim.world import World
     world = World(0.001, load_world('warehouse'))
     urdf = read_description(os.path.join(ROOT, 'urdf', 'amr.urdf'))
-    # facing +y at the origin: shelf_0_0's plinth (0.15 m high) has its face at y = 0.75
+    # facing +y at the origin: shelf_0_0's plinth (0.3 m high) has its face at y = 0.75
     world.spawn(urdf_to_spec(urdf, name='amr', pose=(0, 0, 0.0, 0, 0, math.pi / 2)), 'amr')
     model, data = world.model, world.data
     data.ctrl[:] = 5.0  # every wheel's PI velocity servo (both actuators) at 5 rad/s: 0.5 m/s
