@@ -52,6 +52,7 @@ setup(
             'teleop_twist_keyboard = amr_description.nodes.teleop_twist_keyboard:main',
             'bringup = amr_description.launch.bringup:main',
             'drive_square = amr_description.nodes.drive_square.main:main',
+            'navigate_job = amr_description.nodes.navigate_job.main:main',
             'physics_report = amr_description.tools.physics_report:main',
             'screenshot = amr_description.tools.screenshot:main',
             'ros2 = amr_description.cli.main:main',

@@ -20,7 +20,14 @@ HEIGHTS = (0.05, 0.25)
 """m above the ground: a low obstacle's height and the tutorial robot's lidar range."""
 
 
-def _inside(points, section):
+def inside_section(points, section):
+    """
+    Return which points lie inside (or on) a section.
+
+    :param points: (N, 2) m in the world frame.
+    :param section: one of :func:`amr_description.core.scan_map.world_sections`.
+    :returns: (N,) bool.
+    """
     if section[0] == 'box':
         _, (cx, cy), yaw, (hx, hy) = section
         c, s = math.cos(yaw), math.sin(yaw)
@@ -69,7 +76,7 @@ def world_map(world, resolution=0.05, heights=HEIGHTS, margin=0.5):
                        axis=-1).reshape(-1, 2)
     occupied = np.zeros(len(centres), bool)
     for section in sections:
-        occupied |= _inside(centres, section)
+        occupied |= inside_section(centres, section)
     if sections:
         occupied |= surface_distance(centres, sections) <= resolution * math.sqrt(0.5)
     data = np.where(occupied, 100, 0).astype(np.int8).reshape(rows, width)

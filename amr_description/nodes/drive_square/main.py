@@ -27,24 +27,32 @@ START_POSES = {'arena': (1.55, -0.55, 0.0)}
 (worlds/arena.sdf has a pillar at (1, 0)); (0, 0, 0) in any other world."""
 
 
-class _StackLog:
+class StackLog:
     """
-    The stack's output stream: lines go to the log file; the viewer's URL line is printed.
+    A stack's output stream: lines go to the log file; the viewer's URL line is printed.
 
-    The viewer takes port 8080 or the next free one (a second main job beside the first), so
+    The viewer takes port 8080 or the next free port (a second main job beside the first), so
     the URL to open is the one its node prints.
+
+    :param log: the open log file.
+    :param program: the prefix of the printed line.
+    :param watch: texts whose occurrences in the output are counted in :attr:`counts`.
     """
 
-    def __init__(self, log):
+    def __init__(self, log, program='drive_square', watch=()):
         self.log = log
         self.url = None
+        self.program = program
+        self.counts = dict.fromkeys(watch, 0)
 
     def write(self, text):
         self.log.write(text)
+        for key in self.counts:
+            self.counts[key] += text.count(key)
         found = None if self.url else re.search(r'viewer: open (http://\S+) in a browser', text)
         if found:
             self.url = found.group(1)
-            print(f'[drive_square] watch it drive: open {self.url} in a browser', flush=True)
+            print(f'[{self.program}] watch it drive: open {self.url} in a browser', flush=True)
 
     def flush(self):
         self.log.flush()
@@ -78,7 +86,7 @@ def _bringup(rtf, robots, log_path, viewer_port=None, world='empty'):
             argv.append('viewer:=false')
         elif viewer_port is not None:
             argv.append(f'viewer_port:={viewer_port}')
-    log = _StackLog(open(log_path, 'w'))
+    log = StackLog(open(log_path, 'w'))
     orchestrator = Orchestrator(registry.describe(name, argv), stream=log)
     orchestrator.start()
     return orchestrator, log

@@ -1,0 +1,213 @@
+# Copyright 2026 The amr_description Authors
+# Licensed under the Apache License, Version 2.0
+"""
+Navigation trials measured against the true world: goals, path lengths, clearance, time bound.
+
+What ``./scripts/main --navigate`` (:mod:`amr_description.nodes.navigate_job`) judges a run
+by, as pure functions of grids, poses and the world's shapes (no rclpy):
+
+- :func:`sample_goals`: seeded random goals, reachable from the start and clear of every
+  obstacle of every given map by ``clearance``;
+- :func:`path_length` of a polyline;
+- :func:`footprint_clearance`: the signed distance from the robot's footprint polygon to the
+  world's collision shapes at each ground-truth pose (negative: overlapping; a contact);
+- :func:`time_bound`: the issue's target time to a goal, ``slack`` x (path length / desired
+  speed + in-place turns / rotate-to-heading speed).
+"""
+
+import math
+
+from amr_description.core.course import wrap_angle
+from amr_description.core.scan_map import surface_distance
+from amr_description.nav.world_map import inside_section
+import numpy as np
+
+
+def clearance_grid(grid):
+    """
+    Return each cell's distance to the nearest cell that is not free (occupied or unknown).
+
+    :param grid: :class:`~amr_description.nav.map_io.GridMap`; only occupancy 0 is free (a
+        trinary map's free cells).
+    :returns: (height, width) float array, m, between cell centres.
+    """
+    from scipy import ndimage
+    free = grid.data == 0
+    if free.all():
+        return np.full(free.shape, np.inf)
+    return ndimage.distance_transform_edt(free) * grid.resolution
+
+
+def _cells(grid, xy):
+    """Return (rows, cols, inside) of map-frame points ``xy`` (N, 2) on ``grid``."""
+    ox, oy, yaw = grid.origin
+    c, s = math.cos(yaw), math.sin(yaw)
+    dx, dy = xy[:, 0] - ox, xy[:, 1] - oy
+    cols = np.floor((c * dx + s * dy) / grid.resolution).astype(int)
+    rows = np.floor((-s * dx + c * dy) / grid.resolution).astype(int)
+    inside = (cols >= 0) & (rows >= 0) & (cols < grid.width) & (rows < grid.height)
+    return rows, cols, inside
+
+
+def clearance_at(grid, clearance, xy):
+    """
+    Return the clearance of map-frame points, 0 outside the grid.
+
+    :param grid: GridMap of ``clearance``.
+    :param clearance: :func:`clearance_grid` of ``grid``.
+    :param xy: (N, 2) m in the map frame.
+    :returns: (N,) m.
+    """
+    xy = np.asarray(xy, dtype=float).reshape(-1, 2)
+    rows, cols, inside = _cells(grid, xy)
+    out = np.zeros(len(xy))
+    out[inside] = clearance[rows[inside], cols[inside]]
+    return out
+
+
+def sample_goals(grids, start, count, seed, clearance=0.45, spacing=1.5, passage=0.3):
+    """
+    Return ``count`` seeded random goals the robot can reach from ``start``.
+
+    Candidates are the cell centres of ``grids[0]`` at least ``clearance`` from anything
+    not free in every grid (room to turn in place for a robot of circumscribed radius below
+    it), connected to ``start`` through cells at least ``passage`` clear (4-connected; room to
+    drive through for a robot of half width below it). Each goal is at least ``spacing`` from
+    the one before (the first from ``start``); yaws are uniform in [-pi, pi).
+
+    :param grids: list of GridMap in one map frame (e.g. the true map and a SLAM map).
+    :param start: ``(x, y)`` m, the robot's position.
+    :param count: number of goals.
+    :param seed: seed of numpy's default generator (the same seed, the same goals).
+    :param clearance: m.
+    :param spacing: m.
+    :param passage: m.
+    :returns: list of ``(x, y, yaw)`` (m, m, rad).
+    :raises ValueError: ``start`` not ``passage`` clear, or no candidate ``spacing`` from a
+        goal.
+    """
+    from scipy import ndimage
+    base = grids[0]
+    rows, cols = np.nonzero(np.ones(base.data.shape, bool))
+    ox, oy, yaw = base.origin
+    u, v = (cols + 0.5) * base.resolution, (rows + 0.5) * base.resolution
+    centres = np.stack([ox + math.cos(yaw) * u - math.sin(yaw) * v,
+                        oy + math.sin(yaw) * u + math.cos(yaw) * v], axis=1)
+    room = np.full(len(centres), np.inf)
+    for grid in grids:
+        room = np.minimum(room, clearance_at(grid, clearance_grid(grid), centres))
+    labels, _ = ndimage.label((room >= passage).reshape(base.data.shape))
+    srow, scol, inside = _cells(base, np.array([start], dtype=float))
+    if not inside[0] or labels[srow[0], scol[0]] == 0:
+        raise ValueError(f'sample_goals: start ({start[0]:.2f}, {start[1]:.2f}) is not '
+                         f'{passage} m clear of every obstacle')
+    reachable = (labels == labels[srow[0], scol[0]]).ravel()
+    candidates = centres[reachable & (room >= clearance)]
+    rng = np.random.default_rng(seed)
+    goals, here = [], np.asarray(start, dtype=float)
+    for _ in range(count):
+        far = candidates[np.hypot(*(candidates - here).T) >= spacing]
+        if not len(far):
+            raise ValueError(f'sample_goals: no reachable cell {spacing} m from '
+                             f'({here[0]:.2f}, {here[1]:.2f})')
+        here = far[rng.integers(len(far))]
+        goals.append((float(here[0]), float(here[1]), float(rng.uniform(-math.pi, math.pi))))
+    return goals
+
+
+def path_length(xy):
+    """
+    Return the length of a polyline.
+
+    :param xy: (N, 2) m.
+    :returns: m (0 for fewer than two points).
+    """
+    xy = np.asarray(xy, dtype=float).reshape(-1, 2)
+    return float(np.hypot(*np.diff(xy, axis=0).T).sum()) if len(xy) > 1 else 0.0
+
+
+def footprint_samples(footprint, step=0.01):
+    """
+    Return points on the boundary of a footprint polygon, ``step`` apart at most.
+
+    :param footprint: list of ``(x, y)`` vertices in the robot's base frame, m (Nav2's
+        ``footprint`` parameter).
+    :param step: m.
+    :returns: (N, 2) m in the base frame.
+    """
+    corners = np.asarray(footprint, dtype=float)
+    points = []
+    for a, b in zip(corners, np.roll(corners, -1, axis=0)):
+        n = max(1, int(math.ceil(np.hypot(*(b - a)) / step)))
+        points.append(a + np.outer(np.arange(n) / n, b - a))
+    return np.concatenate(points)
+
+
+def footprint_clearance(poses, footprint, sections, step=0.01):
+    """
+    Return the signed clearance between the footprint at each pose and the world's shapes.
+
+    :param poses: (N, 3) ``(x, y, yaw)`` of the base frame in the world frame, m and rad.
+    :param footprint: footprint polygon vertices in the base frame (convex), m.
+    :param sections: :func:`amr_description.core.scan_map.world_sections` (one or more
+        heights concatenated).
+    :param step: m between boundary samples; a shape's corner can reach up to ``step`` / 2
+        into the polygon unseen.
+    :returns: (N,) m: the smallest distance from the footprint's boundary to a shape's
+        boundary; negative when they overlap (the robot touches the world): minus the depth
+        of the deepest boundary sample inside a shape, or minus the gap to a shape wholly
+        inside the polygon; +inf without shapes.
+    """
+    poses = np.asarray(poses, dtype=float).reshape(-1, 3)
+    local = footprint_samples(footprint, step)
+    out = np.full(len(poses), np.inf)
+    if not sections:
+        return out
+    corners = np.asarray(footprint, dtype=float)
+    edges = np.roll(corners, -1, axis=0) - corners
+    centres = np.array([section[1] for section in sections], dtype=float)
+    for i, (x, y, yaw) in enumerate(poses):
+        c, s = math.cos(yaw), math.sin(yaw)
+        world = np.stack([x + c * local[:, 0] - s * local[:, 1],
+                          y + s * local[:, 0] + c * local[:, 1]], axis=1)
+        gaps = surface_distance(world, sections)
+        within = np.zeros(len(world), bool)
+        for section in sections:
+            within |= inside_section(world, section)
+        if within.any():
+            out[i] = -float(gaps[within].max())
+            continue
+        # a shape wholly inside the polygon: its centre is on one side of every edge
+        dx, dy = centres[:, 0] - x, centres[:, 1] - y
+        base = np.stack([c * dx + s * dy, -s * dx + c * dy], axis=1)
+        rel = base[:, None, :] - corners[None, :, :]
+        cross = edges[None, :, 0] * rel[..., 1] - edges[None, :, 1] * rel[..., 0]
+        enclosed = bool(((cross >= 0).all(axis=1) | (cross <= 0).all(axis=1)).any())
+        out[i] = -float(gaps.min()) if enclosed else float(gaps.min())
+    return out
+
+
+def time_bound(path, start_yaw, goal_yaw, speed, turn_rate, slack=1.5):
+    """
+    Return the target time to a goal: ``slack`` x (length / speed + turns / turn rate).
+
+    The turns are in place: from ``start_yaw`` to the path's first heading and from its last
+    heading to ``goal_yaw`` (Regulated Pure Pursuit's rotate-to-heading).
+
+    :param path: (N, 2) m, the shortest (planned) path.
+    :param start_yaw: rad.
+    :param goal_yaw: rad.
+    :param speed: m/s (``desired_linear_vel``).
+    :param turn_rate: rad/s (``rotate_to_heading_angular_vel``).
+    :param slack: the issue's factor (1.5).
+    :returns: s.
+    """
+    xy = np.asarray(path, dtype=float).reshape(-1, 2)
+    turns = abs(wrap_angle(goal_yaw - start_yaw))
+    steps = np.diff(xy, axis=0)
+    steps = steps[np.hypot(*steps.T) > 1e-9] if len(steps) else steps
+    if len(steps):
+        first = math.atan2(steps[0][1], steps[0][0])
+        last = math.atan2(steps[-1][1], steps[-1][0])
+        turns = abs(wrap_angle(first - start_yaw)) + abs(wrap_angle(goal_yaw - last))
+    return slack * (path_length(xy) / speed + turns / turn_rate)

@@ -1,0 +1,289 @@
+# Copyright 2026 The amr_description Authors
+# Licensed under the Apache License, Version 2.0
+"""``navigate_job``'s command line, its two stacks and ``main`` (see the package docstring)."""
+
+import argparse
+import math
+import os
+import shutil
+import subprocess
+import sys
+import time
+
+from amr_description.launch.actions import LaunchError
+from amr_description.nodes.drive_square.main import StackLog
+from amr_description.nodes.navigate_job.report import fail
+from amr_description.nodes.navigate_job.report import format_table
+from amr_description.nodes.navigate_job.report import robot_params
+from amr_description.nodes.navigate_job.report import write_map_png
+from amr_description.nodes.navigate_job.report import write_navigation_png
+from amr_description.ros import shutdown
+from rclpy.executors import ExternalShutdownException
+
+PROGRAM = 'navigate_job'
+ACTIVE = 'Managed nodes are active'
+"""The line each lifecycle manager prints once its nodes are active (nav2_lifecycle_manager)."""
+
+ROUTES = {
+    'warehouse': ((4.85, 0.0, 0.0), (4.85, 2.0, math.pi), (0.95, 2.0, math.pi / 2),
+                  (0.95, 4.0, 0.0), (4.85, 4.0, math.pi / 2), (4.85, 6.0, math.pi),
+                  (0.95, 6.0, math.pi)),
+}
+"""Mapping routes ``(x, y, yaw)`` per world, from the spawn pose (0, 0, 0): in warehouse.sdf
+along the south aisle, through the gaps between the shelves (x 0.5 .. 1.4 and 4.4 .. 5.3) and
+along each aisle (y 2, 4, 6), so that the lidar sees both faces of every shelf."""
+
+
+class Recorder:
+    """
+    The ground truth of the robot (``/ground_truth/odom``), recorded on the navigator's node.
+
+    :param node: the rclpy node (the job's ``BasicNavigator``).
+    """
+
+    def __init__(self, node):
+        from nav_msgs.msg import Odometry
+        self.samples = []  # (t, x, y, yaw): sim s, world-frame m and rad
+        node.create_subscription(Odometry, '/ground_truth/odom', self._on_truth, 50)
+
+    def _on_truth(self, msg):
+        q = msg.pose.pose.orientation
+        yaw = math.atan2(2.0 * (q.w * q.z + q.x * q.y), 1.0 - 2.0 * (q.y * q.y + q.z * q.z))
+        p = msg.pose.pose.position
+        t = msg.header.stamp.sec + 1e-9 * msg.header.stamp.nanosec
+        if self.samples and t < self.samples[-1][0]:
+            self.samples.clear()  # a new simulator: its time starts again
+        self.samples.append((t, p.x, p.y, yaw))
+
+    def now(self):
+        """Return the latest sample's sim time, s (None before the first)."""
+        return self.samples[-1][0] if self.samples else None
+
+    def between(self, t0, t1):
+        """Return the samples with ``t0 <= t <= t1`` as a list of ``(t, x, y, yaw)``."""
+        return [s for s in self.samples if t0 <= s[0] <= t1]
+
+
+def _parse(argv):
+    parser = argparse.ArgumentParser(
+        prog=PROGRAM, description='Map a world with SLAM, save the map, localize in it with '
+        'AMCL and navigate to seeded random goals (Nav2 and slam_toolbox as a user runs them).')
+    parser.add_argument('--world', default='warehouse', choices=sorted(ROUTES),
+                        help='the world to map and navigate (warehouse)')
+    parser.add_argument('--goals', type=int, default=10, help='number of goals (10)')
+    parser.add_argument('--seed', type=int, default=0, help='seed of the goals (0)')
+    parser.add_argument('--rtf', type=float, default=1.0,
+                        help='real-time factor of the simulation (1.0)')
+    parser.add_argument('--output-dir', default='out', help='where the map and PNGs go (out/)')
+    parser.add_argument('--goal-timeout', type=float, default=300.0,
+                        help='wall seconds per goal before it is canceled (300)')
+    parser.add_argument('--route-timeout', type=float, default=900.0,
+                        help='wall seconds for the mapping route (900)')
+    parser.add_argument('--startup-timeout', type=float, default=300.0,
+                        help='wall seconds for a stack to come up (300)')
+    parser.add_argument('--viewer-port', type=int, default=None,
+                        help='port of the viewer page (default 8080 or the next free port; '
+                        '0 = no viewer)')
+    opts = parser.parse_args(argv)
+    if opts.goals < 1:
+        parser.error(f'argument --goals: must be >= 1, got {opts.goals}')
+    if not opts.rtf > 0:
+        parser.error('argument --rtf: must be > 0 (the lock-step mode of drive_square is not '
+                     'built for navigation)')
+    return opts
+
+
+def _start(opts, name, extra):
+    """Start the ``navigation`` stack with ``extra`` arguments; return (orchestrator, log)."""
+    from amr_description.launch import registry
+    from amr_description.launch.orchestrator import Orchestrator
+    argv = [f'world:={opts.world}', f'rtf:={opts.rtf}', 'headless:=true'] + extra
+    if opts.viewer_port == 0:
+        argv.append('viewer:=false')
+    elif opts.viewer_port is not None:
+        argv.append(f'viewer_port:={opts.viewer_port}')
+    path = os.path.join(opts.output_dir, f'{name}_stack.log')
+    print(f'[{PROGRAM}] starting the {name} stack: navigation {" ".join(argv)}; its output '
+          f'goes to {path}', flush=True)
+    log = StackLog(open(path, 'w'), PROGRAM, watch=(ACTIVE,))
+    orchestrator = Orchestrator(registry.describe('navigation', argv), stream=log)
+    orchestrator.start()
+    return orchestrator, log
+
+
+def _stop(orchestrator, log):
+    if orchestrator is not None:
+        orchestrator.shutdown()
+        orchestrator.wait(timeout=30.0)
+        log.close()
+
+
+def _spin_until(node, done, timeout):
+    """Spin ``node`` until ``done()`` or ``timeout`` wall seconds; return ``done()``."""
+    import rclpy
+    deadline = time.monotonic() + timeout
+    while not done() and time.monotonic() < deadline:
+        rclpy.spin_once(node, timeout_sec=0.1)
+    return done()
+
+
+def _pose(node, x, y, yaw):
+    from geometry_msgs.msg import PoseStamped
+    pose = PoseStamped()
+    pose.header.frame_id = 'map'
+    pose.header.stamp = node.get_clock().now().to_msg()
+    pose.pose.position.x, pose.pose.position.y = float(x), float(y)
+    pose.pose.orientation.z, pose.pose.orientation.w = math.sin(yaw / 2), math.cos(yaw / 2)
+    return pose
+
+
+def _wait_task(navigator, timeout):
+    """Wait for the navigator's task; cancel it at ``timeout`` wall s. Return TaskResult."""
+    deadline = time.monotonic() + timeout
+    while not navigator.isTaskComplete():
+        if time.monotonic() > deadline:
+            navigator.cancelTask()
+            _spin_until(navigator, navigator.isTaskComplete, 30.0)
+            break
+    return navigator.getResult()
+
+
+def _up(navigator, recorder, log, managers, timeout):
+    """Wait until ``managers`` lifecycle managers are active and ground truth arrives."""
+    return _spin_until(navigator, lambda: log.counts[ACTIVE] >= managers
+                       and recorder.now() is not None, timeout)
+
+
+def _map_phase(opts, navigator, recorder):
+    """Drive the route with SLAM and save the map; return (map yaml, route samples) or fail."""
+    orchestrator, log = _start(opts, 'slam', ['slam:=True'])
+    try:
+        if not _up(navigator, recorder, log, 1, opts.startup_timeout):
+            raise RuntimeError(f'the slam stack was not active within {opts.startup_timeout:g} '
+                               's (see its log)')
+        # the route's poses are in map, which exists once SLAM has published its first map
+        from nav_msgs.msg import OccupancyGrid
+        from rclpy.qos import DurabilityPolicy
+        from rclpy.qos import QoSProfile
+        maps = []
+        qos = QoSProfile(depth=1, durability=DurabilityPolicy.TRANSIENT_LOCAL)
+        sub = navigator.create_subscription(OccupancyGrid, 'map', maps.append, qos)
+        if not _spin_until(navigator, lambda: maps, 120.0):
+            raise RuntimeError('SLAM published no map within 120 s of the stack being active')
+        navigator.destroy_subscription(sub)
+        _spin_until(navigator, lambda: False, 1.0)  # its map -> odom transform too
+        route = [_pose(navigator, *p) for p in ROUTES[opts.world]]
+        t0 = recorder.now()
+        started = time.monotonic()
+        print(f'[{PROGRAM}] mapping: following {len(route)} waypoints of the {opts.world} route '
+              '(follow_waypoints)', flush=True)
+        if not navigator.followWaypoints(route):
+            raise RuntimeError('follow_waypoints refused the route')
+        result = _wait_task(navigator, opts.route_timeout)
+        missed = list(getattr(navigator.result_future.result().result, 'missed_waypoints', []))
+        t1 = recorder.now()
+        print(f'[{PROGRAM}] route {result.name}: {len(route) - len(missed)} of {len(route)} '
+              f'waypoints in {t1 - t0:.1f} s of sim time ({time.monotonic() - started:.1f} s '
+              'wall)', flush=True)
+        if result.name != 'SUCCEEDED' or missed:
+            raise RuntimeError(f'the mapping route ended {result.name} with waypoints '
+                               f'{[m.index for m in missed]} missed')
+        stem = os.path.join(os.path.abspath(opts.output_dir), 'map')
+        ros2 = shutil.which('ros2')
+        if ros2 is None:
+            raise RuntimeError("no 'ros2' on PATH to run map_saver_cli (source scripts/env.sh)")
+        saved = subprocess.run([ros2, 'run', 'nav2_map_server', 'map_saver_cli', '-f', stem,
+                                '--ros-args', '-p', 'use_sim_time:=true'],
+                               capture_output=True, text=True, timeout=120)
+        if saved.returncode != 0 or not os.path.isfile(stem + '.yaml'):
+            raise RuntimeError(f'map_saver_cli failed ({saved.returncode}): '
+                               f'{(saved.stdout + saved.stderr).strip()[-300:]}')
+        print(f'[{PROGRAM}] saved the map: {stem}.yaml', flush=True)
+        return stem + '.yaml', recorder.between(t0, t1)
+    finally:
+        _stop(orchestrator, log)
+
+
+def _goal_phase(opts, navigator, recorder, map_yaml, true_map, saved_map):
+    """Restart on the saved map with AMCL and go to the goals; return the rows."""
+    from amr_description.nav.trials import path_length
+    from amr_description.nav.trials import sample_goals
+    navigator.initial_pose_received = False
+    recorder.samples.clear()
+    orchestrator, log = _start(opts, 'navigation', [f'map:={map_yaml}'])
+    rows = []
+    try:
+        if not _up(navigator, recorder, log, 2, opts.startup_timeout):
+            raise RuntimeError(f'the navigation stack was not active within '
+                               f'{opts.startup_timeout:g} s (see its log)')
+        if not _spin_until(navigator, lambda: navigator.initial_pose_received, 60.0):
+            raise RuntimeError('no amcl_pose within 60 s of the stack being active')
+        start = recorder.samples[-1]
+        goals = sample_goals([true_map, saved_map], start[1:3], opts.goals, opts.seed)
+        for i, (x, y, yaw) in enumerate(goals, 1):
+            here = recorder.samples[-1]
+            goal = _pose(navigator, x, y, yaw)
+            plan = navigator.getPath(goal, goal)
+            planned = [] if plan is None else [(p.pose.position.x, p.pose.position.y)
+                                               for p in plan.poses]
+            print(f'[{PROGRAM}] goal {i}/{len(goals)}: ({x:.2f}, {y:.2f}, {yaw:.2f}), '
+                  f'{path_length(planned):.2f} m planned', flush=True)
+            t0 = recorder.now()
+            result = (_wait_task(navigator, opts.goal_timeout)
+                      if navigator.goToPose(goal) else None)
+            _spin_until(navigator, lambda: False, 0.5)  # the last ground truth
+            rows.append({'goal': (x, y, yaw), 'start': here[1:], 'result':
+                         'REJECTED' if result is None else result.name, 'planned': planned,
+                         'truth': recorder.between(t0, recorder.now())})
+    finally:
+        _stop(orchestrator, log)
+    return rows
+
+
+def main(args=None):
+    """
+    Run the navigation job; see the package docstring.
+
+    :param args: command-line arguments (default ``sys.argv[1:]``).
+    :returns: 0 when every goal succeeded without a collision, 1 otherwise.
+    """
+    argv = list(sys.argv[1:] if args is None else args)
+    opts = _parse(argv)
+    os.makedirs(opts.output_dir, exist_ok=True)
+    shutdown.init([PROGRAM, '--ros-args', '-p', 'use_sim_time:=true'])
+    navigator = None
+    try:
+        from amr_description.core.gazebo.sdf_world import load_world
+        from amr_description.core.scan_map import world_sections
+        from amr_description.launch.nav_stacks import share_file
+        from amr_description.nav.map_io import load_map
+        from amr_description.nav.world_map import HEIGHTS
+        from amr_description.nav.world_map import world_map
+        from nav2_simple_commander.robot_navigator import BasicNavigator
+        world = load_world(opts.world)
+        true_map = world_map(world)
+        sections = [s for h in HEIGHTS for s in world_sections(world, h)]
+        robot = robot_params(share_file('config', 'nav2_params.yaml'))
+        navigator = shutdown.create(BasicNavigator, PROGRAM)
+        recorder = Recorder(navigator)
+        map_yaml, route = _map_phase(opts, navigator, recorder)
+        saved_map, _ = load_map(map_yaml)
+        rows = _goal_phase(opts, navigator, recorder, map_yaml, true_map, saved_map)
+        text, ok = format_table(rows, route, sections, robot)
+        print(text, flush=True)
+        write_map_png(os.path.join(opts.output_dir, 'map.png'), saved_map, true_map, route,
+                      ROUTES[opts.world])
+        write_navigation_png(os.path.join(opts.output_dir, 'navigation.png'), saved_map, rows)
+        print(f'[{PROGRAM}] wrote {opts.output_dir}/map.png and '
+              f'{opts.output_dir}/navigation.png', flush=True)
+        return 0 if ok else fail('a goal was not reached or the robot touched the world')
+    except (RuntimeError, ValueError, OSError, LaunchError) as exc:
+        return fail(str(exc))
+    except (KeyboardInterrupt, ExternalShutdownException):
+        return 1
+    finally:
+        shutdown.shutdown(navigator)
+
+
+if __name__ == '__main__':
+    sys.exit(main())

@@ -1,0 +1,127 @@
+# Copyright 2026 The amr_description Authors
+# Licensed under the Apache License, Version 2.0
+"""amr_description.nav.trials: goals, lengths, clearance and the time bound, in closed form."""
+
+import math
+
+from amr_description.nav.map_io import GridMap
+from amr_description.nav.trials import clearance_at
+from amr_description.nav.trials import clearance_grid
+from amr_description.nav.trials import footprint_clearance
+from amr_description.nav.trials import path_length
+from amr_description.nav.trials import sample_goals
+from amr_description.nav.trials import time_bound
+import numpy as np
+import pytest
+
+
+def _two_rooms():
+    """10 x 4 m at 0.1 m: a wall at x 5.0 .. 5.2 splits it; border cells occupied."""
+    data = np.zeros((40, 100), np.int8)
+    data[0, :] = data[-1, :] = data[:, 0] = data[:, -1] = 100
+    data[:, 50:52] = 100
+    return GridMap(data, 0.1, (0.0, 0.0, 0.0))
+
+
+def test_clearance_is_the_distance_between_cell_centres():
+    grid = GridMap(np.zeros((1, 6), np.int8), 0.5)
+    grid.data[0, 0] = 100
+    assert clearance_grid(grid)[0].tolist() == [0.0, 0.5, 1.0, 1.5, 2.0, 2.5]
+    grid.data[0, 5] = -1  # unknown is not free
+    assert clearance_grid(grid)[0].tolist() == [0.0, 0.5, 1.0, 1.0, 0.5, 0.0]
+    assert clearance_at(grid, clearance_grid(grid), [[1.25, 0.2], [9.0, 0.0]]).tolist() == \
+        [1.0, 0.0]  # outside the grid: 0
+
+
+def test_goals_are_seeded_reachable_clear_and_spaced():
+    grid = _two_rooms()
+    goals = sample_goals([grid], (1.0, 2.0), 20, seed=7, clearance=0.45, spacing=1.5)
+    assert goals == sample_goals([grid], (1.0, 2.0), 20, seed=7, clearance=0.45, spacing=1.5)
+    assert goals != sample_goals([grid], (1.0, 2.0), 20, seed=8, clearance=0.45, spacing=1.5)
+    xy = np.array([g[:2] for g in goals])
+    # the start's room: x < 5.0 - 0.45, y within 0.1 + 0.45 of the border cells' centres
+    assert (xy[:, 0] <= 5.0 - 0.45 + 1e-9).all() and (xy[:, 0] >= 0.1 + 0.45 - 1e-9).all()
+    assert (xy[:, 1] >= 0.55 - 1e-9).all() and (xy[:, 1] <= 3.45 + 1e-9).all()
+    steps = np.hypot(*np.diff(np.vstack([[1.0, 2.0], xy]), axis=0).T)
+    assert steps.min() >= 1.5
+    assert all(-math.pi <= g[2] < math.pi for g in goals)
+    # a second map that blocks the room's left half leaves only its right half
+    other = _two_rooms()
+    other.data[:, :30] = -1
+    right = sample_goals([grid, other], (4.0, 2.0), 10, seed=1, clearance=0.45, spacing=0.5)
+    assert min(g[0] for g in right) >= 3.0 + 0.45 - 1e-9
+
+
+def test_goals_go_through_a_door_narrower_than_their_clearance():
+    grid = _two_rooms()
+    grid.data[15:25, 50:52] = 0  # a 1.0 m door: 0.5 m clear at its middle, under 0.45 apart
+    goals = sample_goals([grid], (1.0, 2.0), 40, seed=3, clearance=0.45, spacing=1.5)
+    assert max(g[0] for g in goals) > 5.2 + 0.45 - 1e-9  # in the far room too
+    shut = sample_goals([grid], (1.0, 2.0), 40, seed=3, clearance=0.45, spacing=1.5,
+                        passage=0.55)
+    assert max(g[0] for g in shut) <= 5.0 - 0.45 + 1e-9
+
+
+def test_a_start_that_is_not_clear_is_refused():
+    with pytest.raises(ValueError, match=r'start \(5.10, 2.00\) is not 0.3 m clear'):
+        sample_goals([_two_rooms()], (5.1, 2.0), 1, seed=0)
+
+
+def test_path_length_and_time_bound():
+    assert path_length([[0, 0], [3, 4], [3, 4], [3, 5]]) == 6.0
+    assert path_length([[1, 1]]) == 0.0
+    # 2 m along +x from yaw 0 to yaw pi/2: 4 s of driving and a quarter turn at 1.8 rad/s
+    bound = time_bound([[0, 0], [1, 0], [2, 0]], 0.0, math.pi / 2, 0.5, 1.8)
+    assert bound == pytest.approx(1.5 * (4.0 + (math.pi / 2) / 1.8))
+    # facing -x at the start: a half turn first
+    assert time_bound([[0, 0], [2, 0]], math.pi, 0.0, 0.5, 1.8, slack=1.0) == \
+        pytest.approx(4.0 + math.pi / 1.8)
+
+
+def test_footprint_clearance_to_a_box():
+    square = [[0.5, 0.5], [0.5, -0.5], [-0.5, -0.5], [-0.5, 0.5]]
+    box = [('box', (3.0, 0.0), 0.0, (0.5, 0.7))]  # x 2.5 .. 3.5, y -0.7 .. 0.7
+    gaps = footprint_clearance([[0, 0, 0], [1.5, 0, 0], [2.3, 0, 0], [0, 0, math.pi / 4]],
+                               square, box)
+    assert gaps[0] == pytest.approx(2.0)
+    assert gaps[1] == pytest.approx(0.5)
+    assert gaps[2] == pytest.approx(-0.3)  # the front edge 0.3 m into the box
+    assert gaps[3] == pytest.approx(2.5 - math.sqrt(0.5), abs=0.01)  # a corner ahead
+    circle = [('circle', (0.0, 2.0), 0.25)]
+    assert footprint_clearance([[0, 0, 0]], square, circle)[0] == pytest.approx(1.25)
+    post = [('circle', (0.1, 0.0), 0.05)]  # wholly inside the footprint: 0.35 m from its edge
+    assert footprint_clearance([[0, 0, 0]], square, post)[0] == pytest.approx(-0.35)
+    assert footprint_clearance([[0, 0, 0]], square, [])[0] == math.inf
+
+
+def test_the_jobs_robot_params_and_table(tmp_path):
+    from amr_description.nodes.navigate_job.report import format_table
+    from amr_description.nodes.navigate_job.report import robot_params
+    import os
+    root = os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', '..')
+    robot = robot_params(os.path.join(root, 'config', 'nav2_params.yaml'))
+    assert robot == {'footprint': [(0.3, 0.17), (0.3, -0.17), (-0.3, -0.17), (-0.3, 0.17)],
+                     'speed': 0.5, 'turn_rate': 1.8}
+    bare = tmp_path / 'bare.yaml'
+    bare.write_text('local_costmap:\n  local_costmap:\n    ros__parameters:\n'
+                    '      robot_radius: 0.22\n')
+    round_robot = robot_params(str(bare))
+    assert (round_robot['speed'], round_robot['turn_rate']) == (0.5, 1.8)  # RPP's defaults
+    assert np.hypot(*np.array(round_robot['footprint']).T) == pytest.approx([0.22] * 16)
+    # a 2 m drive along +x in 5 s, 1 m from a wall at y = 1.5 (wall half-thickness 0.1)
+    wall = [('box', (1.0, 1.6), 0.0, (5.0, 0.1))]
+    truth = [(10.0 + 0.05 * i, 0.02 * i, 0.0, 0.0) for i in range(101)]
+    row = {'goal': (2.1, 0.0, 0.1), 'start': (0.0, 0.0, 0.0), 'result': 'SUCCEEDED',
+           'planned': [(0.0, 0.0), (2.1, 0.0)], 'truth': truth}
+    text, ok = format_table([row], truth, wall, robot)
+    assert ok
+    assert 'mapping route: 2.00 m driven in 5.0 s of sim time, closest approach to the ' \
+        'world 1.330 m' in text  # 1.5 - 0.17
+    bound = 1.5 * (2.1 / 0.5 + 0.1 / 1.8)
+    assert f'  SUCCEEDED     5.0 {bound:7.1f}     2.10    2.00   0.100      5.7    1.330' \
+        in text, text
+    assert "1 of 1 goals SUCCEEDED; the ground truth ended within Nav2's default " \
+        'tolerances (0.25 m, 0.25 rad) at 1' in text
+    touching = dict(row, truth=[(t, x, 1.35, yaw) for t, x, _, yaw in truth])
+    assert format_table([row, touching], truth, wall, robot)[1] is False  # 0.02 m into it
+    assert format_table([dict(row, result='ABORTED')], truth, wall, robot)[1] is False
