@@ -72,6 +72,9 @@ def _parse(argv):
                         help='the world to map and navigate (warehouse)')
     parser.add_argument('--goals', type=int, default=10, help='number of goals (10)')
     parser.add_argument('--seed', type=int, default=0, help='seed of the goals (0)')
+    parser.add_argument('--passage', type=float, default=0.3,
+                        help='m of clearance on the way to a goal (0.3: through the 0.9 m gaps '
+                        'between the shelves; 0.45 keeps the goals in the aisle of the start)')
     parser.add_argument('--rtf', type=float, default=1.0,
                         help='real-time factor of the simulation (1.0)')
     parser.add_argument('--output-dir', default='out', help='where the map and PNGs go (out/)')
@@ -219,7 +222,8 @@ def _goal_phase(opts, navigator, recorder, map_yaml, true_map, saved_map):
         if not _spin_until(navigator, lambda: navigator.initial_pose_received, 60.0):
             raise RuntimeError('no amcl_pose within 60 s of the stack being active')
         start = recorder.samples[-1]
-        goals = sample_goals([true_map, saved_map], start[1:3], opts.goals, opts.seed)
+        goals = sample_goals([true_map, saved_map], start[1:3], opts.goals, opts.seed,
+                             passage=opts.passage)
         for i, (x, y, yaw) in enumerate(goals, 1):
             here = recorder.samples[-1]
             goal = _pose(navigator, x, y, yaw)
