@@ -88,7 +88,7 @@ def sample_goals(grids, start, count, seed, clearance=0.45, spacing=1.5, passage
     """
     from scipy import ndimage
     base = grids[0]
-    rows, cols = np.nonzero(np.ones(base.data.shape, bool))
+    rows, cols = np.indices(base.data.shape).reshape(2, -1)
     ox, oy, yaw = base.origin
     u, v = (cols + 0.5) * base.resolution, (rows + 0.5) * base.resolution
     centres = np.stack([ox + math.cos(yaw) * u - math.sin(yaw) * v,

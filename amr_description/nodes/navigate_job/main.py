@@ -18,6 +18,9 @@ from amr_description.nodes.navigate_job.report import robot_params
 from amr_description.nodes.navigate_job.report import write_map_png
 from amr_description.nodes.navigate_job.report import write_navigation_png
 from amr_description.ros import shutdown
+from amr_description.ros.transforms import set_yaw
+from amr_description.ros.transforms import stamp_seconds
+from amr_description.ros.transforms import yaw_of
 from rclpy.executors import ExternalShutdownException
 
 PROGRAM = 'navigate_job'
@@ -47,13 +50,11 @@ class Recorder:
         node.create_subscription(Odometry, '/ground_truth/odom', self._on_truth, 50)
 
     def _on_truth(self, msg):
-        q = msg.pose.pose.orientation
-        yaw = math.atan2(2.0 * (q.w * q.z + q.x * q.y), 1.0 - 2.0 * (q.y * q.y + q.z * q.z))
         p = msg.pose.pose.position
-        t = msg.header.stamp.sec + 1e-9 * msg.header.stamp.nanosec
+        t = stamp_seconds(msg.header.stamp)
         if self.samples and t < self.samples[-1][0]:
             self.samples.clear()  # a new simulator: its time starts again
-        self.samples.append((t, p.x, p.y, yaw))
+        self.samples.append((t, p.x, p.y, yaw_of(msg.pose.pose.orientation)))
 
     def now(self):
         """Return the latest sample's sim time, s (None before the first)."""
@@ -136,7 +137,7 @@ def _pose(node, x, y, yaw):
     pose.header.frame_id = 'map'
     pose.header.stamp = node.get_clock().now().to_msg()
     pose.pose.position.x, pose.pose.position.y = float(x), float(y)
-    pose.pose.orientation.z, pose.pose.orientation.w = math.sin(yaw / 2), math.cos(yaw / 2)
+    set_yaw(pose.pose.orientation, yaw)
     return pose
 
 
@@ -164,17 +165,16 @@ def _map_phase(opts, navigator, recorder):
         if not _up(navigator, recorder, log, 1, opts.startup_timeout):
             raise RuntimeError(f'the slam stack was not active within {opts.startup_timeout:g} '
                                's (see its log)')
-        # the route's poses are in map, which exists once SLAM has published its first map
-        from nav_msgs.msg import OccupancyGrid
-        from rclpy.qos import DurabilityPolicy
-        from rclpy.qos import QoSProfile
-        maps = []
-        qos = QoSProfile(depth=1, durability=DurabilityPolicy.TRANSIENT_LOCAL)
-        sub = navigator.create_subscription(OccupancyGrid, 'map', maps.append, qos)
-        if not _spin_until(navigator, lambda: maps, 120.0):
-            raise RuntimeError('SLAM published no map within 120 s of the stack being active')
+        # the route's poses are in map, which exists once SLAM publishes map -> odom on /tf
+        from tf2_msgs.msg import TFMessage
+        seen = []
+        sub = navigator.create_subscription(
+            TFMessage, '/tf', lambda m: seen.extend(
+                t for t in m.transforms if t.header.frame_id.lstrip('/') == 'map'), 10)
+        if not _spin_until(navigator, lambda: seen, 120.0):
+            raise RuntimeError('SLAM published no map -> odom transform within 120 s of the '
+                               'stack being active')
         navigator.destroy_subscription(sub)
-        _spin_until(navigator, lambda: False, 1.0)  # its map -> odom transform too
         route = [_pose(navigator, *p) for p in ROUTES[opts.world]]
         t0 = recorder.now()
         started = time.monotonic()
