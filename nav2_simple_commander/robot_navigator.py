@@ -426,7 +426,12 @@ class BasicNavigator(Node):
         while state != 'active':
             self.debug(f'Getting {node_name} state...')
             future = state_client.call_async(GetState.Request())
-            self._spin_until(future)
+            # a request sent as the server is discovered can lose its response (the server
+            # has not matched our reply reader yet): ask again rather than wait forever
+            self._spin_until(future, timeout_sec=5.0)
+            if not future.done():
+                state_client.remove_pending_request(future)
+                continue
             if future.result() is not None:
                 state = future.result().current_state.label
                 self.debug(f'Result of get_state: {state}')

@@ -232,7 +232,7 @@ def spin(target, until=None, period=SPIN_PERIOD):
 
 def shutdown(*nodes, executor=None):
     """
-    Destroy ``nodes`` (None entries skipped), shut ``executor`` and rclpy down; signals ignored.
+    Stop TF listener threads, destroy ``nodes`` (None skipped), shut ``executor`` and rclpy down.
 
     Call it after stopping the program's own threads. Errors of a context already shut down
     elsewhere are ignored.
@@ -243,6 +243,11 @@ def shutdown(*nodes, executor=None):
     try:
         ignore_signals()
     except ValueError:  # not the main thread: signals are the main thread's business
+        pass
+    from amr_description.ros.transforms import stop_listener_threads
+    try:
+        stop_listener_threads()
+    except Exception:  # noqa: B902 - best effort at exit
         pass
     for node in nodes:
         if node is None:

@@ -11,6 +11,8 @@ are seconds (float); planar poses are ``(x, y, yaw)`` in m, m, rad (REP 103).
 """
 
 import math
+import threading
+import weakref
 
 from geometry_msgs.msg import TransformStamped
 import numpy as np
@@ -72,6 +74,21 @@ def planar_transform(parent, child, stamp, pose):
     return t
 
 
+_SPINNING = weakref.WeakSet()  # listeners with a thread of their own, not yet destroyed
+
+
+def stop_listener_threads():
+    """
+    Destroy every :class:`TransformListener` still spinning a thread of its own.
+
+    :func:`amr_description.ros.shutdown.shutdown` calls it before rclpy shuts down: a listener
+    thread left to the interpreter's exit was still inside the middle layer's wait, and the
+    process aborted ("terminate called without an active exception", exit -6).
+    """
+    for listener in list(_SPINNING):
+        listener.destroy()
+
+
 class TransformListener:
     """
     Fill ``buffer`` from ``/tf`` and ``/tf_static``.
@@ -96,10 +113,8 @@ class TransformListener:
         """Subscribe both topics (on the listener's own node with ``spin_thread``)."""
         self.node = node
         self.buffer = buffer
-        self._own = self._executor = None
+        self._own = self._executor = self._thread = None
         if spin_thread:
-            import threading
-
             from rclpy.executors import SingleThreadedExecutor
             from rclpy.node import Node as RclpyNode
             name = f'transform_listener_impl_{id(self):x}'
@@ -109,7 +124,9 @@ class TransformListener:
                                   cli_args=['--ros-args', '-r', f'__node:={name}'])
             self._executor = SingleThreadedExecutor(context=node.context)
             self._executor.add_node(self._own)
-            threading.Thread(target=self._spin, daemon=True).start()
+            self._thread = threading.Thread(target=self._spin, daemon=True)
+            self._thread.start()
+            _SPINNING.add(self)
         subscriber = self._own or node
         self._subs = [
             subscriber.create_subscription(TFMessage, '/tf', lambda m: self._store(m, False),
@@ -137,11 +154,14 @@ class TransformListener:
                     f"{'/tf_static' if static else '/tf'}: {exc}", throttle_duration_sec=5.0)
 
     def destroy(self):
-        """Remove the subscriptions (and the listener's own node and thread)."""
+        """Remove the subscriptions (and the listener's own node, and join its thread)."""
         if self._own is not None:
+            own, self._own = self._own, None
             self._executor.shutdown(timeout_sec=1.0)
-            self._own.destroy_node()
-            self._own = None
+            own.destroy_node()
+            if self._thread is not threading.current_thread():
+                self._thread.join(timeout=2.0)
+            _SPINNING.discard(self)
         else:
             for sub in self._subs:
                 self.node.destroy_subscription(sub)
