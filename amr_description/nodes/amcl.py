@@ -9,18 +9,20 @@ the ``likelihood_field`` laser model and ``nav2_amcl::DifferentialMotionModel`` 
 implemented: another value fails configure with one line. A parameter of the wrong type fails
 configure with one line naming it.
 
-On activate: ``map_topic`` (``map``, transient local) in; ``scan_topic`` (``scan``, sensor
-data QoS) in, placed with TF (``odom_frame_id`` -> ``base_frame_id`` at the scan's stamp,
-``base_frame_id`` -> the scan's frame); ``initialpose`` (PoseWithCovarianceStamped, reliable)
-in, refused with one warning unless in ``global_frame_id`` and finite (its covariance's
-``[0] [1] [6] [7] [35]`` are used); ``amcl_pose`` (transient local) and ``particle_cloud``
-(nav2_msgs/ParticleCloud, best effort) out; TF ``global_frame_id`` -> ``odom_frame_id`` stamped
-scan stamp + ``transform_tolerance`` (with ``tf_broadcast``); services
-``reinitialize_global_localization``, ``request_nomotion_update`` (std_srvs/Empty) and
-``set_initial_pose`` (nav2_msgs/SetInitialPose). Until a pose is known nothing is published
-and a warning repeats every 2 s. With ``set_initial_pose`` the filter starts at
-``initial_pose.{x, y, yaw}`` with zero covariance. Bad scans (ranges not matching the angles,
-unknown frame) are dropped with one warning line (at most every 5 s).
+On activate: ``map_topic`` (``map``, transient local) in; ``scan_topic`` (``scan``, sensor data
+QoS) in, placed with TF (``odom_frame_id`` -> ``base_frame_id`` at the scan's stamp,
+``base_frame_id`` -> the scan's frame; up to :data:`SCAN_QUEUE` scans wait for the odometry at
+their stamps, as in upstream's ``tf2_ros::MessageFilter``); ``initialpose``
+(PoseWithCovarianceStamped, reliable) in, refused with one warning unless in
+``global_frame_id`` and finite (its covariance's ``[0] [1] [6] [7] [35]`` are used);
+``amcl_pose`` (transient local) and ``particle_cloud`` (nav2_msgs/ParticleCloud, best effort)
+out; TF ``global_frame_id`` -> ``odom_frame_id`` stamped scan stamp + ``transform_tolerance``
+(with ``tf_broadcast``); services ``reinitialize_global_localization``,
+``request_nomotion_update`` (std_srvs/Empty) and ``set_initial_pose``
+(nav2_msgs/SetInitialPose). Until a pose is known nothing is published and a warning repeats
+every 2 s. With ``set_initial_pose`` the filter starts at ``initial_pose.{x, y, yaw}`` with
+zero covariance. Bad scans (ranges not matching the angles, unknown frame) are dropped with one
+warning line (at most every 5 s).
 """
 
 import math
@@ -34,10 +36,12 @@ from amr_description.ros.managed_node import ManagedNode
 from amr_description.ros.parameters import read_parameters
 from amr_description.ros.parameters import unused_parameters
 from amr_description.ros.stamps import time_to_msg
+from amr_description.ros.transforms import not_yet
 from amr_description.ros.transforms import planar_pose
 from amr_description.ros.transforms import planar_transform
 from amr_description.ros.transforms import set_yaw
 from amr_description.ros.transforms import stamp_seconds
+from amr_description.ros.transforms import StampedQueue
 from amr_description.ros.transforms import TransformListener
 from amr_description.ros.transforms import yaw_of
 from geometry_msgs.msg import PoseWithCovarianceStamped
@@ -71,6 +75,10 @@ NODE_PARAMETERS = {
     'beam_skip_error_threshold': 0.9,
 }
 """amcl's node parameters with Nav2's defaults (``nav2_amcl/src/amcl_node.cpp``)."""
+
+SCAN_QUEUE = 10
+"""Scans waiting for the odometry at their stamps (1 s at 10 Hz), as the queue of 10 of
+amcl_node's ``tf2_ros::MessageFilter``."""
 
 DIFFERENTIAL = ('nav2_amcl::DifferentialMotionModel', 'differential')
 
@@ -108,6 +116,7 @@ class Amcl(ManagedNode):
                              '<= max')
         self.filter = amcl.Amcl(params)
         self.tf_buffer = TransformBuffer()
+        self._pending = StampedQueue(SCAN_QUEUE, self._process)
         self._last_tf = None
         self._sent_pose = False
 
@@ -211,6 +220,10 @@ class Amcl(ManagedNode):
     def _on_scan(self, msg):
         if not self.filter.initialized or self.filter.map is None:
             return
+        self._pending.add(msg)
+
+    def _process(self, msg):
+        """Use or drop ``msg``; return False while its odometry has not arrived yet."""
         p = self.p
         stamp = stamp_seconds(msg.header.stamp)
         expected = int(round((msg.angle_max - msg.angle_min) / msg.angle_increment)) + 1 \
@@ -220,27 +233,24 @@ class Amcl(ManagedNode):
                 f"{p['scan_topic']}: ranges has {len(msg.ranges)} readings, its angles "
                 f'({msg.angle_min:g} to {msg.angle_max:g} by {msg.angle_increment:g}) need '
                 f'{expected}; scan dropped', throttle_duration_sec=5.0)
-            return
+            return True
         try:
-            try:
-                odom, _ = self.tf_buffer.lookup(p['odom_frame_id'], p['base_frame_id'], stamp)
-            except TransformException:
-                odom, t = self.tf_buffer.lookup(p['odom_frame_id'], p['base_frame_id'])
-                if abs(t - stamp) > p['transform_tolerance']:
-                    raise
+            odom, _ = self.tf_buffer.lookup(p['odom_frame_id'], p['base_frame_id'], stamp)
             laser, _ = self.tf_buffer.lookup(p['base_frame_id'], msg.header.frame_id)
         except TransformException as exc:
+            if not_yet(exc):
+                return False  # wait for the odometry at the scan's stamp
             self.get_logger().warning(
                 f"Failed to transform scan in frame '{msg.header.frame_id}': "
                 f'{str(exc).strip()}', throttle_duration_sec=5.0)
-            return
+            return True
         beams, rmax = self.filter.beams(np.asarray(msg.ranges, dtype=float), msg.angle_min,
                                         msg.angle_increment, msg.range_min, msg.range_max,
                                         planar_pose(laser))
         updated = self.filter.process(planar_pose(odom), beams, rmax)
         if updated or not self._sent_pose:
             if self.filter.pose is None:
-                return
+                return True
             self._publish_pose(msg.header.stamp)
             self._publish_cloud(msg.header.stamp)
             self._last_tf = self.filter.map_to_odom
@@ -249,6 +259,7 @@ class Amcl(ManagedNode):
             t = stamp + p['transform_tolerance']
             self._tf_pub.publish(TFMessage(transforms=[planar_transform(
                 p['global_frame_id'], p['odom_frame_id'], time_to_msg(t), self._last_tf)]))
+        return True
 
     # --- outputs ----------------------------------------------------------------------------
     def _publish_pose(self, stamp):

@@ -40,7 +40,6 @@ Source: slam_toolbox 2.8.3 ``src/slam_toolbox_common.cpp``, ``src/slam_toolbox_a
 ``src/map_saver.cpp``.
 """
 
-import collections
 import math
 import os
 import shutil
@@ -55,10 +54,12 @@ from amr_description.ros.managed_node import ManagedNode
 from amr_description.ros.parameters import read_parameters
 from amr_description.ros.parameters import unused_parameters
 from amr_description.ros.stamps import time_to_msg
+from amr_description.ros.transforms import not_yet
 from amr_description.ros.transforms import planar_pose
 from amr_description.ros.transforms import planar_transform
 from amr_description.ros.transforms import set_yaw
 from amr_description.ros.transforms import stamp_seconds
+from amr_description.ros.transforms import StampedQueue
 from amr_description.ros.transforms import TransformListener
 from geometry_msgs.msg import PoseWithCovarianceStamped
 from nav_msgs.msg import MapMetaData
@@ -134,7 +135,7 @@ class SlamToolbox(ManagedNode):
         self._scans = 0
         self._last_stamp = None
         self._last_processed = None
-        self._pending = collections.deque(maxlen=SCAN_QUEUE)
+        self._pending = StampedQueue(SCAN_QUEUE, self._process)
         self._paused = False
         self._map_msg = None
         self._map_version = -1
@@ -191,9 +192,7 @@ class SlamToolbox(ManagedNode):
         # again (no polling timer: it woke the node's executor 50 times a second)
         self._scans += 1
         if not self._paused and not self._scans % max(1, self.p['throttle_scans']):
-            self._pending.append(msg)
-        while self._pending and self._process(self._pending[0]):
-            self._pending.popleft()
+            self._pending.add(msg)
 
     def _process(self, msg):
         """Use or drop ``msg``; return False while its odometry has not arrived yet."""
@@ -202,7 +201,7 @@ class SlamToolbox(ManagedNode):
             odom, _ = self.tf_buffer.lookup(self.p['odom_frame'], self.p['base_frame'], stamp)
             laser, _ = self.tf_buffer.lookup(self.p['base_frame'], msg.header.frame_id)
         except TransformException as exc:
-            if 'into the future' in str(exc):
+            if not_yet(exc):
                 return False  # wait for odometry to catch up with the scan
             self.get_logger().warning(
                 f"Failed to compute odom pose of scan in frame '{msg.header.frame_id}': "

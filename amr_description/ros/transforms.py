@@ -10,6 +10,7 @@ project's :class:`amr_description.core.tf_buffer.TransformBuffer`, which nodes p
 are seconds (float); planar poses are ``(x, y, yaw)`` in m, m, rad (REP 103).
 """
 
+import collections
 import math
 import threading
 import weakref
@@ -72,6 +73,44 @@ def planar_transform(parent, child, stamp, pose):
     t.transform.translation.y = float(pose[1])
     set_yaw(t.transform.rotation, float(pose[2]))
     return t
+
+
+class StampedQueue:
+    """
+    Messages waiting, in arrival order, for the transforms at their stamps.
+
+    tf2_ros' ``MessageFilter`` behaviour, without its polling: each new message lets the
+    waiting ones try again. A message leaves the queue when ``use`` is done with it (used or
+    dropped), or when the queue is full (the oldest).
+
+    :param size: how many messages may wait.
+    :param use: ``f(msg) -> bool``: True when done with ``msg``, False while its transform
+        has not arrived (see :func:`not_yet`).
+    """
+
+    def __init__(self, size, use):
+        """Keep the size and the callable."""
+        self._queue = collections.deque(maxlen=size)
+        self._use = use
+
+    def __len__(self):
+        """Return how many messages wait."""
+        return len(self._queue)
+
+    def add(self, msg):
+        """Queue ``msg`` and use every waiting message whose transform has arrived."""
+        self._queue.append(msg)
+        while self._queue and self._use(self._queue[0]):
+            self._queue.popleft()
+
+    def clear(self):
+        """Forget the waiting messages."""
+        self._queue.clear()
+
+
+def not_yet(exc):
+    """Return True when a lookup's ``TransformException`` asked for a time not yet received."""
+    return 'into the future' in str(exc)
 
 
 _SPINNING = weakref.WeakSet()  # listeners with a thread of their own, not yet destroyed

@@ -186,6 +186,15 @@ def test_navigate_to_pose_on_the_simulated_robot(procs, exe, ros_env, tmp_path):
             status, result = peer.result(handle, 60.0)
             assert status == GoalStatus.STATUS_ABORTED, (x, y, status)
             assert result.error_code == codes.GOAL_OUTSIDE_MAP, (x, y, result.error_code)
+        # a goal on the centre pillar (a lethal cell: the test's map draws the surfaces):
+        # GOAL_OCCUPIED at once with this robot's NavFn tolerance 0, no recovery runs
+        sent = time.monotonic()
+        handle = peer.send(1.12, 0.0)
+        status, result = peer.result(handle, 60.0)
+        print(f'goal in the pillar: {result.error_code} after {time.monotonic() - sent:.2f} s')
+        assert status == GoalStatus.STATUS_ABORTED, status
+        assert result.error_code == codes.GOAL_OCCUPIED, result.error_code
+        assert 'Running recovery' not in nav.output, nav.output[-3000:]
 
         # the CLI: ros2 action info and send_goal with ros2action's output
         server = 'Action servers: 1\n    /bt_navigator [nav2_msgs/action/NavigateToPose]'

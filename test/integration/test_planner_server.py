@@ -123,12 +123,14 @@ def test_global_costmap_and_compute_path_to_pose(procs, exe, ros_env, tmp_path):
         for args, kwargs, code in [((2.0, 1.0), {'planner_id': 'Nope'}, codes.INVALID_PLANNER),
                                    ((50.0, 0.0), {}, codes.GOAL_OUTSIDE_MAP),
                                    ((float('nan'), 0.0), {}, codes.GOAL_OUTSIDE_MAP),
-                                   ((1.0, 1.0), {'frame': 'nowhere'}, codes.TF_ERROR)]:
+                                   ((1.0, 1.0), {'frame': 'nowhere'}, codes.TF_ERROR),
+                                   # on the centre pillar's surface, tolerance 0 in the params
+                                   ((1.12, 0.0), {}, codes.GOAL_OCCUPIED)]:
             status, result = peer.plan(*args, **kwargs)
             assert status == GoalStatus.STATUS_ABORTED and result.error_code == code, \
                 (args, kwargs, result.error_code, result.error_msg)
             assert result.error_msg
-        status, result = peer.plan(1.0, -1.0)
+        status, result = peer.plan(1.0, -0.5)
         assert status == GoalStatus.STATUS_SUCCEEDED, planner.output[-2000:]
         assert server.popen.poll() is None and planner.popen.poll() is None
     finally:

@@ -1,7 +1,11 @@
 # Copyright 2026 The amr_description Authors
 # Licensed under the Apache License, Version 2.0
 
-"""The viewer's transform buffer against hand-computed transforms (pure, no rclpy)."""
+"""
+The viewer's transform buffer against hand-computed transforms; the nodes' StampedQueue on it.
+
+No ROS graph: nothing here starts rclpy.
+"""
 
 import math
 
@@ -205,3 +209,37 @@ def test_clear_forgets_dynamic_transforms_and_keeps_static_ones_as_tf2():
     buffer.set_transform('odom', 'base_link', 0.5, (2.0, 0.0, 0.0), IDENTITY)
     T, _ = buffer.lookup('odom', 'wheel')
     np.testing.assert_allclose(T[:3, 3], [2.0, 0.5, 0.0])
+
+
+def test_stamped_queue_waits_for_the_transform_at_each_stamp_in_arrival_order():
+    from amr_description.ros.transforms import not_yet
+    from amr_description.ros.transforms import StampedQueue
+    buffer = TransformBuffer()
+    buffer.set_transform('odom', 'base_link', 0.8, (0.0, 0.0, 0.0), IDENTITY)
+    buffer.set_transform('odom', 'base_link', 1.0, (0.0, 0.0, 0.0), IDENTITY)
+    used, dropped = [], []
+
+    def use(stamp):
+        try:
+            T, _ = buffer.lookup('odom', 'base_link', stamp)
+        except ExtrapolationException as exc:
+            if not_yet(exc):
+                return False
+            dropped.append(stamp)
+            return True
+        used.append((stamp, T[0, 3]))
+        return True
+
+    queue = StampedQueue(3, use)
+    queue.add(2.0)  # odometry only up to t=1: waits
+    queue.add(2.5)
+    assert not used and len(queue) == 2
+    buffer.set_transform('odom', 'base_link', 3.0, (2.0, 0.0, 0.0), IDENTITY)
+    queue.add(0.5)  # older than the buffer: dropped once it is the head, after the others
+    assert used == [(2.0, 1.0), (2.5, 1.5)] and dropped == [0.5] and len(queue) == 0
+    for stamp in (4.0, 5.0, 6.0, 7.0):  # a full queue drops its oldest
+        queue.add(stamp)
+    assert len(queue) == 3
+    buffer.set_transform('odom', 'base_link', 8.0, (2.0, 0.0, 0.0), IDENTITY)
+    queue.add(7.5)  # 4.0 and then 5.0 left the full queue unused
+    assert [s for s, _ in used[2:]] == [6.0, 7.0, 7.5]
