@@ -58,6 +58,8 @@ setup(
             'ros2 = amr_description.cli.main:main',
             'ros2_control_node = amr_description.nodes.ros2_control_node:main',
             'component_container = amr_description.nodes.component_container:main',
+            'component_container_isolated = '
+            'amr_description.nodes.component_container:main_isolated',
             'static_transform_publisher = '
             'amr_description.nodes.static_transform_publisher:main',
             'lifecycle_manager = amr_description.nodes.lifecycle_manager:main',
@@ -180,6 +182,20 @@ setup(
             'amr_description.nodes.robot_state_publisher:RobotStatePublisher',
             'amr_description::StaticTransformBroadcasterNode = '
             'amr_description.nodes.static_transform_publisher:StaticTransformBroadcasterNode',
+            'nav2_amcl::AmclNode = amr_description.nodes.amcl:Amcl',
+            'behavior_server::BehaviorServer = '
+            'amr_description.nodes.behavior_server:BehaviorServer',
+            'nav2_bt_navigator::BtNavigator = amr_description.nodes.bt_navigator:BtNavigator',
+            'nav2_controller::ControllerServer = '
+            'amr_description.nodes.controller_server:ControllerServer',
+            'nav2_lifecycle_manager::LifecycleManager = '
+            'amr_description.nodes.lifecycle_manager:LifecycleManager',
+            'nav2_map_server::MapServer = amr_description.nodes.map_server:MapServer',
+            'nav2_planner::PlannerServer = amr_description.nodes.planner_server:PlannerServer',
+            'nav2_velocity_smoother::VelocitySmoother = '
+            'amr_description.nodes.velocity_smoother:VelocitySmoother',
+            'nav2_waypoint_follower::WaypointFollower = '
+            'amr_description.nodes.waypoint_follower:WaypointFollower',
         ],
         'amr_description.controllers': [
             'joint_state_broadcaster/JointStateBroadcaster = '

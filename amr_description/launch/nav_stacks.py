@@ -10,6 +10,8 @@ Registered in :data:`amr_description.launch.registry.STACKS` with their declared
 
 import os
 
+from amr_description.launch.actions import ComposableNode
+from amr_description.launch.actions import ComposableNodeContainer
 from amr_description.launch.actions import DeclareLaunchArgument
 from amr_description.launch.actions import LaunchError
 from amr_description.launch.actions import Node
@@ -45,8 +47,15 @@ USE_RESPAWN_ARGUMENT = DeclareLaunchArgument(
     'Whether to respawn if a node crashes. Applied when composition is disabled.')
 # the arguments nav2_bringup's launch files declare alike (names, defaults, descriptions)
 
+USE_COMPOSITION_ARGUMENT = DeclareLaunchArgument(
+    'use_composition', 'False', 'Use composed bringup if True')
+CONTAINER_NAME_ARGUMENT = DeclareLaunchArgument(
+    'container_name', 'nav2_container',
+    'the name of conatiner that nodes will load in if use composition')
+
 LOCALIZATION_ARGUMENTS = [MAP_ARGUMENT, USE_SIM_TIME_ARGUMENT, PARAMS_FILE_ARGUMENT,
-                          AUTOSTART_ARGUMENT, USE_RESPAWN_ARGUMENT]
+                          AUTOSTART_ARGUMENT, USE_COMPOSITION_ARGUMENT, CONTAINER_NAME_ARGUMENT,
+                          USE_RESPAWN_ARGUMENT]
 """nav2_bringup's ``localization_launch.py`` arguments (names, defaults, descriptions)."""
 
 
@@ -57,36 +66,106 @@ def _params_file(args):
     return params
 
 
+COMPONENTS = {
+    'map_server': 'nav2_map_server::MapServer',
+    'amcl': 'nav2_amcl::AmclNode',
+    'lifecycle_manager': 'nav2_lifecycle_manager::LifecycleManager',
+    'controller_server': 'nav2_controller::ControllerServer',
+    'planner_server': 'nav2_planner::PlannerServer',
+    'behavior_server': 'behavior_server::BehaviorServer',
+    'velocity_smoother': 'nav2_velocity_smoother::VelocitySmoother',
+    'bt_navigator': 'nav2_bt_navigator::BtNavigator',
+    'waypoint_follower': 'nav2_waypoint_follower::WaypointFollower',
+}
+"""Executable -> the plugin name nav2_bringup loads it by when composed (upstream's names)."""
+
+
+class _Spec:
+    """One node of a Nav2 launch file, started as a process or loaded into a container."""
+
+    def __init__(self, executable, name, parameters, remappings=(), managed=True):
+        self.executable = executable
+        self.name = name
+        self.parameters = parameters
+        self.remappings = list(remappings)
+        self.managed = managed  # respawned with use_respawn (not the lifecycle manager)
+
+
+def _start(specs, args, namespace=None):
+    """
+    Return the actions of ``specs``: processes, or one container with ``use_composition``.
+
+    As nav2_bringup: with ``use_composition`` the nodes load into ``container_name``
+    (``component_container_isolated``: each node on an executor and thread of its own) and
+    ``use_respawn`` does not apply; otherwise one process each, respawned after 2 s with
+    ``use_respawn`` (the lifecycle managers never). Here the launch file starts the container
+    it loads into (upstream's bringup_launch.py starts it, navigation_launch.py alone expects
+    it running).
+    """
+    ns = namespace or None
+    if parse_bool(args['use_composition'], 'use_composition'):
+        use_sim_time = parse_bool(args['use_sim_time'], 'use_sim_time')
+        return [ComposableNodeContainer(
+            args['container_name'] or 'nav2_container', namespace=ns, output='screen',
+            executable='component_container_isolated',
+            parameters=[{'use_sim_time': use_sim_time}],
+            composable_node_descriptions=[
+                ComposableNode(PACKAGE, COMPONENTS[spec.executable], name=spec.name,
+                               namespace=ns, parameters=spec.parameters,
+                               remappings=spec.remappings) for spec in specs])]
+    respawn = parse_bool(args['use_respawn'], 'use_respawn')
+    return [Node(PACKAGE, spec.executable, name=spec.name, namespace=ns, output='screen',
+                 parameters=spec.parameters, remappings=spec.remappings,
+                 **({'respawn': respawn, 'respawn_delay': 2.0} if spec.managed else {}))
+            for spec in specs]
+
+
+def described_nodes(actions):
+    """
+    Yield the node descriptions of ``actions``: each ``Node``, and the nodes of containers.
+
+    :param actions: list of launch actions.
+    :returns: iterator of :class:`Node` and :class:`ComposableNode` (both have ``node_name``
+        and a ``parameters`` list to append to).
+    """
+    for action in actions:
+        yield action
+        yield from getattr(action, 'composable_node_descriptions', ())
+
+
+def _localization_specs(args):
+    args = with_defaults(LOCALIZATION_ARGUMENTS, args)
+    use_sim_time = parse_bool(args['use_sim_time'], 'use_sim_time')
+    autostart = parse_bool(args['autostart'], 'autostart')
+    params = _params_file(args)
+    map_yaml = os.path.expanduser(args['map'])
+    if map_yaml and not os.path.isfile(map_yaml):
+        raise LaunchError(f"launch argument 'map': no such file '{args['map']}'")
+    common = {'use_sim_time': use_sim_time}
+    return [
+        _Spec('map_server', 'map_server', [params, {'yaml_filename': map_yaml, **common}]),
+        _Spec('amcl', 'amcl', [params, common]),
+        _Spec('lifecycle_manager', 'lifecycle_manager_localization',
+              [{'autostart': autostart, 'node_names': ['map_server', 'amcl'], **common}],
+              managed=False),
+    ]
+
+
 def localization(args):
     """
     Describe the ``localization`` stack (nav2_bringup's ``localization_launch.py``).
 
     ``map_server`` (``yaml_filename`` = ``map``) and ``amcl`` reading ``params_file``
     (default ``config/nav2_params.yaml``), and ``lifecycle_manager_localization``
-    (``node_names: [map_server, amcl]``, ``autostart``), all with ``use_sim_time``.
+    (``node_names: [map_server, amcl]``, ``autostart``), all with ``use_sim_time``; one
+    process each, or with ``use_composition`` composed in ``container_name`` (:func:`_start`).
 
     :param args: dict of launch-argument values (see ``LOCALIZATION_ARGUMENTS``).
     :returns: list of actions.
     :raises LaunchError: on a bad argument value or a missing file.
     """
     args = with_defaults(LOCALIZATION_ARGUMENTS, args)
-    use_sim_time = parse_bool(args['use_sim_time'], 'use_sim_time')
-    autostart = parse_bool(args['autostart'], 'autostart')
-    respawn = parse_bool(args['use_respawn'], 'use_respawn')
-    params = _params_file(args)
-    map_yaml = os.path.expanduser(args['map'])
-    if map_yaml and not os.path.isfile(map_yaml):
-        raise LaunchError(f"launch argument 'map': no such file '{args['map']}'")
-    common = {'use_sim_time': use_sim_time}
-    options = {'output': 'screen', 'respawn': respawn, 'respawn_delay': 2.0}
-    return [
-        Node(PACKAGE, 'map_server', name='map_server',
-             parameters=[params, {'yaml_filename': map_yaml, **common}], **options),
-        Node(PACKAGE, 'amcl', name='amcl', parameters=[params, common], **options),
-        Node(PACKAGE, 'lifecycle_manager', name='lifecycle_manager_localization',
-             output='screen', parameters=[{'autostart': autostart,
-                                           'node_names': ['map_server', 'amcl'], **common}]),
-    ]
+    return _start(_localization_specs(args), args)
 
 
 def share_file(folder, name):
@@ -141,11 +220,8 @@ LOG_LEVEL_ARGUMENT = DeclareLaunchArgument('log_level', 'info', 'log level')
 
 NAVIGATION_ARGUMENTS = [
     NAMESPACE_ARGUMENT, USE_SIM_TIME_ARGUMENT, PARAMS_FILE_ARGUMENT, AUTOSTART_ARGUMENT,
-    DeclareLaunchArgument('use_composition', 'False',
-                          'Use composed bringup if True (here: one process each either way)'),
-    DeclareLaunchArgument('container_name', 'nav2_container',
-                          'the name of conatiner that nodes will load in if use composition'),
-    USE_RESPAWN_ARGUMENT, LOG_LEVEL_ARGUMENT,
+    USE_COMPOSITION_ARGUMENT, CONTAINER_NAME_ARGUMENT, USE_RESPAWN_ARGUMENT,
+    LOG_LEVEL_ARGUMENT,
 ]
 """nav2_bringup's ``navigation_launch.py`` arguments (names, defaults, descriptions)."""
 
@@ -157,6 +233,26 @@ ROBOT_CMD_VEL = 'diff_drive_controller/cmd_vel'
 """Where the smoothed command goes: the robot's diff_drive_controller (no collision monitor)."""
 
 
+def _navigation_specs(args):
+    args = with_defaults(NAVIGATION_ARGUMENTS, args)
+    use_sim_time = parse_bool(args['use_sim_time'], 'use_sim_time')
+    autostart = parse_bool(args['autostart'], 'autostart')
+    params = [_params_file(args), {'use_sim_time': use_sim_time}]
+    to_nav = [('cmd_vel', 'cmd_vel_nav')]
+    return [
+        _Spec('controller_server', 'controller_server', params, to_nav),
+        _Spec('planner_server', 'planner_server', params),
+        _Spec('behavior_server', 'behavior_server', params, to_nav),
+        _Spec('velocity_smoother', 'velocity_smoother', params,
+              to_nav + [('cmd_vel_smoothed', ROBOT_CMD_VEL)]),
+        _Spec('bt_navigator', 'bt_navigator', params),
+        _Spec('waypoint_follower', 'waypoint_follower', params),
+        _Spec('lifecycle_manager', 'lifecycle_manager_navigation',
+              [{'autostart': autostart, 'node_names': NAVIGATION_NODES,
+                'use_sim_time': use_sim_time}], managed=False),
+    ]
+
+
 def navigation(args):
     """
     Describe the ``navigation_launch`` stack (nav2_bringup's ``navigation_launch.py``).
@@ -166,38 +262,15 @@ def navigation(args):
     ``namespace``, and ``lifecycle_manager_navigation`` (``autostart``). As upstream,
     controller_server, behavior_server and velocity_smoother have ``cmd_vel`` remapped to
     ``cmd_vel_nav``; the smoother's ``cmd_vel_smoothed`` goes to :data:`ROBOT_CMD_VEL` (upstream
-    sends it through the collision monitor, not built here). ``use_composition`` is accepted; each
-    server runs in its own process.
+    sends it through the collision monitor, not built here). One process each, or with
+    ``use_composition`` composed in ``container_name`` (:func:`_start`).
 
     :param args: dict of launch-argument values (see ``NAVIGATION_ARGUMENTS``).
     :returns: list of actions.
     :raises LaunchError: on a bad argument value or a missing file.
     """
     args = with_defaults(NAVIGATION_ARGUMENTS, args)
-    use_sim_time = parse_bool(args['use_sim_time'], 'use_sim_time')
-    autostart = parse_bool(args['autostart'], 'autostart')
-    respawn = parse_bool(args['use_respawn'], 'use_respawn')
-    parse_bool(args['use_composition'], 'use_composition')
-    params = _params_file(args)
-    ns = args['namespace'].strip('/') or None
-    common = {'use_sim_time': use_sim_time}
-    options = {'output': 'screen', 'respawn': respawn, 'respawn_delay': 2.0, 'namespace': ns,
-               'parameters': [params, common]}
-    to_nav = [('cmd_vel', 'cmd_vel_nav')]
-    return [
-        Node(PACKAGE, 'controller_server', name='controller_server', remappings=to_nav,
-             **options),
-        Node(PACKAGE, 'planner_server', name='planner_server', **options),
-        Node(PACKAGE, 'behavior_server', name='behavior_server', remappings=to_nav,
-             **options),
-        Node(PACKAGE, 'velocity_smoother', name='velocity_smoother',
-             remappings=to_nav + [('cmd_vel_smoothed', ROBOT_CMD_VEL)], **options),
-        Node(PACKAGE, 'bt_navigator', name='bt_navigator', **options),
-        Node(PACKAGE, 'waypoint_follower', name='waypoint_follower', **options),
-        Node(PACKAGE, 'lifecycle_manager', name='lifecycle_manager_navigation',
-             output='screen', namespace=ns,
-             parameters=[{'autostart': autostart, 'node_names': NAVIGATION_NODES, **common}]),
-    ]
+    return _start(_navigation_specs(args), args, args['namespace'].strip('/'))
 
 
 BRINGUP_ARGUMENTS = [
@@ -209,8 +282,7 @@ BRINGUP_ARGUMENTS = [
     DeclareLaunchArgument('use_localization', 'True',
                           'Whether to enable localization or not'),
     USE_SIM_TIME_ARGUMENT, PARAMS_FILE_ARGUMENT, AUTOSTART_ARGUMENT,
-    DeclareLaunchArgument('use_composition', 'True',
-                          'Whether to use composed bringup (here: one process each)'),
+    DeclareLaunchArgument('use_composition', 'True', 'Whether to use composed bringup'),
     USE_RESPAWN_ARGUMENT, LOG_LEVEL_ARGUMENT,
 ]
 """nav2_bringup's ``bringup_launch.py`` arguments (names, defaults, descriptions)."""
@@ -223,7 +295,10 @@ def bringup(args):
     ``slam`` false: :func:`localization` (map_server with ``map`` + amcl) when
     ``use_localization``; true: slam_toolbox (:func:`online_async`, managed by no lifecycle
     manager, as ``slam_launch.py`` runs it with autostart). Then :func:`navigation`.
-    ``namespace`` applies when ``use_namespace`` is true.
+    ``namespace`` applies when ``use_namespace`` is true. With ``use_composition`` (the
+    default, as upstream's) localization and the navigation servers load into one
+    ``component_container_isolated`` named ``nav2_container``; SLAM runs in its own process
+    either way, as upstream's ``slam_launch.py``.
 
     :param args: dict of launch-argument values (see ``BRINGUP_ARGUMENTS``).
     :returns: list of actions.
@@ -232,15 +307,18 @@ def bringup(args):
     args = with_defaults(BRINGUP_ARGUMENTS, args)
     slam = parse_bool(args['slam'], 'slam')
     use_ns = parse_bool(args['use_namespace'], 'use_namespace')
-    shared = {k: args[k] for k in ('use_sim_time', 'params_file', 'autostart', 'use_respawn')}
-    actions = []
+    shared = {k: args[k] for k in ('use_sim_time', 'params_file', 'autostart', 'use_respawn',
+                                   'use_composition')}
+    shared['container_name'] = 'nav2_container'
+    namespace = args['namespace'].strip('/') if use_ns else ''
+    actions, specs = [], []
     if slam:
         actions += online_async({'use_sim_time': args['use_sim_time'],
                                  'autostart': args['autostart']})
     elif parse_bool(args['use_localization'], 'use_localization'):
-        actions += localization({**shared, 'map': args['map']})
-    return actions + navigation({**shared, 'namespace': args['namespace'] if use_ns else '',
-                                 'use_composition': args['use_composition']})
+        specs += _localization_specs({**shared, 'map': args['map']})
+    specs += _navigation_specs({**shared, 'namespace': namespace})
+    return actions + _start(specs, shared, namespace)
 
 
 NAV2_STACKS = {

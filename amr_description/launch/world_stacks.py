@@ -16,6 +16,7 @@ from amr_description.launch.actions import parse_float
 from amr_description.launch.actions import with_defaults
 from amr_description.launch.nav_stacks import bringup
 from amr_description.launch.nav_stacks import BRINGUP_ARGUMENTS
+from amr_description.launch.nav_stacks import described_nodes
 from amr_description.launch.nav_stacks import online_async
 from amr_description.launch.nav_stacks import SLAM_ARGUMENTS
 from amr_description.launch.stacks import sim
@@ -94,8 +95,8 @@ def navigation_sim(args):
     pose = {k: parse_float(args[k], k) for k in ('x', 'y', 'yaw')}
     nav = bringup({**{k: args[k] for k in _BRINGUP_SHARED}, 'use_sim_time': args['use_sim_time'],
                    'map': args['map'] or true_map_yaml(args['world'])})
-    for action in nav:
-        if getattr(action, 'executable', None) == 'amcl':
+    for action in described_nodes(nav):
+        if getattr(action, 'node_name', None) == 'amcl':
             action.parameters.append({'set_initial_pose': True, 'initial_pose.x': pose['x'],
                                       'initial_pose.y': pose['y'],
                                       'initial_pose.yaw': pose['yaw']})

@@ -86,9 +86,10 @@ DIFFERENTIAL = ('nav2_amcl::DifferentialMotionModel', 'differential')
 class Amcl(ManagedNode):
     """Node ``amcl``; see the module docstring."""
 
-    def __init__(self):
-        """Hold the params file's parameters; the node starts unconfigured."""
-        super().__init__('amcl', automatically_declare_parameters_from_overrides=True)
+    def __init__(self, **kwargs):
+        """Hold the params file's parameters; starts unconfigured (``kwargs``: rclpy's)."""
+        super().__init__('amcl', automatically_declare_parameters_from_overrides=True,
+                         **kwargs)
         self._active = []
         self._listener = None
         self.p = {}

@@ -62,9 +62,9 @@ LATCHED = QoSProfile(depth=1, reliability=ReliabilityPolicy.RELIABLE,
 class BehaviorServer(ManagedNode):
     """Node ``behavior_server``; see the module docstring."""
 
-    def __init__(self):
-        """Declare the parameters."""
-        super().__init__('behavior_server')
+    def __init__(self, **kwargs):
+        """Declare the parameters (``kwargs``: rclpy's node options)."""
+        super().__init__('behavior_server', **kwargs)
         d = self.declare_parameter
         self.p = {k: d(k, v).value for k, v in {
             'local_costmap_topic': 'local_costmap/costmap_raw',

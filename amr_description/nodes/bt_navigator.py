@@ -73,9 +73,9 @@ def duration(seconds):
 class BtNavigator(ManagedNode):
     """Node ``bt_navigator``; see the module docstring."""
 
-    def __init__(self):
-        """Declare the parameters."""
-        super().__init__('bt_navigator')
+    def __init__(self, **kwargs):
+        """Declare the parameters (``kwargs``: rclpy's node options)."""
+        super().__init__('bt_navigator', **kwargs)
         d = self.declare_parameter
         self.p = {k: d(k, v).value for k, v in {
             'global_frame': 'map', 'robot_base_frame': 'base_link',

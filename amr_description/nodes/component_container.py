@@ -41,14 +41,18 @@ composed nodes themselves are ordinary nodes to ``ros2 node``, ``ros2 param`` an
 import argparse
 from importlib.metadata import entry_points
 import sys
+import threading
 
 from amr_description.core.yaml_text import safe_load
+from amr_description.ros import bond
 from amr_description.ros import shutdown
 from amr_description.ros.node import Node
 from amr_description.ros.sim_time import take_over_time_source
 from rclpy.exceptions import InvalidParameterTypeException
 from rclpy.exceptions import InvalidParameterValueException
 from rclpy.exceptions import ParameterException
+from rclpy.executors import ExternalShutdownException
+from rclpy.executors import MultiThreadedExecutor
 from rclpy.executors import SingleThreadedExecutor
 import yaml
 
@@ -123,7 +127,8 @@ class ComponentContainer(Node):
             self.get_logger().error(f"Failed to load component '{plugin}' "
                                     f"({' '.join(ros_args)}): {' '.join(str(exc).split())}")
             return None
-        self._share_clock(node)
+        for each in [node] + list(getattr(node, 'companion_nodes', ())):
+            self._share_clock(each)
         self.components.append(node)
         self.get_logger().info(f"Loaded component '{plugin}' as "
                                f"'{node.get_fully_qualified_name()}'")
@@ -146,34 +151,92 @@ class ComponentContainer(Node):
                 own.attach_clock(clock)
 
 
-def build_parser():
-    """Return the argument parser of ``component_container``."""
+class IsolatedSpinner:
+    """
+    One composed node spun on an executor and thread of its own (``component_container_isolated``).
+
+    The node's ``companion_nodes`` (a Nav2 server's costmap node) share its executor, as they
+    share its process when it runs alone; a node with ``executor_threads`` > 1 (the lifecycle
+    manager, whose commands wait for other nodes' answers) gets rclpy's
+    ``MultiThreadedExecutor`` with that many threads, as its own program gives it. An exception
+    escaping a callback is one error line naming the node and sets :attr:`failed`: the
+    container then stops, as a process whose node raised ends.
+
+    :param node: the loaded node.
+    :param failed: ``threading.Event`` set when the node's executor raised.
+    """
+
+    def __init__(self, node, failed):
+        """Create the executor with the node and its companions, and start the thread."""
+        self.node = node
+        self.nodes = [node] + list(getattr(node, 'companion_nodes', ()))
+        threads = int(getattr(node, 'executor_threads', 1))
+        if threads > 1:
+            self.executor = MultiThreadedExecutor(num_threads=threads, context=node.context)
+        else:
+            self.executor = SingleThreadedExecutor(context=node.context)
+        for each in self.nodes:
+            self.executor.add_node(each)
+        self._failed = failed
+        self.thread = threading.Thread(target=self._spin, daemon=True,
+                                       name=node.get_fully_qualified_name())
+        self.thread.start()
+
+    def _spin(self):
+        try:
+            self.executor.spin()
+        except ExternalShutdownException:
+            pass
+        except Exception as exc:  # noqa: B902 - one line, then the container stops
+            if self.node.context.ok() and not shutdown.interrupted():
+                self.node.get_logger().error(
+                    f'{type(exc).__name__}: {" ".join(str(exc).split())}')
+                self._failed.set()
+
+    def stop(self):
+        """Shut the executor down and join the thread (up to 2 s)."""
+        try:
+            self.executor.shutdown(timeout_sec=1.0)
+        except Exception:  # noqa: B902 - best effort at exit
+            pass
+        self.thread.join(timeout=2.0)
+
+
+def build_parser(prog='component_container'):
+    """Return the argument parser of ``component_container`` (or of ``prog``)."""
     parser = argparse.ArgumentParser(
-        prog='component_container',
+        prog=prog,
         description='Run several composable nodes of amr_description in one process.')
     parser.add_argument('--nodes', required=True, metavar='FILE',
                         help='YAML list of {plugin, ros_args} to load, in order')
     return parser
 
 
-def main(args=None):
+def main(args=None, isolated=False):
     """
-    Load the components of ``--nodes`` and spin them in one executor until Ctrl-C.
+    Load the components of ``--nodes`` and spin them until Ctrl-C.
 
     :param args: command line without the program name (default ``sys.argv[1:]``).
-    :returns: 0 on a clean shutdown.
+    :param isolated: one executor and thread per component (:class:`IsolatedSpinner`), as
+        rclcpp_components' ``component_container_isolated``; otherwise all share one
+        single-threaded executor, as ``component_container``.
+    :returns: 0 on a clean shutdown, 1 when a component's executor raised (isolated).
     :raises SystemExit: code 1 after one error line when the ROS arguments cannot be parsed
         or the component list cannot be read (:mod:`amr_description.ros.shutdown`).
     """
-    argv = ['component_container'] + (sys.argv[1:] if args is None else list(args))
-    opts = build_parser().parse_args(shutdown.remove_ros_args(argv)[1:])
+    prog = 'component_container_isolated' if isolated else 'component_container'
+    argv = [prog] + (sys.argv[1:] if args is None else list(args))
+    opts = build_parser(prog).parse_args(shutdown.remove_ros_args(argv)[1:])
     try:
         components = read_components(opts.nodes)
     except ComponentError as exc:
-        shutdown.fail('component_container', exc)
+        shutdown.fail(prog, exc)
     shutdown.init(argv)
+    bond.share_endpoints()  # the composed nodes live as long as the container
     container = None
     executor = None
+    spinners = []
+    failed = threading.Event()
     try:
         container = shutdown.create(ComponentContainer)
         executor = SingleThreadedExecutor()
@@ -181,15 +244,34 @@ def main(args=None):
         plugins = registry()
         for plugin, ros_args in components:
             node = container.load(plugin, ros_args, plugins)
-            if node is not None:
-                executor.add_node(node)
-        shutdown.spin(executor)
+            if node is None:
+                continue
+            if isolated:
+                spinners.append(IsolatedSpinner(node, failed))
+            else:
+                for each in [node] + list(getattr(node, 'companion_nodes', ())):
+                    executor.add_node(each)
+        shutdown.spin(executor, until=failed.is_set)
     except KeyboardInterrupt:
         pass
     finally:
-        nodes = list(container.components) if container is not None else []
+        for spinner in spinners:
+            spinner.stop()
+        nodes = []
+        for node in (container.components if container is not None else []):
+            nodes += list(getattr(node, 'companion_nodes', ())) + [node]
         shutdown.shutdown(*nodes, container, executor=executor)
-    return 0
+    return 1 if failed.is_set() else 0
+
+
+def main_isolated(args=None):
+    """
+    Run ``component_container_isolated``: :func:`main` with one executor per component.
+
+    :param args: command line without the program name (default ``sys.argv[1:]``).
+    :returns: :func:`main`'s exit code.
+    """
+    return main(args, isolated=True)
 
 
 if __name__ == '__main__':

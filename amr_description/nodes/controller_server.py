@@ -82,9 +82,9 @@ def path_array(path_msg):
 class ControllerServer(ManagedNode):
     """Node ``controller_server``; see the module docstring."""
 
-    def __init__(self):
-        """Declare the parameters and make the local costmap node."""
-        super().__init__('controller_server')
+    def __init__(self, **kwargs):
+        """Declare the parameters and make the local costmap node (``kwargs``: rclpy's)."""
+        super().__init__('controller_server', **kwargs)
         d = self.declare_parameter
         self.frequency = float(d('controller_frequency', 20.0).value)
         self.min_v = float(d('min_x_velocity_threshold', 0.0001).value)
@@ -112,7 +112,8 @@ class ControllerServer(ManagedNode):
             for pid in d('progress_checker_plugins', ['progress_checker']).value}
         self.tf_buffer = TransformBuffer()
         ns = self.get_namespace()
-        self.costmap = CostmapNode('local_costmap', self.tf_buffer, ns if ns != '/' else '')
+        self.costmap = CostmapNode('local_costmap', self.tf_buffer, ns if ns != '/' else '',
+                                   **kwargs)
         self.companion_nodes = [self.costmap]
         self._listener = self._server = self._cmd_pub = None
         self._entities = []

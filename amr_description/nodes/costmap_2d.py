@@ -83,16 +83,20 @@ class CostmapNode(Node):
     :param name: ``global_costmap`` or ``local_costmap``.
     :param tf_buffer: the server's :class:`amr_description.core.tf_buffer.TransformBuffer`.
     :param namespace: the server's namespace ('' at the root).
+    :param cli_args: the server's own ROS arguments (a composed server's ``--params-file``
+        and remappings), or None.
+    :param kwargs: the server's other rclpy node options (``use_global_arguments``).
     """
 
-    def __init__(self, name, tf_buffer, namespace=''):
+    def __init__(self, name, tf_buffer, namespace='', cli_args=None, **kwargs):
         """Declare the parameters and the layers' parameters."""
         ns = f'{namespace.rstrip("/")}/{name}' if namespace else name
         # node-local remaps win over the process's ``-r __node:=<server>`` (as Nav2's
-        # Costmap2DROS does with ``<name>:__node:=<name>``)
+        # Costmap2DROS does with ``<name>:__node:=<name>``), and the first matching rule wins
+        # over the server's own ``__node`` and ``__ns`` remaps that follow
         ns = '/' + ns.lstrip('/')
-        super().__init__(name, namespace=ns,
-                         cli_args=['--ros-args', '-r', f'__node:={name}', '-r', f'__ns:={ns}'])
+        own = ['--ros-args', '-r', f'__node:={name}', '-r', f'__ns:={ns}']
+        super().__init__(name, namespace=ns, cli_args=own + list(cli_args or []), **kwargs)
         self.name = name
         self.parent_ns = namespace.rstrip('/')
         self.tf = tf_buffer

@@ -73,9 +73,12 @@ class _Managed:
 class LifecycleManager(Node):
     """Node ``lifecycle_manager``; see the module docstring."""
 
-    def __init__(self):
+    executor_threads = 4
+    """Threads of its executor: a command's callback waits for the managed nodes' answers."""
+
+    def __init__(self, **kwargs):
         """Declare the parameters, create the clients and services, start up if asked."""
-        super().__init__('lifecycle_manager')
+        super().__init__('lifecycle_manager', **kwargs)
         self.node_names = list(self.declare_parameter('node_names', ['']).value or [])
         self.node_names = [n for n in self.node_names if n]
         self.autostart = bool(self.declare_parameter('autostart', False).value)
@@ -262,7 +265,7 @@ def main(args=None):
 
     :param args: command-line arguments for rclpy (default ``sys.argv``).
     """
-    shutdown.run(LifecycleManager, args, threads=4)
+    shutdown.run(LifecycleManager, args, threads=LifecycleManager.executor_threads)
 
 
 if __name__ == '__main__':

@@ -34,9 +34,9 @@ LATCHED = QoSProfile(depth=1, reliability=ReliabilityPolicy.RELIABLE,
 class MapServer(ManagedNode):
     """Node ``map_server``; see the module docstring."""
 
-    def __init__(self):
-        """Declare the parameters; the node starts unconfigured."""
-        super().__init__('map_server')
+    def __init__(self, **kwargs):
+        """Declare the parameters; starts unconfigured (``kwargs``: rclpy's node options)."""
+        super().__init__('map_server', **kwargs)
         self.declare_parameter('yaml_filename', '')
         self.declare_parameter('topic_name', 'map')
         self.declare_parameter('frame_id', 'map')

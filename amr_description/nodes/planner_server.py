@@ -51,9 +51,9 @@ NAVFN = 'NavfnPlanner'
 class PlannerServer(ManagedNode):
     """Node ``planner_server``; see the module docstring."""
 
-    def __init__(self):
-        """Declare the parameters and make the global costmap node."""
-        super().__init__('planner_server')
+    def __init__(self, **kwargs):
+        """Declare the parameters and make the global costmap node (``kwargs``: rclpy's)."""
+        super().__init__('planner_server', **kwargs)
         self.ids = list(self.declare_parameter('planner_plugins', ['GridBased']).value)
         self.frequency = float(self.declare_parameter('expected_planner_frequency', 1.0).value)
         self.planners = {}
@@ -69,8 +69,9 @@ class PlannerServer(ManagedNode):
                 'use_final_approach_orientation': bool(self.declare_parameter(
                     f'{pid}.use_final_approach_orientation', False).value)}
         self.tf_buffer = TransformBuffer()
-        self.costmap = CostmapNode('global_costmap', self.tf_buffer, self.get_namespace()
-                                   if self.get_namespace() != '/' else '')
+        ns = self.get_namespace()
+        self.costmap = CostmapNode('global_costmap', self.tf_buffer, ns if ns != '/' else '',
+                                   **kwargs)
         self.companion_nodes = [self.costmap]
         self._listener = self._action = self._plan_pub = None
 

@@ -24,9 +24,9 @@ import numpy as np
 class VelocitySmoother(ManagedNode):
     """Node ``velocity_smoother``; see the module docstring."""
 
-    def __init__(self):
-        """Declare the parameters."""
-        super().__init__('velocity_smoother')
+    def __init__(self, **kwargs):
+        """Declare the parameters (``kwargs``: rclpy's node options)."""
+        super().__init__('velocity_smoother', **kwargs)
         d = self.declare_parameter
         self.p = {k: d(k, v).value for k, v in {
             'smoothing_frequency': 20.0, 'feedback': 'OPEN_LOOP', 'scale_velocities': False,

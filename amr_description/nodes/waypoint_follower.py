@@ -49,10 +49,10 @@ SERVER_WAIT = 5.0
 class WaypointFollower(ManagedNode):
     """Node ``waypoint_follower``; see the module docstring."""
 
-    def __init__(self):
-        """Hold the params file's parameters; the node starts unconfigured."""
+    def __init__(self, **kwargs):
+        """Hold the params file's parameters; starts unconfigured (``kwargs``: rclpy's)."""
         super().__init__('waypoint_follower',
-                         automatically_declare_parameters_from_overrides=True)
+                         automatically_declare_parameters_from_overrides=True, **kwargs)
         self.p = {}
         self.pause = 0.0
         self._entities = []

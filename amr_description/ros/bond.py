@@ -46,6 +46,11 @@ RECENT = 1.0
 _ENDPOINTS = '_amr_bond_endpoints'
 """The node attribute holding its :class:`_Endpoint` per bond topic."""
 
+_PROCESS_ENDPOINTS = {}
+"""(context id, resolved topic) -> :class:`_Endpoint` once :func:`share_endpoints` was called."""
+
+_sharing = []
+
 
 class _Endpoint:
     """The publisher and subscription a node's bonds on one topic share."""
@@ -77,16 +82,38 @@ class _Endpoint:
             bond.on_status(msg)
 
 
+def share_endpoints():
+    """
+    From now on, let the nodes of this process share one endpoint per resolved bond topic.
+
+    For a container whose nodes live as long as the process (the first node to prepare a
+    topic owns the endpoint's publisher and subscription, spun by that node's executor).
+    Each status on the topic is then taken once by the process instead of once per node:
+    in Nav2's composed bring-up, 8 managed nodes and 2 lifecycle managers exchange 160
+    statuses a second, and every subscriber's executor woke for each of them
+    (docs/navigation.md, "Composition"). On the wire nothing changes: the same statuses, ids,
+    periods and QoS.
+    """
+    _sharing.append(True)
+
+
 def prepare_bonds(node, topic):
     """
     Return the bond endpoint of ``node`` on ``topic``, made now if it does not exist.
 
     :param node: an rclpy node.
     :param topic: the bond topic (Nav2: ``bond``).
+    :returns: the node's endpoint, or the process's one after :func:`share_endpoints`.
     """
     endpoints = node.__dict__.setdefault(_ENDPOINTS, {})
     if topic not in endpoints:
-        endpoints[topic] = _Endpoint(node, topic)
+        key = (id(node.context), node.resolve_topic_name(topic))
+        endpoint = _PROCESS_ENDPOINTS.get(key) if _sharing else None
+        if endpoint is None:
+            endpoint = _Endpoint(node, topic)
+            if _sharing:
+                _PROCESS_ENDPOINTS[key] = endpoint
+        endpoints[topic] = endpoint
     return endpoints[topic]
 
 

@@ -91,6 +91,28 @@ def test_a_dead_or_old_status_does_not_form_or_break_a_new_bond(ros, monkeypatch
     fresh.destroy()
 
 
+def test_composed_nodes_share_one_endpoint_per_topic_and_still_bond(ros, monkeypatch):
+    make, spin_until = ros
+    monkeypatch.setattr(bond_module, '_sharing', [])
+    monkeypatch.setattr(bond_module, '_PROCESS_ENDPOINTS', {})
+    alone = [prepare_bonds(make('alone_a'), 'bond'), prepare_bonds(make('alone_b'), 'bond')]
+    assert alone[0] is not alone[1]  # a process's nodes have their own until told to share
+    bond_module.share_endpoints()
+    server, manager = make('server3'), make('manager3')
+    endpoint = prepare_bonds(manager, 'bond')
+    assert prepare_bonds(server, 'bond') is endpoint
+    assert prepare_bonds(make('other_topic'), 'other_bond') is not endpoint
+    # one subscription per node alone, one for all of the sharing nodes
+    assert spin_until(lambda: manager.count_subscribers('/bond') == 3)
+    sister = Bond(server, 'bond', 'server3', heartbeat_period=0.1)
+    bond = Bond(manager, 'bond', 'server3', heartbeat_period=0.1)
+    assert spin_until(lambda: bond.formed and sister.formed)
+    assert not bond.broken and not sister.broken
+    sister.destroy()
+    assert spin_until(lambda: bond.broken)
+    bond.destroy()
+
+
 def test_manager_counts_an_unanswered_transition_done_when_get_state_says_so(ros, monkeypatch):
     from amr_description.nodes.lifecycle_manager import LifecycleManager
     from lifecycle_msgs.msg import State

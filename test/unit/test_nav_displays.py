@@ -68,20 +68,38 @@ def test_arena_true_map_has_its_walls_pillars_and_margin():
 
 def test_navigation_stack_runs_sim_bringup_and_starts_amcl_at_the_spawn(tmp_path, monkeypatch):
     from amr_description.launch import registry
+    from amr_description.launch.nav_stacks import described_nodes
     monkeypatch.setenv('ROS_HOME', str(tmp_path))
     actions = registry.describe('navigation.launch.py', ['world:=arena', 'x:=0.5', 'yaw:=1.0',
                                                          'viewer:=false'])
-    names = [getattr(a, 'executable', None) for a in actions]
-    for exe in ('mujoco_sim', 'map_server', 'amcl', 'controller_server', 'bt_navigator',
-                'waypoint_follower'):
-        assert exe in names, names
-    map_server = actions[names.index('map_server')]
-    yaml_path = map_server.parameters[-1]['yaml_filename']
+    # nav2_bringup's default: localization and the servers composed in nav2_container
+    containers = [a for a in actions
+                  if getattr(a, 'executable', None) == 'component_container_isolated']
+    assert [c.node_name for c in containers] == ['nav2_container']
+    assert [(n.plugin, n.node_name) for n in containers[0].composable_node_descriptions] == [
+        ('nav2_map_server::MapServer', 'map_server'), ('nav2_amcl::AmclNode', 'amcl'),
+        ('nav2_lifecycle_manager::LifecycleManager', 'lifecycle_manager_localization'),
+        ('nav2_controller::ControllerServer', 'controller_server'),
+        ('nav2_planner::PlannerServer', 'planner_server'),
+        ('behavior_server::BehaviorServer', 'behavior_server'),
+        ('nav2_velocity_smoother::VelocitySmoother', 'velocity_smoother'),
+        ('nav2_bt_navigator::BtNavigator', 'bt_navigator'),
+        ('nav2_waypoint_follower::WaypointFollower', 'waypoint_follower'),
+        ('nav2_lifecycle_manager::LifecycleManager', 'lifecycle_manager_navigation')]
+    nodes = {getattr(n, 'node_name', None): n for n in described_nodes(actions)}
+    assert 'mujoco_sim' in [getattr(a, 'executable', None) for a in actions]
+    yaml_path = nodes['map_server'].parameters[-1]['yaml_filename']
     assert yaml_path == os.path.join(str(tmp_path), 'amr_description', 'maps', 'arena.yaml')
     assert os.path.isfile(yaml_path)
-    amcl = actions[names.index('amcl')]
-    assert amcl.parameters[-1] == {'set_initial_pose': True, 'initial_pose.x': 0.5,
-                                   'initial_pose.y': 0.0, 'initial_pose.yaw': 1.0}
+    assert nodes['amcl'].parameters[-1] == {'set_initial_pose': True, 'initial_pose.x': 0.5,
+                                            'initial_pose.y': 0.0, 'initial_pose.yaw': 1.0}
+    assert ('cmd_vel_smoothed', 'diff_drive_controller/cmd_vel') in \
+        nodes['velocity_smoother'].remappings
     given = registry.describe('navigation', ['world:=arena', f'map:={yaml_path}',
-                                             'viewer:=false'])
-    assert any(getattr(a, 'executable', None) == 'map_server' for a in given)
+                                             'viewer:=false', 'use_composition:=False'])
+    processes = {getattr(a, 'executable', None): a for a in given}
+    for exe in ('map_server', 'amcl', 'controller_server', 'bt_navigator', 'waypoint_follower',
+                'lifecycle_manager'):
+        assert exe in processes, sorted(processes)
+    assert 'component_container_isolated' not in processes
+    assert processes['amcl'].parameters[-1]['set_initial_pose'] is True

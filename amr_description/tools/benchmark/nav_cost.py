@@ -32,7 +32,7 @@ DRIVE = (0.2, 0.3)
 """m/s and rad/s of the circle driven while measuring."""
 
 
-class _Observer:
+class Observer:
     """An rclpy node on the stack's domain: counts topics, samples /clock, drives."""
 
     def __init__(self, domain_id):
@@ -87,7 +87,16 @@ class _Observer:
         self.context.try_shutdown()
 
 
-def _start(name, argv, env, log):
+def start_stack(name, argv, env, log):
+    """
+    Start the stack ``name`` with launch arguments ``argv`` in an orchestrator.
+
+    :param name: a registered stack (:data:`amr_description.launch.registry.STACKS`).
+    :param argv: ``name:=value`` strings.
+    :param env: the processes' environment.
+    :param log: the open file the processes' output goes to.
+    :returns: ``(orchestrator, lines)``, ``lines`` the output lines seen so far (grows).
+    """
     from amr_description.launch import registry
     from amr_description.launch.orchestrator import Orchestrator
     lines = []
@@ -97,7 +106,12 @@ def _start(name, argv, env, log):
     return orchestrator, lines
 
 
-def _wait_for(lines, text, observer, timeout):
+def wait_for_line(lines, text, observer, timeout):
+    """
+    Spin ``observer`` until a line of ``lines`` contains ``text``.
+
+    :raises RuntimeError: when it is not seen within ``timeout`` seconds.
+    """
     end = time.monotonic() + timeout
     while time.monotonic() < end:
         if any(text in line for line in lines):
@@ -106,7 +120,7 @@ def _wait_for(lines, text, observer, timeout):
     raise RuntimeError(f"'{text}' not seen in {timeout:g} s")
 
 
-def _cpu(orchestrators):
+def process_cpu(orchestrators):
     """Return ``{action name: CPU seconds}`` of the running processes."""
     found = {}
     for orchestrator in orchestrators:
@@ -123,10 +137,10 @@ def _measure(observer, orchestrators, url, warmup, seconds):
     from amr_description.tools.screenshot import browser_page
     with browser_page(url, {'width': 1000, 'height': 700}, 60000):
         observer.spin_for(warmup)
-        counts0, cpu0 = dict(observer.counts), _cpu(orchestrators)
+        counts0, cpu0 = dict(observer.counts), process_cpu(orchestrators)
         sim0, wall0 = observer.sim_time, time.monotonic()
         observer.spin_for(seconds)
-        counts1, cpu1 = dict(observer.counts), _cpu(orchestrators)
+        counts1, cpu1 = dict(observer.counts), process_cpu(orchestrators)
         sim1, wall1 = observer.sim_time, time.monotonic()
     wall = wall1 - wall0
     return {'rtf': (sim1 - sim0) / wall, 'wall': wall,
@@ -177,13 +191,13 @@ def run(world='warehouse', seconds=60.0, warmup=10.0, domain_id=211, log=print):
                ROS_AUTOMATIC_DISCOVERY_RANGE='LOCALHOST')
     folder = tempfile.mkdtemp(prefix='amr_nav_cost_')
     stream = open(os.path.join(folder, 'stacks.log'), 'w')
-    observer = _Observer(domain_id)
+    observer = Observer(domain_id)
     lines_out = []
     try:
         port = free_port()
-        slam, lines = _start('slam', [f'world:={world}', f'viewer_port:={port}'], env, stream)
+        slam, lines = start_stack('slam', [f'world:={world}', f'viewer_port:={port}'], env, stream)
         try:
-            _wait_for(lines, 'Configured and activated diff_drive_controller', observer, 240.0)
+            wait_for_line(lines, 'Configured and activated diff_drive_controller', observer, 240.0)
             figures = _measure(observer, [slam], f'http://127.0.0.1:{port}', warmup, seconds)
             lines_out.append(_line(f'slam in {world}', figures,
                                    ('async_slam_toolbox_node', 'mujoco_sim', 'viewer')))
@@ -196,16 +210,16 @@ def run(world='warehouse', seconds=60.0, warmup=10.0, domain_id=211, log=print):
             slam.shutdown()
             slam.wait(timeout=60.0)
         port = free_port()
-        sim, lines = _start('sim', [f'world:={world}', f'viewer_port:={port}',
+        sim, lines = start_stack('sim', [f'world:={world}', f'viewer_port:={port}',
                                     'rviz_config:=nav2_default_view.rviz'], env, stream)
         loc = None
         try:
-            _wait_for(lines, 'Configured and activated diff_drive_controller', observer, 240.0)
-            loc, loc_lines = _start('localization', [f'map:={map_path}.yaml',
+            wait_for_line(lines, 'Configured and activated diff_drive_controller', observer, 240.0)
+            loc, loc_lines = start_stack('localization', [f'map:={map_path}.yaml',
                                                      'use_sim_time:=true',
                                                      f'params_file:={_amcl_params(folder)}'],
                                     env, stream)
-            _wait_for(loc_lines, 'Please set the initial pose', observer, 120.0)
+            wait_for_line(loc_lines, 'Please set the initial pose', observer, 120.0)
             from geometry_msgs.msg import PoseWithCovarianceStamped
             initial = observer.node.create_publisher(PoseWithCovarianceStamped, '/initialpose',
                                                      1)
