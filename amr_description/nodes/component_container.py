@@ -14,6 +14,14 @@ the node's clock (rclpy's ``TimeSource.attach_clock``) instead of one subscripti
 Command line::
 
     component_container --nodes FILE [--ros-args ...]
+    component_container_isolated --nodes FILE [--ros-args ...]
+
+``component_container_isolated`` (nav2_bringup's container) spins each node on an executor and
+thread of its own (:class:`IsolatedSpinner`), so that a node waiting in a callback (a lifecycle
+manager's command) never holds up the others. A node's ``companion_nodes`` (a Nav2 server's
+costmap node) are spun, shared-clocked and destroyed with it. Both containers let their nodes
+share one bond endpoint per topic (:func:`amr_description.ros.bond.share_endpoints`) and one
+TF listener thread (:func:`amr_description.ros.transforms.share_listener_threads`).
 
 ``FILE`` is a YAML list, one entry per node, in load order, as the orchestrator's
 :class:`amr_description.launch.actions.ComposableNodeContainer` writes it::
@@ -46,6 +54,7 @@ import threading
 from amr_description.core.yaml_text import safe_load
 from amr_description.ros import bond
 from amr_description.ros import shutdown
+from amr_description.ros import transforms
 from amr_description.ros.node import Node
 from amr_description.ros.sim_time import take_over_time_source
 from rclpy.exceptions import InvalidParameterTypeException
@@ -233,6 +242,7 @@ def main(args=None, isolated=False):
         shutdown.fail(prog, exc)
     shutdown.init(argv)
     bond.share_endpoints()  # the composed nodes live as long as the container
+    transforms.share_listener_threads()
     container = None
     executor = None
     spinners = []

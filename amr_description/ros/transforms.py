@@ -113,12 +113,31 @@ def not_yet(exc):
     return 'into the future' in str(exc)
 
 
-_SPINNING = weakref.WeakSet()  # listeners with a thread of their own, not yet destroyed
+_SPINNING = weakref.WeakSet()  # listeners and hubs with a thread of their own, not destroyed
+
+_HUBS = {}
+"""id(context) -> :class:`_Hub` of the sharing listeners (after :func:`share_listener_threads`)."""
+
+_HUBS_LOCK = threading.Lock()
+
+_sharing = []
+
+
+def share_listener_threads():
+    """
+    From now on, let the ``spin_thread`` listeners of this process share one node and thread.
+
+    For a container (Nav2's composed bring-up): every server's listener then gets each ``/tf``
+    message from one subscription, taken and converted once, instead of one subscription,
+    thread and wake-up per server. Each listener still fills its own buffer, as each rclcpp
+    node's tf2 buffer is its own.
+    """
+    _sharing.append(True)
 
 
 def stop_listener_threads():
     """
-    Destroy every :class:`TransformListener` still spinning a thread of its own.
+    Destroy every :class:`TransformListener` (and shared hub) still spinning a thread.
 
     :func:`amr_description.ros.shutdown.shutdown` calls it before rclpy shuts down: a listener
     thread left to the interpreter's exit was still inside the middle layer's wait, and the
@@ -126,6 +145,87 @@ def stop_listener_threads():
     """
     for listener in list(_SPINNING):
         listener.destroy()
+
+
+class _OwnThread:
+    """``/tf`` and ``/tf_static`` subscribed on a node, executor and thread of their own."""
+
+    def __init__(self, context, store):
+        from rclpy.executors import SingleThreadedExecutor
+        from rclpy.node import Node as RclpyNode
+        name = f'transform_listener_impl_{id(self):x}'
+        # a node-local __node remap wins over the process's ``-r __node:=<server>``, which
+        # would otherwise give this node the server's name too (as tf2_ros avoids)
+        self.node = RclpyNode(name, context=context, start_parameter_services=False,
+                              cli_args=['--ros-args', '-r', f'__node:={name}'])
+        self.executor = SingleThreadedExecutor(context=context)
+        self.executor.add_node(self.node)
+        self.subs = _subscribe(self.node, store, None)
+        self.thread = threading.Thread(target=self._spin, daemon=True)
+        self.thread.start()
+
+    def _spin(self):
+        from rclpy.executors import ExternalShutdownException
+        try:
+            self.executor.spin()
+        except (ExternalShutdownException, RuntimeError):  # the context or executor stopped
+            pass
+
+    def destroy(self):
+        self.executor.shutdown(timeout_sec=1.0)
+        self.node.destroy_node()
+        if self.thread is not threading.current_thread():
+            self.thread.join(timeout=2.0)
+
+
+def _subscribe(node, store, callback_group):
+    return [node.create_subscription(TFMessage, '/tf', lambda m: store(m, False), 100,
+                                     callback_group=callback_group),
+            node.create_subscription(TFMessage, '/tf_static', lambda m: store(m, True),
+                                     STATIC_QOS, callback_group=callback_group)]
+
+
+class _Hub:
+    """One :class:`_OwnThread` handing every message to the listeners that share it."""
+
+    def __init__(self, context):
+        self.key = id(context)
+        self.listeners = ()  # replaced, never changed in place: read without a lock
+        self.own = _OwnThread(context, self._store)
+        _SPINNING.add(self)
+
+    def _store(self, msg, static):
+        for listener in self.listeners:
+            listener._store(msg, static)
+
+    @staticmethod
+    def join(listener):
+        """Hand the messages to ``listener`` too, from its context's hub (made if none)."""
+        with _HUBS_LOCK:
+            hub = _HUBS.get(id(listener.node.context))
+            if hub is None:
+                hub = _HUBS[id(listener.node.context)] = _Hub(listener.node.context)
+            hub.listeners = hub.listeners + (listener,)
+        return hub
+
+    def remove(self, listener):
+        """Stop handing messages to ``listener``; the last one out destroys the hub."""
+        with _HUBS_LOCK:
+            self.listeners = tuple(x for x in self.listeners if x is not listener)
+            last = not self.listeners
+            if last and _HUBS.get(self.key) is self:
+                del _HUBS[self.key]
+        if last:
+            self.destroy()
+
+    def destroy(self):
+        with _HUBS_LOCK:
+            if _HUBS.get(self.key) is self:
+                del _HUBS[self.key]
+        if self.own is not None:
+            own, self.own = self.own, None
+            own.destroy()
+            _SPINNING.discard(self)
 
 
 class TransformListener:
@@ -138,7 +238,9 @@ class TransformListener:
     own (``transform_listener_impl_<id>``) spun by a single-threaded executor in a daemon
     thread: the hundreds of ``/tf`` messages a second then wake a wait set of two
     subscriptions, not the node's whole set of services and timers (in the SLAM node that
-    wake-up, not the mapping, was the larger part of its CPU).
+    wake-up, not the mapping, was the larger part of its CPU). After
+    :func:`share_listener_threads`, the process's ``spin_thread`` listeners share one such
+    node and thread.
 
     :param node: the rclpy node that subscribes (or whose context the listener's node uses).
     :param buffer: an object with ``set_transform(parent, child, time, translation,
@@ -152,34 +254,15 @@ class TransformListener:
         """Subscribe both topics (on the listener's own node with ``spin_thread``)."""
         self.node = node
         self.buffer = buffer
-        self._own = self._executor = self._thread = None
-        if spin_thread:
-            from rclpy.executors import SingleThreadedExecutor
-            from rclpy.node import Node as RclpyNode
-            name = f'transform_listener_impl_{id(self):x}'
-            # a node-local __node remap wins over the process's ``-r __node:=<server>``, which
-            # would otherwise give this node the server's name too (as tf2_ros avoids)
-            self._own = RclpyNode(name, context=node.context, start_parameter_services=False,
-                                  cli_args=['--ros-args', '-r', f'__node:={name}'])
-            self._executor = SingleThreadedExecutor(context=node.context)
-            self._executor.add_node(self._own)
-            self._thread = threading.Thread(target=self._spin, daemon=True)
-            self._thread.start()
+        self._own = self._hub = None
+        self._subs = []
+        if spin_thread and _sharing:
+            self._hub = _Hub.join(self)
+        elif spin_thread:
+            self._own = _OwnThread(node.context, self._store)
             _SPINNING.add(self)
-        subscriber = self._own or node
-        self._subs = [
-            subscriber.create_subscription(TFMessage, '/tf', lambda m: self._store(m, False),
-                                           100, callback_group=callback_group),
-            subscriber.create_subscription(TFMessage, '/tf_static',
-                                           lambda m: self._store(m, True), STATIC_QOS,
-                                           callback_group=callback_group)]
-
-    def _spin(self):
-        from rclpy.executors import ExternalShutdownException
-        try:
-            self._executor.spin()
-        except (ExternalShutdownException, RuntimeError):  # the context or executor stopped
-            pass
+        else:
+            self._subs = _subscribe(node, self._store, callback_group)
 
     def _store(self, msg, static):
         for t in msg.transforms:
@@ -194,12 +277,12 @@ class TransformListener:
 
     def destroy(self):
         """Remove the subscriptions (and the listener's own node, and join its thread)."""
-        if self._own is not None:
+        if self._hub is not None:
+            hub, self._hub = self._hub, None
+            hub.remove(self)
+        elif self._own is not None:
             own, self._own = self._own, None
-            self._executor.shutdown(timeout_sec=1.0)
-            own.destroy_node()
-            if self._thread is not threading.current_thread():
-                self._thread.join(timeout=2.0)
+            own.destroy()
             _SPINNING.discard(self)
         else:
             for sub in self._subs:

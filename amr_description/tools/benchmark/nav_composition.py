@@ -23,11 +23,11 @@ import os
 import tempfile
 import time
 
-from amr_description.tools.benchmark.nav_cost import process_cpu
+from amr_description.tools.benchmark.nav_cost import free_port
 from amr_description.tools.benchmark.nav_cost import Observer
+from amr_description.tools.benchmark.nav_cost import process_cpu
 from amr_description.tools.benchmark.nav_cost import start_stack
 from amr_description.tools.benchmark.nav_cost import wait_for_line
-from amr_description.tools.benchmark.nav_cost import free_port
 
 GOALS = {'warehouse': (4.9, 2.0), 'arena': (2.5, 0.5)}
 """A goal per world (map frame, m) whose path takes longer than the measured window."""
@@ -63,11 +63,11 @@ def _stage(composed, world, seconds, warmup, env, observer, stream):
     from rclpy.action import ActionClient
     port = free_port()
     stack, lines = start_stack('navigation', [f'world:={world}', f'viewer_port:={port}',
-                                         f'use_composition:={composed}'], env, stream)
+                                              f'use_composition:={composed}'], env, stream)
     client = ActionClient(observer.node, NavigateToPose, 'navigate_to_pose')
     try:
-        wait_for_line(lines, '[lifecycle_manager_navigation]: Managed nodes are active', observer,
-                  240.0)
+        wait_for_line(lines, '[lifecycle_manager_navigation]: Managed nodes are active',
+                      observer, 240.0)
         with browser_page(f'http://127.0.0.1:{port}', {'width': 1000, 'height': 700}, 60000):
             observer.spin_for(warmup, drive=False)
             idle = _window(observer, [stack], seconds)

@@ -211,14 +211,14 @@ def run(world='warehouse', seconds=60.0, warmup=10.0, domain_id=211, log=print):
             slam.wait(timeout=60.0)
         port = free_port()
         sim, lines = start_stack('sim', [f'world:={world}', f'viewer_port:={port}',
-                                    'rviz_config:=nav2_default_view.rviz'], env, stream)
+                                         'rviz_config:=nav2_default_view.rviz'], env, stream)
         loc = None
         try:
             wait_for_line(lines, 'Configured and activated diff_drive_controller', observer, 240.0)
             loc, loc_lines = start_stack('localization', [f'map:={map_path}.yaml',
-                                                     'use_sim_time:=true',
-                                                     f'params_file:={_amcl_params(folder)}'],
-                                    env, stream)
+                                                          'use_sim_time:=true',
+                                                          f'params_file:={_amcl_params(folder)}'],
+                                         env, stream)
             wait_for_line(loc_lines, 'Please set the initial pose', observer, 120.0)
             from geometry_msgs.msg import PoseWithCovarianceStamped
             initial = observer.node.create_publisher(PoseWithCovarianceStamped, '/initialpose',

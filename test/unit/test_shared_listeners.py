@@ -1,0 +1,82 @@
+# Copyright 2026 The amr_description Authors
+# Licensed under the Apache License, Version 2.0
+"""
+A container's TF listeners share one node and thread; each still fills its own buffer.
+
+In-process rclpy (own ROS_DOMAIN_ID, localhost discovery), no processes.
+"""
+
+import os
+import threading
+import time
+
+from conftest import next_domain_id
+import pytest
+
+rclpy = pytest.importorskip('rclpy')
+
+import rclpy.node  # noqa: E402, I100
+
+from amr_description.core.tf_buffer import TransformBuffer  # noqa: E402, I100
+from amr_description.ros import transforms  # noqa: E402
+from geometry_msgs.msg import TransformStamped  # noqa: E402
+from tf2_msgs.msg import TFMessage  # noqa: E402
+
+
+def _transform(stamp, x):
+    t = TransformStamped()
+    t.header.frame_id, t.child_frame_id = 'odom', 'base_footprint'
+    t.header.stamp.sec = stamp
+    t.transform.translation.x = x
+    t.transform.rotation.w = 1.0
+    return TFMessage(transforms=[t])
+
+
+def _wait(condition, timeout=30.0):
+    deadline = time.monotonic() + timeout
+    while not condition() and time.monotonic() < deadline:
+        time.sleep(0.02)
+    return condition()
+
+
+def test_listeners_share_one_thread_and_fill_their_own_buffers(monkeypatch):
+    os.environ['ROS_DOMAIN_ID'] = str(next_domain_id())
+    os.environ['ROS_AUTOMATIC_DISCOVERY_RANGE'] = 'LOCALHOST'
+    monkeypatch.setattr(transforms, '_sharing', [])
+    monkeypatch.setattr(transforms, '_HUBS', {})
+    context = rclpy.context.Context()
+    rclpy.init(context=context)
+    nodes = [rclpy.node.Node(name, context=context) for name in ('a', 'b', 'pub')]
+    listeners = []
+    try:
+        threads_before = threading.active_count()
+        transforms.share_listener_threads()
+        buffers = [TransformBuffer(), TransformBuffer()]
+        listeners = [transforms.TransformListener(node, buf, spin_thread=True)
+                     for node, buf in zip(nodes, buffers)]
+        assert threading.active_count() == threads_before + 1  # one thread for both
+        assert len(transforms._HUBS) == 1
+        publisher = nodes[2].create_publisher(TFMessage, '/tf', 100)
+
+        def seen(buf, stamp):
+            try:
+                return float(buf.lookup('odom', 'base_footprint', float(stamp))[0][0, 3])
+            except Exception:  # noqa: B902 - not there yet
+                return None
+
+        assert _wait(lambda: publisher.get_subscription_count() == 1)  # one subscription
+        publisher.publish(_transform(1, 0.5))
+        assert _wait(lambda: all(seen(b, 1) == 0.5 for b in buffers))
+        listeners[0].destroy()  # the other one keeps hearing
+        publisher.publish(_transform(2, 0.7))
+        assert _wait(lambda: seen(buffers[1], 2) == 0.7)
+        assert len(transforms._HUBS) == 1
+        listeners[1].destroy()  # the last one out stops the thread
+        assert transforms._HUBS == {}
+        assert _wait(lambda: threading.active_count() == threads_before)
+    finally:
+        for listener in listeners:
+            listener.destroy()
+        for node in nodes:
+            node.destroy_node()
+        rclpy.shutdown(context=context)
