@@ -186,17 +186,32 @@ def _subscribe(node, store, callback_group):
 
 
 class _Hub:
-    """One :class:`_OwnThread` handing every message to the listeners that share it."""
+    """
+    One :class:`_OwnThread` handing every message to the listeners that share it.
+
+    ``/tf_static`` is transient local: a listener subscribing on its own gets every static
+    transform published before it started. The hub's one subscription got them once, so it
+    keeps the latest static transform of each child frame and hands them to a listener that
+    joins later (a composed server configured after the robot_state_publisher's statics came).
+    """
 
     def __init__(self, context):
         self.key = id(context)
         self.listeners = ()  # replaced, never changed in place: read without a lock
+        self.statics = {}  # child frame -> its latest static TransformStamped
+        self.static_lock = threading.Lock()
         self.own = _OwnThread(context, self._store)
         _SPINNING.add(self)
 
     def _store(self, msg, static):
-        for listener in self.listeners:
-            listener._store(msg, static)
+        if not static:
+            for listener in self.listeners:
+                listener._store(msg, static)
+            return
+        with self.static_lock:  # a listener joins before or after this message, not during
+            self.statics.update((t.child_frame_id, t) for t in msg.transforms)
+            for listener in self.listeners:
+                listener._store(msg, static)
 
     @staticmethod
     def join(listener):
@@ -205,7 +220,10 @@ class _Hub:
             hub = _HUBS.get(id(listener.node.context))
             if hub is None:
                 hub = _HUBS[id(listener.node.context)] = _Hub(listener.node.context)
-            hub.listeners = hub.listeners + (listener,)
+            with hub.static_lock:
+                hub.listeners = hub.listeners + (listener,)
+                if hub.statics:
+                    listener._store(TFMessage(transforms=list(hub.statics.values())), True)
         return hub
 
     def remove(self, listener):

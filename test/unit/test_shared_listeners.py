@@ -80,3 +80,42 @@ def test_listeners_share_one_thread_and_fill_their_own_buffers(monkeypatch):
         for node in nodes:
             node.destroy_node()
         rclpy.shutdown(context=context)
+
+
+def test_a_listener_joining_later_gets_the_static_transforms_heard_before(monkeypatch):
+    # /tf_static is transient local: a listener of its own would get the earlier statics from
+    # its subscription, so one joining the shared hub later gets them from the hub
+    os.environ['ROS_DOMAIN_ID'] = str(next_domain_id())
+    os.environ['ROS_AUTOMATIC_DISCOVERY_RANGE'] = 'LOCALHOST'
+    monkeypatch.setattr(transforms, '_sharing', [])
+    monkeypatch.setattr(transforms, '_HUBS', {})
+    context = rclpy.context.Context()
+    rclpy.init(context=context)
+    nodes = [rclpy.node.Node(name, context=context) for name in ('a', 'b', 'pub')]
+    listeners = []
+    try:
+        transforms.share_listener_threads()
+        first, late = TransformBuffer(), TransformBuffer()
+        listeners.append(transforms.TransformListener(nodes[0], first, spin_thread=True))
+        publisher = nodes[2].create_publisher(TFMessage, '/tf_static', transforms.STATIC_QOS)
+        msg = _transform(0, 0.25)
+        msg.transforms[0].header.frame_id, msg.transforms[0].child_frame_id = 'a', 'b'
+        publisher.publish(msg)
+        msg.transforms[0].transform.translation.x = 0.5  # the latest of a child frame wins
+        publisher.publish(msg)
+
+        def x_of(buf):
+            try:
+                return float(buf.lookup('a', 'b')[0][0, 3])
+            except Exception:  # noqa: B902 - not there yet
+                return None
+
+        assert _wait(lambda: x_of(first) == 0.5)
+        listeners.append(transforms.TransformListener(nodes[1], late, spin_thread=True))
+        assert x_of(late) == 0.5  # at once, from the hub
+    finally:
+        for listener in listeners:
+            listener.destroy()
+        for node in nodes:
+            node.destroy_node()
+        rclpy.shutdown(context=context)
