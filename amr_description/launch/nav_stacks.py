@@ -321,6 +321,118 @@ def bringup(args):
     return actions + _start(specs, shared, namespace)
 
 
+FRAME_KEYS = frozenset({'base_frame_id', 'odom_frame_id', 'global_frame_id', 'frame_id',
+                        'robot_base_frame', 'global_frame', 'local_frame', 'sensor_frame'})
+"""Nav2 parameters naming a TF frame (AMCL, map_server, costmaps and their sources, servers)."""
+
+
+def robot_params(params, namespace, frame_prefix, map_frame='map'):
+    """
+    Return a Nav2 params file's content for one robot of a fleet.
+
+    Nested under ``namespace`` (nav2_bringup's ``RewrittenYaml(root_key=namespace)``), with
+    each frame parameter (:data:`FRAME_KEYS`) other than ``map_frame`` prefixed with
+    ``frame_prefix`` (the fleet's robots publish ``rI/odom -> rI/base_footprint`` on the one
+    ``/tf``, diff_drive_controller's ``tf_frame_prefix``), and each absolute topic (a
+    parameter named ``topic``, ``topic_name`` or ``*_topic``, e.g. an observation source's
+    ``/scan``) moved into the namespace. Relative topics resolve in the namespace already.
+
+    :param params: the params file as loaded (dict).
+    :param namespace: the robot's namespace without slashes, e.g. ``r1``.
+    :param frame_prefix: e.g. ``r1/``.
+    :param map_frame: the frame every robot's AMCL localizes in, shared.
+    :returns: ``{namespace: params rewritten}`` (a new dict).
+    """
+    def topic(key):
+        return key in ('topic', 'topic_name') or key.endswith('_topic')
+
+    def walk(value, key):
+        if isinstance(value, dict):
+            return {k: walk(v, k) for k, v in value.items()}
+        if isinstance(value, str) and value and isinstance(key, str):
+            if key in FRAME_KEYS and value.lstrip('/') != map_frame and \
+                    not value.lstrip('/').startswith(frame_prefix):
+                return frame_prefix + value.lstrip('/')
+            if topic(key) and value.startswith('/') and \
+                    not value.startswith(f'/{namespace}/'):
+                return f'/{namespace}{value}'
+        return value
+
+    return {namespace: walk(params, None)}
+
+
+def package_home(folder):
+    """
+    Return ``$ROS_HOME/amr_description/<folder>`` (ROS_HOME defaults to ``~/.ros``), made.
+
+    Where stacks keep the files they derive (a world's true map, a robot's params file).
+
+    :raises OSError: when the folder cannot be made.
+    """
+    home = os.environ.get('ROS_HOME') or os.path.join(os.path.expanduser('~'), '.ros')
+    path = os.path.join(home, PACKAGE, folder)
+    os.makedirs(path, exist_ok=True)
+    return path
+
+
+def _robot_params_file(args, namespace):
+    """Write ``params_file`` rewritten for ``namespace`` (:func:`robot_params`); its path."""
+    import hashlib
+    import yaml
+    from amr_description.core.yaml_text import safe_load
+    path = _params_file(args)
+    try:
+        with open(path) as f:
+            params = safe_load(f)
+    except (OSError, yaml.YAMLError) as exc:
+        raise LaunchError(f"launch argument 'params_file': cannot read '{path}': "
+                          f"{' '.join(str(exc).split())}") from None
+    if not isinstance(params, dict):
+        raise LaunchError(f"launch argument 'params_file': '{path}' is not a YAML map")
+    text = yaml.safe_dump(robot_params(params, namespace, f'{namespace}/'))
+    digest = hashlib.sha1(text.encode()).hexdigest()[:12]  # same content, same file
+    try:
+        out = os.path.join(package_home('params'), f'nav2_params_{namespace}_{digest}.yaml')
+        if not os.path.isfile(out):
+            with open(out, 'w') as f:
+                f.write(text)
+    except OSError as exc:
+        raise LaunchError(f"launch argument 'params_file': cannot write the params of "
+                          f"'{namespace}': {exc}") from None
+    return out
+
+
+def robot_navigation(namespace, args, pose):
+    """
+    Describe Nav2 for one namespaced robot of a fleet (nav2_bringup's multi-robot bring-up).
+
+    map_server (``map``), AMCL starting at ``pose`` and the navigation servers in
+    ``/<namespace>``, composed in ``/<namespace>/nav2_container`` unless
+    ``use_composition`` is false, reading ``params_file`` rewritten by :func:`robot_params`
+    (frames prefixed ``<namespace>/``), as nav2_bringup's ``RewrittenYaml``, into
+    ``$ROS_HOME/amr_description/params/nav2_params_<namespace>_<digest>.yaml``.
+
+    :param namespace: e.g. ``r1``.
+    :param args: dict with ``map``, ``params_file``, ``use_sim_time``, ``autostart``,
+        ``use_composition`` (missing ones take ``bringup_launch.py``'s defaults).
+    :param pose: ``(x, y, yaw)`` of the robot's spawn in the map frame (m, m, rad).
+    :returns: list of actions.
+    :raises LaunchError: on a missing or unreadable params file or map.
+    """
+    args = with_defaults(BRINGUP_ARGUMENTS, args)
+    shared = {k: args[k] for k in ('use_sim_time', 'autostart', 'use_respawn',
+                                   'use_composition')}
+    shared.update(params_file=_robot_params_file(args, namespace),
+                  container_name='nav2_container')
+    specs = _localization_specs({**shared, 'map': args['map']})
+    specs += _navigation_specs({**shared, 'namespace': namespace})
+    for spec in specs:
+        if spec.name == 'amcl':
+            spec.parameters.append({'set_initial_pose': True, 'initial_pose.x': pose[0],
+                                    'initial_pose.y': pose[1], 'initial_pose.yaw': pose[2]})
+    return _start(specs, shared, namespace)
+
+
 NAV2_STACKS = {
     'localization': (localization, LOCALIZATION_ARGUMENTS,
                      "nav2_bringup's map_server + amcl + lifecycle_manager_localization"),

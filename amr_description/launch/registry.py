@@ -18,11 +18,11 @@ from amr_description.launch.nav_stacks import online_async
 from amr_description.launch.nav_stacks import SLAM_ARGUMENTS
 from amr_description.launch.stacks import display
 from amr_description.launch.stacks import DISPLAY_ARGUMENTS
-from amr_description.launch.stacks import fleet
-from amr_description.launch.stacks import FLEET_ARGUMENTS
 from amr_description.launch.stacks import PACKAGE
 from amr_description.launch.stacks import sim
 from amr_description.launch.stacks import SIM_ARGUMENTS
+from amr_description.launch.world_stacks import fleet_navigation
+from amr_description.launch.world_stacks import FLEET_NAVIGATION_ARGUMENTS
 from amr_description.launch.world_stacks import NAVIGATION_ARGUMENTS
 from amr_description.launch.world_stacks import navigation_sim
 from amr_description.launch.world_stacks import slam
@@ -33,8 +33,9 @@ STACKS = {
                 'installed URDF'),
     'sim': (sim, SIM_ARGUMENTS,
             'MuJoCo simulation, robot_state_publisher, spawn and ros2_control controllers'),
-    'fleet': (fleet, FLEET_ARGUMENTS,
-              'MuJoCo simulation with N namespaced robots (r1 ... rN) on a grid'),
+    'fleet': (fleet_navigation, FLEET_NAVIGATION_ARGUMENTS,
+              'MuJoCo simulation with N namespaced robots (r1 ... rN) on a grid, with Nav2 '
+              'for each (navigation:=true)'),
     'online_async': (online_async, SLAM_ARGUMENTS,
                      "slam_toolbox's online asynchronous mapper, configured and activated"),
     'slam': (slam, SIM_ARGUMENTS + SLAM_ARGUMENTS[1:],

@@ -301,7 +301,7 @@ def fleet_grid(count, spacing):
     return [((i % columns) * spacing, (i // columns) * spacing) for i in range(count)]
 
 
-def fleet(args):
+def fleet(args, odom_in_world=True):
     """
     Describe the ``fleet`` stack: one simulator and ``robots`` namespaced robots on a grid.
 
@@ -329,6 +329,8 @@ def fleet(args):
 
     :param args: dict of launch-argument values (see ``FLEET_ARGUMENTS``; missing ones take
         their declared defaults).
+    :param odom_in_world: publish the static ``world -> rI/odom`` transforms (False when each
+        robot's AMCL publishes ``map -> rI/odom``).
     :returns: list of actions.
     :raises LaunchError: on a bad argument value or an unreadable URDF.
     """
@@ -364,7 +366,7 @@ def fleet(args):
         return [{'robot_description': description, 'use_sim_time': use_sim_time,
                  'frame_prefix': f'{ns}/'}]
 
-    def odom_in_world(ns, x, y):
+    def odom_frame(ns, x, y):
         return {'translation.x': float(x), 'translation.y': float(y), 'frame_id': 'world',
                 'child_frame_id': f'{ns}/odom', 'use_sim_time': use_sim_time}
 
@@ -374,8 +376,8 @@ def fleet(args):
                     for ns in names]
         composed += [ComposableNode(PACKAGE, 'amr_description::StaticTransformBroadcasterNode',
                                     name='static_transform_publisher', namespace=ns,
-                                    parameters=[odom_in_world(ns, x, y)])
-                     for ns, (x, y) in zip(names, grid)]
+                                    parameters=[odom_frame(ns, x, y)])
+                     for ns, (x, y) in zip(names, grid) if odom_in_world]
         actions.append(ComposableNodeContainer(
             'robot_state_publisher_container', output='screen',
             parameters=[{'use_sim_time': use_sim_time}],
@@ -391,6 +393,7 @@ def fleet(args):
         if not use_composition:
             actions.append(Node(PACKAGE, 'robot_state_publisher', namespace=ns,
                                 output='screen', parameters=rsp_parameters(ns)))
+        if not use_composition and odom_in_world:
             actions.append(Node(PACKAGE, 'static_transform_publisher',
                                 name='static_transform_publisher', namespace=ns,
                                 output='screen',

@@ -1,24 +1,33 @@
 # Copyright 2026 The amr_description Authors
 # Licensed under the Apache License, Version 2.0
 """
-Stacks that put a simulated world and Nav2's nodes together: ``slam`` and ``navigation``.
+Stacks that put a simulated world and Nav2's nodes together: ``slam``, ``navigation``, ``fleet``.
 
-Both run the ``sim`` stack (:mod:`.stacks`: world, robot, controllers, viewer reading
-``config/nav2_default_view.rviz``) and nav2_bringup's or slam_toolbox's nodes
-(:mod:`.nav_stacks`).
+``slam`` and ``navigation`` run the ``sim`` stack (:mod:`.stacks`: world, robot, controllers,
+viewer reading ``config/nav2_default_view.rviz``) and nav2_bringup's or slam_toolbox's nodes
+(:mod:`.nav_stacks`); ``fleet`` runs :func:`.stacks.fleet` and, with ``navigation:=true``, one
+namespaced Nav2 per robot.
 """
 
 import os
 
 from amr_description.launch.actions import DeclareLaunchArgument
 from amr_description.launch.actions import LaunchError
+from amr_description.launch.actions import Node
+from amr_description.launch.actions import parse_bool
 from amr_description.launch.actions import parse_float
 from amr_description.launch.actions import with_defaults
 from amr_description.launch.nav_stacks import bringup
 from amr_description.launch.nav_stacks import BRINGUP_ARGUMENTS
 from amr_description.launch.nav_stacks import described_nodes
 from amr_description.launch.nav_stacks import online_async
+from amr_description.launch.nav_stacks import package_home
+from amr_description.launch.nav_stacks import robot_navigation
 from amr_description.launch.nav_stacks import SLAM_ARGUMENTS
+from amr_description.launch.stacks import fleet
+from amr_description.launch.stacks import FLEET_ARGUMENTS
+from amr_description.launch.stacks import fleet_grid
+from amr_description.launch.stacks import PACKAGE
 from amr_description.launch.stacks import sim
 from amr_description.launch.stacks import SIM_ARGUMENTS
 
@@ -62,14 +71,12 @@ def true_map_yaml(world):
     from amr_description.nav.world_map import world_map
     try:
         source = find_world(world)
-        home = os.environ.get('ROS_HOME') or os.path.join(os.path.expanduser('~'), '.ros')
-        folder = os.path.join(home, 'amr_description', 'maps')
+        folder = package_home('maps')
         stem = os.path.splitext(os.path.basename(source))[0]
         yaml_path = os.path.join(folder, f'{stem}.yaml')
         if (os.path.isfile(yaml_path)
                 and os.path.getmtime(yaml_path) >= os.path.getmtime(source)):
             return yaml_path
-        os.makedirs(folder, exist_ok=True)
         save_map(os.path.join(folder, stem), world_map(load_world(world)))
     except (ValueError, OSError) as exc:  # WorldError, MapError
         raise LaunchError(f"launch argument 'world': no map for '{world}': {exc}") from None
@@ -101,3 +108,47 @@ def navigation_sim(args):
                                       'initial_pose.y': pose['y'],
                                       'initial_pose.yaw': pose['yaw']})
     return sim(args) + nav
+
+
+FLEET_NAVIGATION_ARGUMENTS = FLEET_ARGUMENTS + [
+    DeclareLaunchArgument('navigation', 'false',
+                          "Run Nav2 for every robot, in its namespace (nav2_bringup's "
+                          'multi-robot bring-up)'),
+    DeclareLaunchArgument('map', '',
+                          "Full path to map yaml file to load (default: the world's true map)"),
+] + [a for a in BRINGUP_ARGUMENTS if a.name in ('params_file', 'autostart')]
+"""The ``fleet`` stack's arguments plus ``navigation``, ``map``, ``params_file``, ``autostart``."""
+
+
+def fleet_navigation(args):
+    """
+    Describe the ``fleet`` stack, with Nav2 for every robot when ``navigation`` is true.
+
+    Without ``navigation``: :func:`amr_description.launch.stacks.fleet`. With it, as
+    nav2_bringup's multi-robot bring-up, every robot ``rI`` gets its own map_server, AMCL
+    (starting at its spawn pose) and navigation servers in ``/rI``, composed in
+    ``/rI/nav2_container`` (``use_composition``) (:func:`robot_navigation`), on ``map``
+    (default: the world's true map, :func:`true_map_yaml`). Every AMCL publishes
+    ``map -> rI/odom`` in the one ``map`` frame, so the static ``world -> rI/odom`` transforms
+    are replaced by one ``world -> map`` identity (``/world_to_map``). Goals go to
+    ``/rI/navigate_to_pose`` or ``/rI/goal_pose``.
+
+    :param args: dict of launch-argument values (:data:`FLEET_NAVIGATION_ARGUMENTS`).
+    :returns: list of actions.
+    :raises LaunchError: on a bad argument value or a missing file.
+    """
+    args = with_defaults(FLEET_NAVIGATION_ARGUMENTS, args)
+    if not parse_bool(args['navigation'], 'navigation'):
+        return fleet(args)
+    actions = fleet(args, odom_in_world=False)
+    use_sim_time = parse_bool(args['use_sim_time'], 'use_sim_time')
+    actions.append(Node(PACKAGE, 'static_transform_publisher', name='world_to_map',
+                        output='screen', parameters=[{'use_sim_time': use_sim_time}],
+                        arguments=['--frame-id', 'world', '--child-frame-id', 'map']))
+    nav = {'map': args['map'] or true_map_yaml(args['world']), 'params_file':
+           args['params_file'], 'autostart': args['autostart'],
+           'use_sim_time': args['use_sim_time'], 'use_composition': args['use_composition']}
+    grid = fleet_grid(int(args['robots']), parse_float(args['spacing'], 'spacing'))
+    for i, (x, y) in enumerate(grid, start=1):
+        actions += robot_navigation(f'r{i}', nav, (x, y, 0.0))
+    return actions

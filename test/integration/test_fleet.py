@@ -180,3 +180,81 @@ def test_fleet_stack_comes_up_in_the_arena(procs, exe, ros_env, tmp_path):
         assert proc.interrupt(timeout=30) == 0, proc.output[-3000:]
     finally:
         peer.close()
+
+
+FLEET_GOALS = {'r1': (0.5, 1.9, math.pi / 2), 'r2': (1.5, -1.55, -math.pi / 2)}
+"""Each robot's goal in arena.sdf (map frame), through the gap of two pillars."""
+
+
+def test_fleet_robots_navigate_at_once_each_with_its_nav2(procs, exe, ros_env, tmp_path):
+    # nav2_bringup's multi-robot bring-up: map_server, AMCL and the servers of each robot in
+    # its namespace (one container each), frames prefixed rI/, every AMCL in the one map
+    # frame; both goals sent at once, each robot reaches its own by ground truth
+    pytest.importorskip('nav2_msgs.action')
+    from action_msgs.msg import GoalStatus
+    from geometry_msgs.msg import PolygonStamped
+    from geometry_msgs.msg import PoseWithCovarianceStamped
+    from nav2_msgs.action import NavigateToPose
+    from rclpy.action import ActionClient
+    from rclpy.qos import DurabilityPolicy
+    from rclpy.qos import QoSProfile
+    peer = FleetPeer(int(ros_env['ROS_DOMAIN_ID']))
+    try:
+        amcl = {ns: [] for ns in FLEET_GOALS}
+        footprints = {ns: [] for ns in FLEET_GOALS}
+        for ns in FLEET_GOALS:
+            peer.node.create_subscription(PolygonStamped,
+                                          f'/{ns}/global_costmap/published_footprint',
+                                          footprints[ns].append, 10)
+            peer.node.create_subscription(
+                PoseWithCovarianceStamped, f'/{ns}/amcl_pose', amcl[ns].append,
+                QoSProfile(depth=1, durability=DurabilityPolicy.TRANSIENT_LOCAL))
+        proc = procs.start([exe('ros2'), 'launch', 'amr_description', 'fleet.launch.py',
+                            'robots:=2', 'world:=arena', 'navigation:=true', 'viewer:=false'],
+                           ros_env)
+        for ns in FLEET_GOALS:
+            for manager in ('localization', 'navigation'):
+                assert proc.wait_for_output(f'[{ns}.lifecycle_manager_{manager}]: Managed '
+                                            'nodes are active', 240.0), proc.output[-3000:]
+        assert proc.wait_for_output("Loaded component 'nav2_amcl::AmclNode' as '/r2/amcl'",
+                                    10.0), proc.output[-3000:]
+        # each AMCL starts at its robot's spawn (set_initial_pose), in the shared map frame
+        assert peer.spin_until(lambda: all(amcl.values()), 120.0), proc.output[-3000:]
+        for ns, (x, y) in STACK_ROBOTS.items():
+            if ns in amcl:
+                pose = amcl[ns][-1]
+                assert pose.header.frame_id == 'map'
+                assert (pose.pose.pose.position.x, pose.pose.pose.position.y) == \
+                    pytest.approx((x, y), abs=0.1)
+        assert peer.spin_until(lambda: all(('map', f'{ns}/odom') in peer.edges
+                                           for ns in FLEET_GOALS), 60.0), peer.edges
+        # the planner knows its robot's pose in map once the global costmap shows its footprint
+        assert peer.spin_until(lambda: all(footprints.values()), 120.0), proc.output[-3000:]
+        assert footprints['r2'][-1].header.frame_id == 'map'
+        handles = {}
+        for ns, (x, y, yaw) in FLEET_GOALS.items():
+            client = ActionClient(peer.node, NavigateToPose, f'/{ns}/navigate_to_pose')
+            assert client.wait_for_server(timeout_sec=60.0), ns
+            goal = NavigateToPose.Goal()
+            goal.pose.header.frame_id = 'map'
+            goal.pose.pose.position.x, goal.pose.pose.position.y = x, y
+            goal.pose.pose.orientation.z = math.sin(yaw / 2.0)
+            goal.pose.pose.orientation.w = math.cos(yaw / 2.0)
+            sent = client.send_goal_async(goal)
+            assert peer.spin_until(sent.done, 60.0) and sent.result().accepted, ns
+            handles[ns] = sent.result().get_result_async()
+        assert peer.spin_until(lambda: all(h.done() for h in handles.values()), 400.0), \
+            proc.output[-3000:]
+        for ns, (x, y, yaw) in FLEET_GOALS.items():
+            result = handles[ns].result()
+            tx, ty, tyaw = _pose(peer.truth_of[ns][-1])
+            print(f'{ns}: status {result.status}, ground truth {math.hypot(tx - x, ty - y):.3f} m'
+                  f' {abs(math.remainder(tyaw - yaw, math.tau)):.3f} rad from the goal')
+            assert result.status == GoalStatus.STATUS_SUCCEEDED, (ns, result.result.error_code,
+                                                                  proc.output[-3000:])
+            # Nav2's default tolerances (0.25 m, 0.25 rad) plus AMCL's error
+            assert math.hypot(tx - x, ty - y) < 0.35, ns
+            assert abs(math.remainder(tyaw - yaw, math.tau)) < 0.45, ns
+        assert proc.interrupt(timeout=60) == 0, proc.output[-3000:]
+    finally:
+        peer.close()

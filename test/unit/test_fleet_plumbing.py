@@ -4,6 +4,7 @@
 """The fleet stack's description, the main job's robot table and the benchmark's plumbing."""
 
 import math
+import os
 import re
 
 from amr_description.core.course import square_course
@@ -255,3 +256,73 @@ def test_benchmark_targets_only_for_counts_run():
     assert result['16 robots, fast: cost per robot-second <= 1.3x linear'] is True
     assert result['16 robots: all controllers active < 10 s'] is False
     assert report.targets(rows[:1])[0][0].startswith('1 robot')
+
+
+def test_robot_params_namespace_the_file_and_prefix_the_robot_frames():
+    from amr_description.launch.nav_stacks import robot_params
+    params = {
+        'amcl': {'ros__parameters': {'base_frame_id': 'base_footprint', 'global_frame_id': 'map',
+                                     'odom_frame_id': 'odom', 'scan_topic': 'scan',
+                                     'alpha1': 0.2}},
+        'bt_navigator': {'ros__parameters': {'odom_topic': '/odom',
+                                             'robot_base_frame': 'base_link'}},
+        'local_costmap': {'local_costmap': {'ros__parameters': {
+            'global_frame': 'odom', 'robot_base_frame': 'r1/base_link',
+            'voxel_layer': {'scan': {'topic': '/scan', 'sensor_frame': ''}}}}},
+        'global_costmap': {'global_costmap': {'ros__parameters': {
+            'global_frame': '/map', 'static_layer': {'map_topic': '/r1/map'}}}},
+    }
+    out = robot_params(params, 'r1', 'r1/')
+    assert list(out) == ['r1']
+    amcl = out['r1']['amcl']['ros__parameters']
+    # robot frames prefixed, the shared map frame and relative topics kept
+    assert amcl == {'base_frame_id': 'r1/base_footprint', 'global_frame_id': 'map',
+                    'odom_frame_id': 'r1/odom', 'scan_topic': 'scan', 'alpha1': 0.2}
+    assert out['r1']['bt_navigator']['ros__parameters'] == {
+        'odom_topic': '/r1/odom', 'robot_base_frame': 'r1/base_link'}
+    local = out['r1']['local_costmap']['local_costmap']['ros__parameters']
+    assert local['global_frame'] == 'r1/odom'
+    assert local['robot_base_frame'] == 'r1/base_link'  # already prefixed: once
+    assert local['voxel_layer']['scan'] == {'topic': '/r1/scan', 'sensor_frame': ''}
+    glob = out['r1']['global_costmap']['global_costmap']['ros__parameters']
+    assert glob['global_frame'] == '/map' and glob['static_layer']['map_topic'] == '/r1/map'
+    assert params['amcl']['ros__parameters']['base_frame_id'] == 'base_footprint'  # a copy
+
+
+def test_fleet_navigation_gives_every_robot_its_nav2(monkeypatch, tmp_path):
+    import yaml
+    monkeypatch.setenv('ROS_HOME', str(tmp_path))
+    actions = _actions(['robots:=2', 'world:=arena', 'navigation:=true', 'viewer:=false'])
+    containers = [a for a in actions if isinstance(a, ComposableNodeContainer)]
+    nav = [c for c in containers if c.node_name == 'nav2_container']
+    assert [c.namespace for c in nav] == ['/r1', '/r2']
+    names = [n.node_name for n in nav[1].composable_node_descriptions]
+    assert names == ['map_server', 'amcl', 'lifecycle_manager_localization',
+                     'controller_server', 'planner_server', 'behavior_server',
+                     'velocity_smoother', 'bt_navigator', 'waypoint_follower',
+                     'lifecycle_manager_navigation']
+    assert {n.namespace for n in nav[1].composable_node_descriptions} == {'/r2'}
+    amcl = nav[1].composable_node_descriptions[1]
+    params_file, initial = amcl.parameters[0], amcl.parameters[-1]
+    assert initial == {'set_initial_pose': True, 'initial_pose.x': 2.0, 'initial_pose.y': 0.0,
+                       'initial_pose.yaw': 0.0}  # r2's spawn on the grid
+    assert params_file.startswith(str(tmp_path / 'amr_description' / 'params'))
+    with open(params_file) as f:
+        rewritten = yaml.safe_load(f)
+    assert rewritten['r2']['amcl']['ros__parameters']['odom_frame_id'] == 'r2/odom'
+    map_server = nav[1].composable_node_descriptions[0]
+    assert map_server.parameters[1]['yaml_filename'] == str(
+        tmp_path / 'amr_description' / 'maps' / 'arena.yaml')  # the world's true map
+    # AMCL joins every robot's odom to the one map: no world -> rI/odom, one world -> map
+    rsp = [c for c in containers if c.node_name == 'robot_state_publisher_container'][0]
+    assert {n.plugin for n in rsp.composable_node_descriptions} == {
+        'amr_description::RobotStatePublisher'}
+    static = [a for a in actions if isinstance(a, Node) and
+              a.executable == 'static_transform_publisher']
+    assert [s.arguments for s in static] == [['--frame-id', 'world', '--child-frame-id', 'map']]
+    # the same content, the same file: describing again writes nothing new
+    again = _actions(['robots:=2', 'world:=arena', 'navigation:=true', 'viewer:=false'])
+    assert len(os.listdir(tmp_path / 'amr_description' / 'params')) == 2
+    assert again
+    without = _actions(['robots:=2'])
+    assert not [a for a in without if getattr(a, 'node_name', None) == 'nav2_container']
