@@ -131,7 +131,8 @@ def fleet_navigation(args):
     (default: the world's true map, :func:`true_map_yaml`). Every AMCL publishes
     ``map -> rI/odom`` in the one ``map`` frame, so the static ``world -> rI/odom`` transforms
     are replaced by one ``world -> map`` identity (``/world_to_map``). Goals go to
-    ``/rI/navigate_to_pose`` or ``/rI/goal_pose``.
+    ``/rI/navigate_to_pose`` or ``/rI/goal_pose``; the viewer's 2D Pose Estimate and 2D Goal
+    Pose tools publish ``r1``'s, as its pad drives ``r1``.
 
     :param args: dict of launch-argument values (:data:`FLEET_NAVIGATION_ARGUMENTS`).
     :returns: list of actions.
@@ -141,6 +142,10 @@ def fleet_navigation(args):
     if not parse_bool(args['navigation'], 'navigation'):
         return fleet(args)
     actions = fleet(args, odom_in_world=False)
+    for action in actions:  # the viewer's pose tools, as its pad, act on r1
+        if getattr(action, 'executable', None) == 'viewer':
+            action.parameters.append({'initial_pose_topic': '/r1/initialpose',
+                                      'goal_pose_topic': '/r1/goal_pose'})
     use_sim_time = parse_bool(args['use_sim_time'], 'use_sim_time')
     actions.append(Node(PACKAGE, 'static_transform_publisher', name='world_to_map',
                         output='screen', parameters=[{'use_sim_time': use_sim_time}],

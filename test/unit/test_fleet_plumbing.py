@@ -326,3 +326,13 @@ def test_fleet_navigation_gives_every_robot_its_nav2(monkeypatch, tmp_path):
     assert again
     without = _actions(['robots:=2'])
     assert not [a for a in without if getattr(a, 'node_name', None) == 'nav2_container']
+
+
+def test_fleet_navigation_viewer_tools_act_on_r1(monkeypatch, tmp_path):
+    monkeypatch.setenv('ROS_HOME', str(tmp_path))
+    viewer = [a for a in _actions(['robots:=2', 'navigation:=true'])
+              if isinstance(a, Node) and a.executable == 'viewer'][0]
+    merged = {k: v for p in viewer.parameters for k, v in p.items()}
+    assert merged['goal_pose_topic'] == '/r1/goal_pose'
+    assert merged['initial_pose_topic'] == '/r1/initialpose'
+    assert merged['fixed_frame'] == 'world'

@@ -36,10 +36,17 @@ NOT_NAV2 = ('mujoco_sim', 'viewer', 'robot_state_publisher', 'spawner', 'create'
 """Processes of the stacks that are not Nav2's (the rest are summed as "Nav2")."""
 
 
-def _window(observer, orchestrators, seconds):
-    """Spin ``seconds`` of wall time; return RTF and ``{process: % of one core}``."""
+def _window(observer, orchestrators, seconds, spin=None):
+    """
+    Spin ``seconds`` of wall time; return RTF and ``{process: % of one core}``.
+
+    ``spin(seconds)``, when given, spins instead of ``observer.spin_for`` (to act meanwhile).
+    """
     cpu0, sim0, wall0 = process_cpu(orchestrators), observer.sim_time, time.monotonic()
-    observer.spin_for(seconds, drive=False)
+    if spin is None:
+        observer.spin_for(seconds, drive=False)
+    else:
+        spin(seconds)
     cpu1, sim1, wall1 = process_cpu(orchestrators), observer.sim_time, time.monotonic()
     wall = wall1 - wall0
     cpu = {name: 100.0 * (cpu1[name] - cpu0.get(name, 0.0)) / wall for name in cpu1}
