@@ -39,7 +39,9 @@ def _wait(condition, timeout=30.0):
     return condition()
 
 
-def test_listeners_share_one_thread_and_fill_their_own_buffers(monkeypatch):
+@pytest.fixture
+def sharing(monkeypatch):
+    """Three nodes on a fresh context with listener sharing on; the listeners made go at end."""
     os.environ['ROS_DOMAIN_ID'] = str(next_domain_id())
     os.environ['ROS_AUTOMATIC_DISCOVERY_RANGE'] = 'LOCALHOST'
     monkeypatch.setattr(transforms, '_sharing', [])
@@ -49,31 +51,7 @@ def test_listeners_share_one_thread_and_fill_their_own_buffers(monkeypatch):
     nodes = [rclpy.node.Node(name, context=context) for name in ('a', 'b', 'pub')]
     listeners = []
     try:
-        threads_before = threading.active_count()
-        transforms.share_listener_threads()
-        buffers = [TransformBuffer(), TransformBuffer()]
-        listeners = [transforms.TransformListener(node, buf, spin_thread=True)
-                     for node, buf in zip(nodes, buffers)]
-        assert threading.active_count() == threads_before + 1  # one thread for both
-        assert len(transforms._HUBS) == 1
-        publisher = nodes[2].create_publisher(TFMessage, '/tf', 100)
-
-        def seen(buf, stamp):
-            try:
-                return float(buf.lookup('odom', 'base_footprint', float(stamp))[0][0, 3])
-            except Exception:  # noqa: B902 - not there yet
-                return None
-
-        assert _wait(lambda: publisher.get_subscription_count() == 1)  # one subscription
-        publisher.publish(_transform(1, 0.5))
-        assert _wait(lambda: all(seen(b, 1) == 0.5 for b in buffers))
-        listeners[0].destroy()  # the other one keeps hearing
-        publisher.publish(_transform(2, 0.7))
-        assert _wait(lambda: seen(buffers[1], 2) == 0.7)
-        assert len(transforms._HUBS) == 1
-        listeners[1].destroy()  # the last one out stops the thread
-        assert transforms._HUBS == {}
-        assert _wait(lambda: threading.active_count() == threads_before)
+        yield nodes, listeners
     finally:
         for listener in listeners:
             listener.destroy()
@@ -82,40 +60,55 @@ def test_listeners_share_one_thread_and_fill_their_own_buffers(monkeypatch):
         rclpy.shutdown(context=context)
 
 
-def test_a_listener_joining_later_gets_the_static_transforms_heard_before(monkeypatch):
+def test_listeners_share_one_thread_and_fill_their_own_buffers(sharing):
+    nodes, listeners = sharing
+    threads_before = threading.active_count()
+    transforms.share_listener_threads()
+    buffers = [TransformBuffer(), TransformBuffer()]
+    listeners += [transforms.TransformListener(node, buf, spin_thread=True)
+                  for node, buf in zip(nodes, buffers)]
+    assert threading.active_count() == threads_before + 1  # one thread for both
+    assert len(transforms._HUBS) == 1
+    publisher = nodes[2].create_publisher(TFMessage, '/tf', 100)
+
+    def seen(buf, stamp):
+        try:
+            return float(buf.lookup('odom', 'base_footprint', float(stamp))[0][0, 3])
+        except Exception:  # noqa: B902 - not there yet
+            return None
+
+    assert _wait(lambda: publisher.get_subscription_count() == 1)  # one subscription
+    publisher.publish(_transform(1, 0.5))
+    assert _wait(lambda: all(seen(b, 1) == 0.5 for b in buffers))
+    listeners[0].destroy()  # the other one keeps hearing
+    publisher.publish(_transform(2, 0.7))
+    assert _wait(lambda: seen(buffers[1], 2) == 0.7)
+    assert len(transforms._HUBS) == 1
+    listeners[1].destroy()  # the last one out stops the thread
+    assert transforms._HUBS == {}
+    assert _wait(lambda: threading.active_count() == threads_before)
+
+
+def test_a_listener_joining_later_gets_the_static_transforms_heard_before(sharing):
     # /tf_static is transient local: a listener of its own would get the earlier statics from
     # its subscription, so one joining the shared hub later gets them from the hub
-    os.environ['ROS_DOMAIN_ID'] = str(next_domain_id())
-    os.environ['ROS_AUTOMATIC_DISCOVERY_RANGE'] = 'LOCALHOST'
-    monkeypatch.setattr(transforms, '_sharing', [])
-    monkeypatch.setattr(transforms, '_HUBS', {})
-    context = rclpy.context.Context()
-    rclpy.init(context=context)
-    nodes = [rclpy.node.Node(name, context=context) for name in ('a', 'b', 'pub')]
-    listeners = []
-    try:
-        transforms.share_listener_threads()
-        first, late = TransformBuffer(), TransformBuffer()
-        listeners.append(transforms.TransformListener(nodes[0], first, spin_thread=True))
-        publisher = nodes[2].create_publisher(TFMessage, '/tf_static', transforms.STATIC_QOS)
-        msg = _transform(0, 0.25)
-        msg.transforms[0].header.frame_id, msg.transforms[0].child_frame_id = 'a', 'b'
-        publisher.publish(msg)
-        msg.transforms[0].transform.translation.x = 0.5  # the latest of a child frame wins
-        publisher.publish(msg)
+    nodes, listeners = sharing
+    transforms.share_listener_threads()
+    first, late = TransformBuffer(), TransformBuffer()
+    listeners.append(transforms.TransformListener(nodes[0], first, spin_thread=True))
+    publisher = nodes[2].create_publisher(TFMessage, '/tf_static', transforms.STATIC_QOS)
+    msg = _transform(0, 0.25)
+    msg.transforms[0].header.frame_id, msg.transforms[0].child_frame_id = 'a', 'b'
+    publisher.publish(msg)
+    msg.transforms[0].transform.translation.x = 0.5  # the latest of a child frame wins
+    publisher.publish(msg)
 
-        def x_of(buf):
-            try:
-                return float(buf.lookup('a', 'b')[0][0, 3])
-            except Exception:  # noqa: B902 - not there yet
-                return None
+    def x_of(buf):
+        try:
+            return float(buf.lookup('a', 'b')[0][0, 3])
+        except Exception:  # noqa: B902 - not there yet
+            return None
 
-        assert _wait(lambda: x_of(first) == 0.5)
-        listeners.append(transforms.TransformListener(nodes[1], late, spin_thread=True))
-        assert x_of(late) == 0.5  # at once, from the hub
-    finally:
-        for listener in listeners:
-            listener.destroy()
-        for node in nodes:
-            node.destroy_node()
-        rclpy.shutdown(context=context)
+    assert _wait(lambda: x_of(first) == 0.5)
+    listeners.append(transforms.TransformListener(nodes[1], late, spin_thread=True))
+    assert x_of(late) == 0.5  # at once, from the hub
