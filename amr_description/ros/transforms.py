@@ -178,6 +178,16 @@ class _OwnThread:
             self.thread.join(timeout=2.0)
 
 
+def _entries(msg):
+    """Return a TFMessage's transforms as ``(parent, child, stamp s, xyz, xyzw)`` tuples."""
+    out = []
+    for t in msg.transforms:
+        tr, q = t.transform.translation, t.transform.rotation
+        out.append((t.header.frame_id, t.child_frame_id, stamp_seconds(t.header.stamp),
+                    (tr.x, tr.y, tr.z), (q.x, q.y, q.z, q.w)))
+    return out
+
+
 def _subscribe(node, store, callback_group):
     return [node.create_subscription(TFMessage, '/tf', lambda m: store(m, False), 100,
                                      callback_group=callback_group),
@@ -193,25 +203,27 @@ class _Hub:
     transform published before it started. The hub's one subscription got them once, so it
     keeps the latest static transform of each child frame and hands them to a listener that
     joins later (a composed server configured after the robot_state_publisher's statics came).
+    Each message's transforms are read out of it once for all the listeners.
     """
 
     def __init__(self, context):
         self.key = id(context)
         self.listeners = ()  # replaced, never changed in place: read without a lock
-        self.statics = {}  # child frame -> its latest static TransformStamped
+        self.statics = {}  # child frame -> its latest static transform, as :func:`_entries`
         self.static_lock = threading.Lock()
         self.own = _OwnThread(context, self._store)
         _SPINNING.add(self)
 
     def _store(self, msg, static):
+        entries = _entries(msg)  # read once, whatever the number of listeners
         if not static:
             for listener in self.listeners:
-                listener._store(msg, static)
+                listener._fill(entries, static)
             return
         with self.static_lock:  # a listener joins before or after this message, not during
-            self.statics.update((t.child_frame_id, t) for t in msg.transforms)
+            self.statics.update((entry[1], entry) for entry in entries)
             for listener in self.listeners:
-                listener._store(msg, static)
+                listener._fill(entries, static)
 
     @staticmethod
     def join(listener):
@@ -222,8 +234,7 @@ class _Hub:
                 hub = _HUBS[id(listener.node.context)] = _Hub(listener.node.context)
             with hub.static_lock:
                 hub.listeners = hub.listeners + (listener,)
-                if hub.statics:
-                    listener._store(TFMessage(transforms=list(hub.statics.values())), True)
+                listener._fill(list(hub.statics.values()), True)
         return hub
 
     def remove(self, listener):
@@ -283,12 +294,13 @@ class TransformListener:
             self._subs = _subscribe(node, self._store, callback_group)
 
     def _store(self, msg, static):
-        for t in msg.transforms:
-            tr, q = t.transform.translation, t.transform.rotation
+        self._fill(_entries(msg), static)
+
+    def _fill(self, entries, static):
+        for parent, child, stamp, translation, rotation in entries:
             try:
-                self.buffer.set_transform(t.header.frame_id, t.child_frame_id,
-                                          stamp_seconds(t.header.stamp), (tr.x, tr.y, tr.z),
-                                          (q.x, q.y, q.z, q.w), static=static)
+                self.buffer.set_transform(parent, child, stamp, translation, rotation,
+                                          static=static)
             except ValueError as exc:
                 self.node.get_logger().warning(
                     f"{'/tf_static' if static else '/tf'}: {exc}", throttle_duration_sec=5.0)

@@ -12,7 +12,9 @@ seconds of ``/clock``) and the CPU share (% of one core, from ``/proc``) of ever
 first with the robots standing (``--seconds`` of wall time after every lifecycle manager said
 "Managed nodes are active" and ``--warmup`` seconds), then while every robot shuttles between
 its spawn and its goal of :data:`GOALS` (a NavigateToPose goal to ``/rI/navigate_to_pose``,
-the next one as soon as the last ended), with the legs that succeeded and failed counted.
+the next one as soon as the last ended), with the legs that succeeded and failed counted,
+and the whole machine's busy share (all cores, ``/proc/stat``: the browser's CPU is not the
+stack's). ``--no-viewer`` runs the stacks with ``viewer:=false`` and no browser.
 
 Run: ``python -m amr_description.tools.benchmark.nav_fleet [--robots 1 4] [--seconds S]``;
 the figures are in docs/navigation.md.
@@ -30,7 +32,7 @@ from amr_description.tools.benchmark.nav_cost import free_port
 from amr_description.tools.benchmark.nav_cost import Observer
 from amr_description.tools.benchmark.nav_cost import start_stack
 
-GOALS = [(-0.7, -0.3), (2.7, -0.3), (0.5, 2.0), (2.7, 1.9)]
+GOALS = [(0.5, 0.55), (2.7, -0.3), (0.5, 2.0), (2.7, 1.9)]
 """Goal of robot rI at index I - 1 in arena.sdf (map frame, m): about 0.7 m from its spawn on
 the fleet's 2 m grid, in free space beside it (walls and pillars 0.5 m or more away)."""
 
@@ -84,6 +86,22 @@ class _Shuttle:
         self.client.destroy()
 
 
+def _machine_busy():
+    """Return ``(busy, total)`` CPU jiffies of the whole machine (``/proc/stat``)."""
+    with open('/proc/stat') as f:
+        values = [int(v) for v in f.readline().split()[1:]]
+    idle = values[3] + values[4]  # idle, iowait
+    return sum(values) - idle, sum(values)
+
+
+def _measured(window):
+    """Run ``window()``; return its figures and the machine's busy share, % of all cores."""
+    busy0, total0 = _machine_busy()
+    figures = window()
+    busy1, total1 = _machine_busy()
+    return figures, 100.0 * (busy1 - busy0) / max(total1 - total0, 1)
+
+
 def _shuttling(observer, shuttles):
     """Return a ``spin(seconds)`` that keeps every robot of ``shuttles`` on its legs."""
     def spin(seconds):
@@ -95,12 +113,14 @@ def _shuttling(observer, shuttles):
     return spin
 
 
-def _stage(count, seconds, warmup, env, observer, stream, log):
+def _stage(count, seconds, warmup, env, observer, stream, log, viewer=True):
     """Run the fleet of ``count`` robots once; return its lines."""
+    import contextlib
     from amr_description.tools.screenshot import browser_page
     port = free_port()
     stack, lines = start_stack('fleet', [f'robots:={count}', 'world:=arena', 'navigation:=true',
-                                         f'viewer_port:={port}'], env, stream)
+                                         f'viewer_port:={port}', f'viewer:={viewer}'],
+                               env, stream)
     names = [f'r{i}' for i in range(1, count + 1)]
     shuttles = []
     out = []
@@ -115,15 +135,20 @@ def _stage(count, seconds, warmup, env, observer, stream, log):
         for shuttle in shuttles:
             if not shuttle.client.wait_for_server(timeout_sec=60.0):
                 raise RuntimeError(f'/{shuttle.ns}/navigate_to_pose: no action server in 60 s')
-        with browser_page(f'http://127.0.0.1:{port}', {'width': 1000, 'height': 700}, 60000):
+        page = browser_page(f'http://127.0.0.1:{port}', {'width': 1000, 'height': 700},
+                            60000) if viewer else contextlib.nullcontext()
+        with page:
             observer.spin_for(warmup, drive=False)
-            standing = _window(observer, [stack], seconds)
-            driving = _window(observer, [stack], seconds, _shuttling(observer, shuttles))
-        for label, (rtf, cpu) in (('standing', standing), ('navigating', driving)):
+            standing = _measured(lambda: _window(observer, [stack], seconds))
+            driving = _measured(lambda: _window(observer, [stack], seconds,
+                                                _shuttling(observer, shuttles)))
+        for label, ((rtf, cpu), busy) in (('standing', standing), ('navigating', driving)):
             parts = ', '.join(f'{k} {v:.1f}' for k, v in
                               sorted(cpu.items(), key=lambda kv: -kv[1]))
-            out.append(f'fleet of {count} in arena, {label}: RTF {rtf:.3f}; Nav2 processes '
-                       f'{cpu.get(NAV2, 0.0):.1f} % of one core ({parts})')
+            where = 'arena' if viewer else 'arena (no viewer)'
+            out.append(f'fleet of {count} in {where}, {label}: RTF {rtf:.3f}; Nav2 processes '
+                       f'{cpu.get(NAV2, 0.0):.1f} % of one core ({parts}); machine '
+                       f'{busy:.0f} % busy (all cores, the browser too)')
             log(out[-1])
         legs = ', '.join(f'{s.ns} {s.succeeded}/{s.succeeded + s.failed}' for s in shuttles)
         out.append(f'fleet of {count}: legs succeeded {legs}')
@@ -137,7 +162,7 @@ def _stage(count, seconds, warmup, env, observer, stream, log):
         stack.wait(timeout=60.0)
 
 
-def run(robots=(1, 4), seconds=30.0, warmup=10.0, domain_id=213, log=print):
+def run(robots=(1, 4), seconds=30.0, warmup=10.0, domain_id=213, log=print, viewer=True):
     """
     Run one stage per robot count; return their lines (also passed to ``log``).
 
@@ -145,6 +170,7 @@ def run(robots=(1, 4), seconds=30.0, warmup=10.0, domain_id=213, log=print):
     :param seconds: wall seconds of each measured window (standing, navigating).
     :param warmup: wall seconds with the page open before the standing window.
     :param domain_id: the private ROS domain.
+    :param viewer: run the viewer with its page open in chromium.
     :returns: list of str.
     :raises ValueError: a count out of 1 ... ``len(GOALS)``.
     """
@@ -158,7 +184,7 @@ def run(robots=(1, 4), seconds=30.0, warmup=10.0, domain_id=213, log=print):
     out = []
     try:
         for count in robots:
-            out += _stage(count, seconds, warmup, env, observer, stream, log)
+            out += _stage(count, seconds, warmup, env, observer, stream, log, viewer)
     finally:
         observer.close()
         stream.close()
@@ -173,8 +199,10 @@ def main(argv=None):
                         help='robot counts, one stage each (1 4)')
     parser.add_argument('--seconds', type=float, default=30.0,
                         help='wall seconds of each measured window (30)')
+    parser.add_argument('--no-viewer', action='store_true',
+                        help='run the stacks with viewer:=false')
     args = parser.parse_args(argv)
-    run(tuple(args.robots), args.seconds)
+    run(tuple(args.robots), args.seconds, viewer=not args.no_viewer)
     return 0
 
 
