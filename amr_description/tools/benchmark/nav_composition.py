@@ -19,12 +19,10 @@ the figures are in docs/navigation.md.
 """
 
 import argparse
-import os
-import tempfile
 import time
 
 from amr_description.tools.benchmark.nav_cost import free_port
-from amr_description.tools.benchmark.nav_cost import Observer
+from amr_description.tools.benchmark.nav_cost import private_session
 from amr_description.tools.benchmark.nav_cost import process_cpu
 from amr_description.tools.benchmark.nav_cost import start_stack
 from amr_description.tools.benchmark.nav_cost import wait_for_line
@@ -113,14 +111,9 @@ def run(world='warehouse', seconds=30.0, warmup=10.0, domain_id=212, log=print):
     :param domain_id: the private ROS domain.
     :returns: list of str.
     """
-    env = dict(os.environ, ROS_DOMAIN_ID=str(domain_id),
-               ROS_AUTOMATIC_DISCOVERY_RANGE='LOCALHOST')
-    folder = tempfile.mkdtemp(prefix='amr_nav_composition_')
-    stream = open(os.path.join(folder, 'stacks.log'), 'w')
-    observer = Observer(domain_id)
     out = []
     shares = {}
-    try:
+    with private_session(domain_id, 'amr_nav_composition_') as (env, _, stream, observer):
         for composed in (True, False):
             idle, driving, _ = _stage(composed, world, seconds, warmup, env, observer, stream)
             label = f'navigation in {world}, use_composition:={composed}'
@@ -132,9 +125,6 @@ def run(world='warehouse', seconds=30.0, warmup=10.0, domain_id=212, log=print):
             ratio = shares[True, name] / max(shares[False, name], 1e-9)
             out.append(f'Nav2 processes composed / separate, {name}: {ratio:.2f}')
             log(out[-1])
-    finally:
-        observer.close()
-        stream.close()
     return out
 
 

@@ -21,6 +21,7 @@ figures are in docs/navigation.md.
 """
 
 import argparse
+import contextlib
 import os
 import subprocess
 import tempfile
@@ -178,6 +179,27 @@ def _line(stage, figures, names):
             f'CPU (% of one core): {cpu}')
 
 
+@contextlib.contextmanager
+def private_session(domain_id, prefix):
+    """
+    Yield ``(env, folder, stream, observer)`` for a benchmark's stacks on a private domain.
+
+    ``env``: the processes' environment (``ROS_DOMAIN_ID``, localhost discovery); ``folder``:
+    a new temporary folder; ``stream``: its open ``stacks.log`` for the processes' output;
+    ``observer``: an :class:`Observer` on the domain. The observer and the log are closed after.
+    """
+    env = dict(os.environ, ROS_DOMAIN_ID=str(domain_id),
+               ROS_AUTOMATIC_DISCOVERY_RANGE='LOCALHOST')
+    folder = tempfile.mkdtemp(prefix=prefix)
+    stream = open(os.path.join(folder, 'stacks.log'), 'w')
+    observer = Observer(domain_id)
+    try:
+        yield env, folder, stream, observer
+    finally:
+        observer.close()
+        stream.close()
+
+
 def run(world='warehouse', seconds=60.0, warmup=10.0, domain_id=211, log=print):
     """
     Run both stages; return their lines (also passed to ``log``).
@@ -187,13 +209,8 @@ def run(world='warehouse', seconds=60.0, warmup=10.0, domain_id=211, log=print):
     :param warmup: wall seconds of driving with the page open before measuring.
     :param domain_id: the private ROS domain.
     """
-    env = dict(os.environ, ROS_DOMAIN_ID=str(domain_id),
-               ROS_AUTOMATIC_DISCOVERY_RANGE='LOCALHOST')
-    folder = tempfile.mkdtemp(prefix='amr_nav_cost_')
-    stream = open(os.path.join(folder, 'stacks.log'), 'w')
-    observer = Observer(domain_id)
     lines_out = []
-    try:
+    with private_session(domain_id, 'amr_nav_cost_') as (env, folder, stream, observer):
         port = free_port()
         slam, lines = start_stack('slam', [f'world:={world}', f'viewer_port:={port}'], env, stream)
         try:
@@ -240,9 +257,6 @@ def run(world='warehouse', seconds=60.0, warmup=10.0, domain_id=211, log=print):
                 if orchestrator is not None:
                     orchestrator.shutdown()
                     orchestrator.wait(timeout=60.0)
-    finally:
-        observer.close()
-        stream.close()
     return lines_out
 
 

@@ -22,14 +22,12 @@ the figures are in docs/navigation.md.
 
 import argparse
 import math
-import os
-import tempfile
 import time
 
 from amr_description.launch.stacks import fleet_grid
 from amr_description.tools.benchmark.nav_composition import _window
 from amr_description.tools.benchmark.nav_cost import free_port
-from amr_description.tools.benchmark.nav_cost import Observer
+from amr_description.tools.benchmark.nav_cost import private_session
 from amr_description.tools.benchmark.nav_cost import start_stack
 
 GOALS = [(0.5, 0.55), (2.7, -0.3), (0.5, 2.0), (2.7, 1.9)]
@@ -176,18 +174,10 @@ def run(robots=(1, 4), seconds=30.0, warmup=10.0, domain_id=213, log=print, view
     """
     if any(not 1 <= n <= len(GOALS) for n in robots):
         raise ValueError(f'--robots: expected counts from 1 to {len(GOALS)}, got {robots}')
-    env = dict(os.environ, ROS_DOMAIN_ID=str(domain_id),
-               ROS_AUTOMATIC_DISCOVERY_RANGE='LOCALHOST')
-    folder = tempfile.mkdtemp(prefix='amr_nav_fleet_')
-    stream = open(os.path.join(folder, 'stacks.log'), 'w')
-    observer = Observer(domain_id)
     out = []
-    try:
+    with private_session(domain_id, 'amr_nav_fleet_') as (env, _, stream, observer):
         for count in robots:
             out += _stage(count, seconds, warmup, env, observer, stream, log, viewer)
-    finally:
-        observer.close()
-        stream.close()
     log(f"(the stacks' output: {stream.name})")
     return out
 
