@@ -11,8 +11,9 @@ one overrides the radius), ``footprint_padding`` (0.01), ``width``/``height`` (5
 ``resolution`` (0.1), ``origin_x``/``origin_y`` (0.0), ``rolling_window`` (false),
 ``track_unknown_space`` (false), ``lethal_cost_threshold`` (100), ``unknown_cost_value``
 (255), ``trinary_costmap`` (true), ``update_frequency`` (5.0 Hz), ``publish_frequency``
-(1.0 Hz), ``transform_tolerance`` (0.3 s), ``map_topic`` (map), ``plugins``
-([static_layer, obstacle_layer, inflation_layer]) and each layer's ``<layer>.plugin``:
+(1.0 Hz), ``transform_tolerance`` (0.3 s), ``initial_transform_timeout`` (60.0 s), ``map_topic``
+(map), ``plugins`` ([static_layer, obstacle_layer, inflation_layer]) and each layer's
+``<layer>.plugin``:
 
 - ``nav2_costmap_2d::StaticLayer``: the map on ``map_topic`` (reliable, transient local unless
   ``map_subscribe_transient_local`` is false); a costmap that is not a rolling window takes
@@ -33,10 +34,18 @@ namespace): ``costmap`` (OccupancyGrid, Nav2's translation) and ``costmap_raw``
 (PolygonStamped). Services: ``clear_entirely_<name>`` (nav2_msgs/ClearEntireCostmap),
 ``get_costmap`` (nav2_msgs/GetCostmap). The layers' arithmetic is
 :mod:`amr_description.nav.costmap`.
+
+Activation waits, as ``Costmap2DROS::on_activate`` (``nav2_costmap_2d/src/costmap_2d_ros.cpp``)
+does, until TF joins ``robot_base_frame`` to ``global_frame``: it says "Timed out waiting for
+transform from BASE to GLOBAL to become available, tf error: ..." twice a second, and after
+``initial_transform_timeout`` seconds of the node's clock it fails the server's activation
+("Failed to activate NAME because transform from BASE to GLOBAL did not become available before
+timeout"), so a lifecycle manager becomes active only once SLAM or AMCL publishes ``map``.
 """
 
 import array
 import math
+import time
 
 from amr_description.core.tf_buffer import TransformException
 from amr_description.nav import costmap as cm
@@ -64,6 +73,7 @@ DEFAULTS = {
     'origin_x': 0.0, 'origin_y': 0.0, 'rolling_window': False, 'track_unknown_space': False,
     'lethal_cost_threshold': 100, 'unknown_cost_value': 255, 'trinary_costmap': True,
     'update_frequency': 5.0, 'publish_frequency': 1.0, 'transform_tolerance': 0.3,
+    'initial_transform_timeout': 60.0,
     'map_topic': 'map', 'always_send_full_costmap': False,
     'plugins': ['static_layer', 'obstacle_layer', 'inflation_layer'],
 }
@@ -168,8 +178,37 @@ class CostmapNode(Node):
         return np.full(self.grid.shape, self._unknown(), np.uint8)
 
     # lifecycle, driven by the server
+    def wait_for_transform(self, period=0.5):
+        """
+        Wait until TF joins ``robot_base_frame`` to ``global_frame`` (Costmap2DROS's activate).
+
+        :param period: seconds of wall time between two checks (upstream's 2 Hz rate).
+        :raises RuntimeError: when ``initial_transform_timeout`` seconds of the node's clock
+            pass first.
+        """
+        base, frame = self.p['robot_base_frame'], self.p['global_frame']
+        self.get_logger().info('Checking transform')
+        deadline = None
+        while True:
+            try:
+                self.tf.lookup(frame, base)
+                return
+            except TransformException as exc:
+                error = str(exc).strip()
+            self.get_logger().info(f'Timed out waiting for transform from {base} to {frame} '
+                                   f'to become available, tf error: {error}')
+            now = self.get_clock().now().nanoseconds * 1e-9
+            if deadline is None or now < deadline - self.p['initial_transform_timeout']:
+                deadline = now + self.p['initial_transform_timeout']  # first check, or a reset
+            elif now > deadline:
+                raise RuntimeError(f'Failed to activate {self.name} because transform from '
+                                   f'{base} to {frame} did not become available before '
+                                   'timeout')
+            time.sleep(period)
+
     def start(self):
-        """Subscribe, publish and update (the server's activate)."""
+        """Wait for TF, then subscribe, publish and update (the server's activate)."""
+        self.wait_for_transform()
         for kind, layer, params in self.layers:
             if kind == 'static':
                 qos = LATCHED if params['map_subscribe_transient_local'] else 10

@@ -13,12 +13,14 @@ success when the managed nodes are active).
 Each node is driven through its ``<node>/change_state`` and checked with ``<node>/get_state``
 (the plan is :mod:`amr_description.core.lifecycle_plan`); a transition that fails, or leaves
 the node in another state, stops the command with ``Failed to change state for node: X``.
-Unlike Nav2, before each transition a node is asked ``get_state`` (every second, for up to
-10 s) until it answers, and a ``change_state`` that gets no answer counts as done when
-``get_state`` then reports the goal state: rmw_fastrtps drops a service response whose client
-reader the server has not matched within 100 ms ("failed to send response ... (timeout)", also
-reported against Nav2's bring-up in ros2/rmw_fastrtps#706), which a loaded machine met in one
-of six bring-ups.
+A transition is waited for without a limit, as Nav2's manager does (a costmap's activation
+waits for TF up to its ``initial_transform_timeout``). Unlike Nav2, before each transition a
+node is asked ``get_state`` (every second, for up to 10 s) until it answers, and while a
+``change_state`` has no answer the node is asked ``get_state`` every 10 s: a node reporting a
+primary state has finished, and the transition counts as done when that is the goal state.
+rmw_fastrtps drops a service response whose client reader the server has not matched within
+100 ms ("failed to send response ... (timeout)", also reported against Nav2's bring-up in
+ros2/rmw_fastrtps#706), which a loaded machine met in one of six bring-ups.
 After a node is activated and ``bond_timeout`` is above 0, a bond (topic ``bond``, id = the
 node's name, heartbeat period 0.1 s, timeout ``bond_timeout``) must form within
 ``bond_timeout / 2``. While the system is active the bonds are checked every 0.2 s; a broken
@@ -55,6 +57,8 @@ FIRST_CALL_RETRY = 1.0
 BOND_HEARTBEAT_PERIOD = 0.1
 BOND_CHECK_PERIOD = 0.2
 RESPAWN_CHECK_PERIOD = 1.0
+TRANSITION_STATES = 10
+"""lifecycle_msgs/State ids from here up are transition states (configuring = 10, ...)."""
 
 
 class _Managed:
@@ -198,13 +202,24 @@ class LifecycleManager(Node):
             return False
         request = ChangeState.Request()
         request.transition = Transition(id=step.transition)
-        answer = self._call(managed.change_state, request)
-        if answer is not None and not answer.success:
-            return False
-        # no answer: the node may have made the transition and its response been dropped
-        # (rmw_fastrtps drops a response whose reader it has not matched within 100 ms)
-        state = self._call(managed.get_state, GetState.Request())
-        return state is not None and state.current_state.id == step.goal
+        done = threading.Event()
+        future = managed.change_state.call_async(request)
+        future.add_done_callback(lambda _: done.set())
+        # as Nav2's, no limit on the transition itself (a costmap's activate waits up to its
+        # initial_transform_timeout for TF); every CALL_TIMEOUT without an answer the node is
+        # asked for its state: a node busy in the transition does not answer, or answers with
+        # a transition state, and is waited for; a finished one (its response dropped: rmw
+        # fastrtps drops one whose reader it has not matched within 100 ms) ends the wait
+        while not done.wait(CALL_TIMEOUT):
+            if not self.context.ok() or shutdown.interrupted():
+                managed.change_state.remove_pending_request(future)
+                return False
+            state = self._call(managed.get_state, GetState.Request(), FIRST_CALL_RETRY)
+            if state is not None and 0 < state.current_state.id < TRANSITION_STATES:
+                managed.change_state.remove_pending_request(future)
+                return state.current_state.id == step.goal
+        answer = future.result()
+        return answer is not None and answer.success
 
     # bonds
     def _bond(self, name):

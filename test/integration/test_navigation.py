@@ -6,7 +6,9 @@ Navigation as nav2_bringup starts it, over real DDS, on the simulated robot in a
 One stack: ``sim.launch.py world:=arena`` and ``bringup_launch.py map:=<arena map>`` (map_server,
 amcl, controller_server, planner_server, behavior_server, velocity_smoother, bt_navigator,
 waypoint_follower and both lifecycle managers, config/nav2_params.yaml), composed in one
-``nav2_container`` process as nav2_bringup's default. After the initial pose:
+``nav2_container`` process as nav2_bringup's default. The navigation servers' manager waits,
+as upstream's, on the global costmap's activation ("Timed out waiting for transform from
+base_footprint to map") until AMCL is given the initial pose. Then:
 goals outside the map and with NaN end at once with GOAL_OUTSIDE_MAP (204) and the stack keeps
 running; a NavigateToPose goal past the centre pillar succeeds with the robot's ground truth within
 Nav2's goal tolerances (plus AMCL's error) and feedback filled (distance remaining falling,
@@ -171,10 +173,18 @@ def test_navigate_to_pose_on_the_simulated_robot(procs, exe, ros_env, tmp_path):
                        f'map:={tmp_path}/arena.yaml', 'use_sim_time:=true'], ros_env)
     peer = NavPeer(int(ros_env['ROS_DOMAIN_ID']))
     try:
-        assert nav.wait_for_output('[lifecycle_manager_navigation]: Managed nodes are active',
-                                   240.0), nav.output[-3000:]
         assert nav.wait_for_output('[lifecycle_manager_localization]: Managed nodes are '
-                                   'active', 60.0), nav.output[-3000:]
+                                   'active', 240.0), nav.output[-3000:]
+        # as upstream's: the global costmap's activation waits for map -> base_footprint,
+        # which AMCL publishes once given a pose (RViz's "2D Pose Estimate")
+        assert nav.wait_for_output('[global_costmap.global_costmap]: Timed out waiting for '
+                                   'transform from base_footprint to map to become available',
+                                   120.0), nav.output[-3000:]
+        assert '[lifecycle_manager_navigation]: Managed nodes are active' not in nav.output
+        assert peer.spin_until(lambda: peer.odom, 120.0), sim.output[-2000:]
+        assert peer.spin_until(lambda: peer.set_initial_pose() or peer.amcl, 120.0)
+        assert nav.wait_for_output('[lifecycle_manager_navigation]: Managed nodes are active',
+                                   120.0), nav.output[-3000:]
         # composed, as nav2_bringup's default: every node loaded into one container process
         for plugin, name in (('nav2_amcl::AmclNode', 'amcl'),
                              ('nav2_controller::ControllerServer', 'controller_server'),
@@ -182,8 +192,6 @@ def test_navigate_to_pose_on_the_simulated_robot(procs, exe, ros_env, tmp_path):
                               'lifecycle_manager_navigation')):
             assert f"[nav2_container]: Loaded component '{plugin}' as '/{name}'" in nav.output
         assert nav.output.count('[component_container_isolated-1]') > 10, nav.output[-3000:]
-        assert peer.spin_until(lambda: peer.odom, 120.0), sim.output[-2000:]
-        assert peer.spin_until(lambda: peer.set_initial_pose() or peer.amcl, 120.0)
         # the planner knows the robot's pose in map once the global costmap shows its footprint
         assert peer.spin_until(lambda: peer.footprints, 120.0), nav.output[-3000:]
 

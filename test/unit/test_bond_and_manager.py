@@ -7,6 +7,7 @@ In-process rclpy (own ROS_DOMAIN_ID, localhost discovery), no processes.
 """
 
 import os
+import threading
 import time
 
 from conftest import next_domain_id
@@ -113,29 +114,84 @@ def test_composed_nodes_share_one_endpoint_per_topic_and_still_bond(ros, monkeyp
     bond.destroy()
 
 
-def test_manager_counts_an_unanswered_transition_done_when_get_state_says_so(ros, monkeypatch):
-    from amr_description.nodes.lifecycle_manager import LifecycleManager
+class _ChangeClient:
+    """A change_state client whose answer never comes (dropped) or comes when told."""
+
+    def __init__(self):
+        from rclpy.task import Future
+        self.futures, self.removed, self.Future = [], [], Future
+
+    def call_async(self, request):
+        assert isinstance(request, ChangeState.Request)
+        self.futures.append(self.Future())
+        return self.futures[-1]
+
+    def remove_pending_request(self, future):
+        self.removed.append(future)
+
+
+def test_manager_waits_for_a_transition_and_counts_a_dropped_answer_by_get_state(
+        ros, monkeypatch):
+    from amr_description.nodes import lifecycle_manager as lm
     from lifecycle_msgs.msg import State
     from lifecycle_msgs.srv import GetState
     make, spin_until = ros
-    manager = LifecycleManager.__new__(LifecycleManager)
+    monkeypatch.setattr(lm, 'CALL_TIMEOUT', 0.05)
+    manager = lm.LifecycleManager.__new__(lm.LifecycleManager)
     rclpy.node.Node.__init__(manager, 'lifecycle_manager_t', context=make('unused').context)
     manager.node_names, manager.bonds = ['m'], {}
-    manager.managed = {'m': type('Managed', (), {'change_state': 'change',
-                                                 'get_state': 'get'})()}
-    reports = {'state': lp.ACTIVE}
+    change = _ChangeClient()
+    manager.managed = {'m': type('Managed', (), {'change_state': change, 'get_state': 'get'})()}
+    reports = [lp.ACTIVE]  # get_state's answers, the last one repeated; None: no answer
 
     def call(client, request, timeout=None):
-        if client == 'change':
-            assert isinstance(request, ChangeState.Request)
-            return None  # the answer was dropped
+        assert client == 'get' and isinstance(request, GetState.Request)
+        state = reports.pop(0) if len(reports) > 1 else reports[0]
+        if state is None:
+            return None
         answer = GetState.Response()
-        answer.current_state = State(id=reports['state'])
+        answer.current_state = State(id=state)
         return answer
 
     monkeypatch.setattr(manager, '_call', call)
     step = lp.plan(lp.RESUME, ['m'])[0]
-    assert manager._change(step)
-    reports['state'] = lp.INACTIVE  # the transition did not happen
+    assert manager._change(step)  # the answer was dropped, the node is active
+    reports[:] = [lp.INACTIVE, lp.INACTIVE]  # the transition did not happen
     assert not manager._change(step)
+    assert len(change.removed) == 2
+    # busy in the transition (no answer, then "activating"): waited for until it answers
+    reports[:] = [lp.INACTIVE, None, State.TRANSITION_STATE_ACTIVATING, None]
+    answered = threading.Timer(0.5, lambda: change.futures[-1].set_result(
+        ChangeState.Response(success=True)))
+    answered.start()
+    started = time.monotonic()
+    assert manager._change(step)
+    assert time.monotonic() - started >= 0.4 and len(change.removed) == 2
     manager.destroy_node()
+
+
+def test_a_costmap_activates_once_tf_joins_its_frames_and_fails_after_the_timeout(ros, caplog):
+    from amr_description.core.tf_buffer import TransformBuffer
+    from amr_description.nodes.costmap_2d import CostmapNode
+    from rclpy.parameter import Parameter
+    make, _ = ros
+    tf = TransformBuffer()
+    costmap = CostmapNode('global_costmap', tf, context=make('unused2').context,
+                          parameter_overrides=[Parameter('initial_transform_timeout',
+                                                         value=0.3)])
+    started = time.monotonic()
+    with pytest.raises(RuntimeError, match='Failed to activate global_costmap because '
+                       'transform from base_link to map did not become available'):
+        costmap.wait_for_transform(period=0.05)
+    assert 0.3 <= time.monotonic() - started < 5.0
+    tf.set_transform('map', 'base_link', 0.0, (1.0, 2.0, 0.0), (0.0, 0.0, 0.0, 1.0),
+                     static=True)
+    costmap.wait_for_transform(period=0.05)  # returns at once
+    costmap.tf = tf = TransformBuffer()
+    threading.Timer(0.2, lambda: tf.set_transform(
+        'map', 'base_link', 0.0, (1.0, 2.0, 0.0), (0.0, 0.0, 0.0, 1.0), static=True)).start()
+    costmap.p['initial_transform_timeout'] = 30.0
+    started = time.monotonic()
+    costmap.wait_for_transform(period=0.05)  # waits until the transform comes
+    assert 0.15 <= time.monotonic() - started < 5.0
+    costmap.destroy_node()
