@@ -7,7 +7,7 @@ The rules of Nav2's default navigation behaviour tree, as plain functions and ta
 1 Hz; a failed plan clears the global costmap and is retried once when a planner recovery
 could help (``WouldAPlannerRecoveryHelp``); a failed FollowPath clears the local costmap and is
 retried once when a controller recovery could help; otherwise, up to 6 times, the round robin
-of recoveries runs (clear both costmaps, Spin 1.57 rad, Wait 5 s, BackUp 0.30 m at 0.05 m/s)
+of recoveries runs (clear both costmaps, Spin 1.57 rad, Wait 5 s, BackUp 0.30 m at 0.15 m/s)
 and the navigation starts over. The result's ``error_code`` is the smallest non-zero of the
 error codes named in ``error_code_names`` (``bt_action_server_impl.hpp``,
 ``populateErrorCode``).
@@ -31,7 +31,7 @@ CONTROLLER_HELPS = {100, 104, 105, 106}
 """FollowPath codes a controller recovery can help: UNKNOWN, PATIENCE_EXCEEDED,
 FAILED_TO_MAKE_PROGRESS, NO_VALID_CONTROL (``would_a_controller_recovery_help_condition``)."""
 
-RECOVERIES = (('clear', None), ('spin', 1.57), ('wait', 5.0), ('backup', (0.30, 0.05)))
+RECOVERIES = (('clear', None), ('spin', 1.57), ('wait', 5.0), ('backup', (0.30, 0.15)))
 """The RoundRobin's children, in order."""
 
 PASSED_GOAL_RADIUS = 0.5

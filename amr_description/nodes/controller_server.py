@@ -229,7 +229,10 @@ class ControllerServer(ManagedNode):
             self.get_logger().info('Received a goal, begin computing control effort.')
         else:
             self.get_logger().info('Passing new path to controller.')
+            # as Nav2's setPlannerPath: the goal checker's and RPP's latches start over
+            # (RegulatedPurePursuitController::setPlan clears has_reached_xy_tolerance_)
             self.run['goal'].reset()
+            self.run['rpp'].reset()
         self.run['path'] = path
         self.run['frame'] = goal.path.header.frame_id or self.costmap.p['global_frame']
 

@@ -173,6 +173,35 @@ def test_rpp_rotates_in_place_with_its_acceleration_limit():
     assert rpp.rotating_to_goal
 
 
+def test_a_new_path_restarts_the_goal_latches_as_nav2s_set_planner_path():
+    # Nav2's ControllerServer::setPlannerPath resets the goal checker and RPP's setPlan its
+    # has_reached_xy_tolerance_: with RPP's latch kept, a replan that moved the goal out of
+    # the reset checker's reach left the robot turning in place until "Failed to make
+    # progress" (docs/navigation.md)
+    import logging
+    from types import SimpleNamespace
+
+    from amr_description.nodes.controller_server import ControllerServer
+    from geometry_msgs.msg import PoseStamped
+    from nav2_msgs.action import FollowPath
+    from nav_msgs.msg import Path
+    rpp = RegulatedPurePursuit({'stateful': True}, 0.1)
+    rpp.compute(np.array([[0.05, 0.0, 1.0]]))
+    checker = SimpleGoalChecker(0.1, 0.1, stateful=True)
+    assert not checker.is_goal_reached((0.0, 0.0, 0.0), (0.05, 0.0, 1.0))
+    assert rpp.rotating_to_goal and checker.xy_reached
+    server = SimpleNamespace(
+        run={'cid': 'FollowPath', 'rpp': rpp, 'goal': checker},
+        _pick=lambda table, name, what: 'FollowPath', controllers={}, goal_checkers={},
+        progress_checkers={}, get_logger=lambda: logging.getLogger('controller_server'),
+        costmap=SimpleNamespace(p={'global_frame': 'odom'}))
+    goal = FollowPath.Goal(path=Path(poses=[PoseStamped()]))
+    goal.path.header.frame_id = 'map'
+    ControllerServer._on_goal(server, SimpleNamespace(request=goal))
+    assert not rpp.rotating_to_goal and not checker.xy_reached
+    assert server.run['frame'] == 'map' and server.run['path'].shape == (1, 3)
+
+
 def test_rpp_refuses_an_arc_into_an_obstacle():
     local = cm.Costmap.empty(3.0, 3.0, 0.05, origin=(-1.5, -1.5), frame='odom')
     local.costs[:, 40] = cm.LETHAL_OBSTACLE  # a wall 0.5 m ahead
