@@ -125,3 +125,14 @@ def test_the_jobs_robot_params_and_table(tmp_path):
     touching = dict(row, truth=[(t, x, 1.35, yaw) for t, x, _, yaw in truth])
     assert format_table([row, touching], truth, wall, robot)[1] is False  # 0.02 m into it
     assert format_table([dict(row, result='ABORTED')], truth, wall, robot)[1] is False
+
+
+def test_the_job_refuses_a_free_running_simulator(capsys):
+    from amr_description.nodes.navigate_job.main import _parse
+    assert _parse(['--rtf', '2']).rtf == 2.0
+    for bad in ('0', '-1', 'nan'):
+        with pytest.raises(SystemExit) as exit_info:
+            _parse(['--rtf', bad])
+        assert exit_info.value.code == 2
+        assert 'argument --rtf: must be > 0 (a factor the navigation stack can follow' in \
+            capsys.readouterr().err

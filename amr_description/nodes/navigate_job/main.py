@@ -77,7 +77,8 @@ def _parse(argv):
                         help='m of clearance on the way to a goal (0.3: through the 0.9 m gaps '
                         'between the shelves; 0.45 keeps the goals in the aisle of the start)')
     parser.add_argument('--rtf', type=float, default=1.0,
-                        help='real-time factor of the simulation (1.0)')
+                        help='real-time factor of the simulation (1.0; the factor reached is '
+                        'printed per phase)')
     parser.add_argument('--output-dir', default='out', help='where the map and PNGs go (out/)')
     parser.add_argument('--goal-timeout', type=float, default=300.0,
                         help='wall seconds per goal before it is canceled (300)')
@@ -92,8 +93,11 @@ def _parse(argv):
     if opts.goals < 1:
         parser.error(f'argument --goals: must be >= 1, got {opts.goals}')
     if not opts.rtf > 0:
-        parser.error('argument --rtf: must be > 0 (the lock-step mode of drive_square is not '
-                     'built for navigation)')
+        # free-running, the simulator ran at 5.7x while SLAM and Nav2 fell behind its clock and
+        # the route missed 5 of 7 waypoints (docs/navigation.md); drive_square's lock-step
+        # needs one commander, and Nav2 has several
+        parser.error(f'argument --rtf: must be > 0 (a factor the navigation stack can follow, '
+                     f'e.g. 2.0), got {opts.rtf:g}')
     return opts
 
 
@@ -185,9 +189,10 @@ def _map_phase(opts, navigator, recorder):
         result = _wait_task(navigator, opts.route_timeout)
         missed = list(getattr(navigator.result_future.result().result, 'missed_waypoints', []))
         t1 = recorder.now()
+        wall = time.monotonic() - started
         print(f'[{PROGRAM}] route {result.name}: {len(route) - len(missed)} of {len(route)} '
-              f'waypoints in {t1 - t0:.1f} s of sim time ({time.monotonic() - started:.1f} s '
-              'wall)', flush=True)
+              f'waypoints in {t1 - t0:.1f} s of sim time ({wall:.1f} s wall, real-time factor '
+              f'{(t1 - t0) / max(wall, 1e-9):.2f})', flush=True)
         if result.name != 'SUCCEEDED' or missed:
             raise RuntimeError(f'the mapping route ended {result.name} with waypoints '
                                f'{[m.index for m in missed]} missed')
@@ -195,8 +200,11 @@ def _map_phase(opts, navigator, recorder):
         ros2 = shutil.which('ros2')
         if ros2 is None:
             raise RuntimeError("no 'ros2' on PATH to run map_saver_cli (source scripts/env.sh)")
+        # save_map_timeout 10 s (2 s by default): a new process on a busy machine took longer
+        # than 2 s to match SLAM's latched /map once (--rtf 2, 50 goals)
         saved = subprocess.run([ros2, 'run', 'nav2_map_server', 'map_saver_cli', '-f', stem,
-                                '--ros-args', '-p', 'use_sim_time:=true'],
+                                '--ros-args', '-p', 'use_sim_time:=true', '-p',
+                                'save_map_timeout:=10.0'],
                                capture_output=True, text=True, timeout=120)
         if saved.returncode != 0 or not os.path.isfile(stem + '.yaml'):
             raise RuntimeError(f'map_saver_cli failed ({saved.returncode}): '
@@ -222,6 +230,7 @@ def _goal_phase(opts, navigator, recorder, map_yaml, true_map, saved_map):
         if not _spin_until(navigator, lambda: navigator.initial_pose_received, 60.0):
             raise RuntimeError('no amcl_pose within 60 s of the stack being active')
         start = recorder.samples[-1]
+        began = time.monotonic()
         goals = sample_goals([true_map, saved_map], start[1:3], opts.goals, opts.seed,
                              passage=opts.passage)
         for i, (x, y, yaw) in enumerate(goals, 1):
@@ -239,6 +248,10 @@ def _goal_phase(opts, navigator, recorder, map_yaml, true_map, saved_map):
             rows.append({'goal': (x, y, yaw), 'start': here[1:], 'result':
                          'REJECTED' if result is None else result.name, 'planned': planned,
                          'truth': recorder.between(t0, recorder.now())})
+        wall = time.monotonic() - began
+        print(f'[{PROGRAM}] goals: {recorder.now() - start[0]:.1f} s of sim time in {wall:.1f} s '
+              f'wall (real-time factor {(recorder.now() - start[0]) / max(wall, 1e-9):.2f})',
+              flush=True)
     finally:
         _stop(orchestrator, log)
     return rows
