@@ -177,6 +177,27 @@ def run_until(argv, env, check, timeout=90.0, **kwargs):
             return result
 
 
+def launched_pids(log_text):
+    """Return the pids a launch log names (``process started with pid [N]``), as ints."""
+    import re
+    return [int(p) for p in re.findall(r'process started with pid \[(\d+)\]', log_text)]
+
+
+def left_running(pids, timeout=30.0):
+    """Wait up to ``timeout`` s for ``pids`` to end; return those still running."""
+    def alive(pid):
+        try:
+            os.kill(pid, 0)
+        except ProcessLookupError:
+            return False
+        return True
+
+    deadline = time.monotonic() + timeout
+    while any(alive(p) for p in pids) and time.monotonic() < deadline:
+        time.sleep(0.1)
+    return [p for p in pids if alive(p)]
+
+
 def _default_sigint():
     """
     Give the child SIGINT's default action (run in the child before exec).

@@ -11,23 +11,14 @@ written, exit code 0, and every process of the stack gone afterwards. With ``--r
 the fleet stack runs and each robot gets its row.
 """
 
-import os
 import re
-import time
 
+from conftest import launched_pids
+from conftest import left_running
 import pytest
 
 CLOSURE = re.compile(r'closure \(end vs start\): /odom ([\d.]+) m, ([\d.]+) deg; '
                      r'ground truth ([\d.]+) m, ([\d.]+) deg')
-PID = re.compile(r'process started with pid \[(\d+)\]')
-
-
-def _alive(pid):
-    try:
-        os.kill(pid, 0)
-    except ProcessLookupError:
-        return False
-    return True
 
 
 def test_main_job_drives_closed_square(ros_env, procs, exe, tmp_path):
@@ -66,13 +57,10 @@ def test_main_job_drives_closed_square(ros_env, procs, exe, tmp_path):
         assert data[:8] == b'\x89PNG\r\n\x1a\n' and len(data) > 10000, name
 
     log = (out / 'sim_stack.log').read_text()
-    pids = [int(p) for p in PID.findall(log)]
+    pids = launched_pids(log)
     # mujoco_sim, robot_state_publisher, create, one spawner for both controllers
     assert len(pids) >= 4, log[-2000:]
-    deadline = time.monotonic() + 30.0
-    while any(_alive(p) for p in pids) and time.monotonic() < deadline:
-        time.sleep(0.1)
-    assert not [p for p in pids if _alive(p)], 'stack processes left behind'
+    assert not left_running(pids), 'stack processes left behind'
 
 
 def test_main_job_two_robots(ros_env, procs, exe, tmp_path):

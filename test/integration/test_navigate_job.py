@@ -14,8 +14,9 @@ process of both stacks gone afterwards.
 
 import os
 import re
-import time
 
+from conftest import launched_pids
+from conftest import left_running
 import numpy as np
 import pytest
 
@@ -24,15 +25,6 @@ pytest.importorskip('nav2_msgs.action')
 ROUTE = re.compile(r'route SUCCEEDED: (\d+) of (\d+) waypoints')
 ROW = re.compile(r'^\s+(\d+)\s+(-?[\d.]+)\s+(-?[\d.]+)\s+(-?[\d.]+)\s+(\w+)\s+([\d.]+)\s+'
                  r'([\d.]+)\s+([\d.]+)\s+([\d.]+)\s+([\d.]+)\s+([\d.]+)\s+(-?[\d.]+)$', re.M)
-PID = re.compile(r'process started with pid \[(\d+)\]')
-
-
-def _alive(pid):
-    try:
-        os.kill(pid, 0)
-    except ProcessLookupError:
-        return False
-    return True
 
 
 def _occupied_near_truth(saved, truth, reach):
@@ -79,10 +71,7 @@ def test_navigate_job_maps_saves_and_reaches_its_goals(ros_env, procs, exe, tmp_
         data = (out / name).read_bytes()
         assert data[:8] == b'\x89PNG\r\n\x1a\n' and len(data) > 10000, name
 
-    pids = [int(p) for name in ('slam_stack.log', 'navigation_stack.log')
-            for p in PID.findall((out / name).read_text())]
+    pids = [p for name in ('slam_stack.log', 'navigation_stack.log')
+            for p in launched_pids((out / name).read_text())]
     assert len(pids) >= 8, pids
-    deadline = time.monotonic() + 30.0
-    while any(_alive(p) for p in pids) and time.monotonic() < deadline:
-        time.sleep(0.1)
-    assert not [p for p in pids if _alive(p)], 'stack processes left behind'
+    assert not left_running(pids), 'stack processes left behind'
