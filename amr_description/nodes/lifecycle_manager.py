@@ -17,7 +17,8 @@ A transition is waited for without a limit, as Nav2's manager does (a costmap's 
 waits for TF up to its ``initial_transform_timeout``). Unlike Nav2, before each transition a
 node is asked ``get_state`` (every second, for up to 10 s) until it answers, and while a
 ``change_state`` has no answer the node is asked ``get_state`` every 10 s: a node reporting a
-primary state has finished, and the transition counts as done when that is the goal state.
+primary state has finished, and the transition counts as done when that is the goal state;
+one whose services are gone (its process ended) counts as failed.
 rmw_fastrtps drops a service response whose client reader the server has not matched within
 100 ms ("failed to send response ... (timeout)", also reported against Nav2's bring-up in
 ros2/rmw_fastrtps#706), which a loaded machine met in one of six bring-ups.
@@ -215,6 +216,9 @@ class LifecycleManager(Node):
                 managed.change_state.remove_pending_request(future)
                 return False
             state = self._call(managed.get_state, GetState.Request(), FIRST_CALL_RETRY)
+            if state is None and not managed.get_state.service_is_ready():
+                managed.change_state.remove_pending_request(future)
+                return False  # the node is gone (its process ended mid-transition)
             if state is not None and 0 < state.current_state.id < TRANSITION_STATES:
                 managed.change_state.remove_pending_request(future)
                 return state.current_state.id == step.goal

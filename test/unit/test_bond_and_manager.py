@@ -141,11 +141,12 @@ def test_manager_waits_for_a_transition_and_counts_a_dropped_answer_by_get_state
     rclpy.node.Node.__init__(manager, 'lifecycle_manager_t', context=make('unused').context)
     manager.node_names, manager.bonds = ['m'], {}
     change = _ChangeClient()
-    manager.managed = {'m': type('Managed', (), {'change_state': change, 'get_state': 'get'})()}
+    get = type('GetClient', (), {'ready': True, 'service_is_ready': lambda self: self.ready})()
+    manager.managed = {'m': type('Managed', (), {'change_state': change, 'get_state': get})()}
     reports = [lp.ACTIVE]  # get_state's answers, the last one repeated; None: no answer
 
     def call(client, request, timeout=None):
-        assert client == 'get' and isinstance(request, GetState.Request)
+        assert client is get and isinstance(request, GetState.Request)
         state = reports.pop(0) if len(reports) > 1 else reports[0]
         if state is None:
             return None
@@ -167,6 +168,11 @@ def test_manager_waits_for_a_transition_and_counts_a_dropped_answer_by_get_state
     started = time.monotonic()
     assert manager._change(step)
     assert time.monotonic() - started >= 0.4 and len(change.removed) == 2
+    # the node's process ended mid-transition: no answer and no service, a failure
+    reports[:] = [lp.INACTIVE, None]
+    get.ready = False
+    assert not manager._change(step)
+    assert len(change.removed) == 3
     manager.destroy_node()
 
 
