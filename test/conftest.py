@@ -297,3 +297,35 @@ def procs(ros_env):
         if proc.popen.poll() is None:
             proc.interrupt(timeout=5.0)
         proc.kill()
+
+
+@pytest.fixture
+def ros():
+    """In-process rclpy on a fresh domain: ``(make(name) -> Node, spin_until(cond, timeout))``."""
+    import rclpy
+    import rclpy.executors
+    import rclpy.node
+    os.environ['ROS_DOMAIN_ID'] = str(next_domain_id())
+    os.environ['ROS_AUTOMATIC_DISCOVERY_RANGE'] = 'LOCALHOST'
+    context = rclpy.context.Context()
+    rclpy.init(context=context)
+    executor = rclpy.executors.SingleThreadedExecutor(context=context)
+    nodes = []
+
+    def make(name):
+        node = rclpy.node.Node(name, context=context)
+        executor.add_node(node)
+        nodes.append(node)
+        return node
+
+    def spin_until(condition, timeout=30.0):
+        deadline = time.monotonic() + timeout
+        while not condition() and time.monotonic() < deadline:
+            executor.spin_once(timeout_sec=0.05)
+        return condition()
+
+    yield make, spin_until
+    for node in nodes:
+        node.destroy_node()
+    executor.shutdown()
+    rclpy.shutdown(context=context)

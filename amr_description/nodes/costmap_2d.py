@@ -21,8 +21,10 @@ one overrides the radius), ``footprint_padding`` (0.01), ``width``/``height`` (5
 - ``nav2_costmap_2d::ObstacleLayer`` (and ``VoxelLayer``, run as one, said once):
   ``observation_sources``, each ``<source>.topic``, ``data_type`` (LaserScan),
   ``marking``/``clearing``, ``obstacle_max_range``/``min``, ``raytrace_max_range``/``min``,
-  ``inf_is_valid``; scans are heard with sensor-data QoS, transformed with TF at their stamp,
-  ray-traced and marked; the footprint is cleared (``footprint_clearing_enabled``);
+  ``inf_is_valid``; scans are heard with sensor-data QoS and wait (up to 10 per source) for
+  TF at their own stamp, as behind Nav2's tf2 MessageFilter; at each update the newest one
+  TF can place is ray-traced and marked; the footprint is cleared
+  (``footprint_clearing_enabled``);
 - ``nav2_costmap_2d::InflationLayer``: ``inflation_radius`` (0.55), ``cost_scaling_factor``
   (10.0), ``inflate_unknown``, ``inflate_around_unknown``.
 
@@ -44,6 +46,7 @@ timeout"), so a lifecycle manager becomes active only once SLAM or AMCL publishe
 """
 
 import array
+import collections
 import math
 import time
 
@@ -82,6 +85,8 @@ SOURCE_DEFAULTS = {
     'obstacle_max_range': 2.5, 'obstacle_min_range': 0.0, 'raytrace_max_range': 3.0,
     'raytrace_min_range': 0.0, 'inf_is_valid': False, 'sensor_frame': '',
 }
+SCAN_QUEUE = 10
+"""Scans kept per observation source while they wait for TF (a MessageFilter's queue)."""
 INFLATION_DEFAULTS = {'inflation_radius': 0.55, 'cost_scaling_factor': 10.0,
                       'inflate_unknown': False, 'inflate_around_unknown': False}
 
@@ -219,7 +224,7 @@ class CostmapNode(Node):
                 for src, sp in params['sources'].items():
                     self._entities.append(self.create_subscription(
                         LaserScan, self._parent_topic(sp['topic']),
-                        lambda m, s=src: self.scans.__setitem__(s, m), qos_profile_sensor_data))
+                        lambda m, s=src: self._queue(s).append(m), qos_profile_sensor_data))
         self.costmap_pub = self.create_publisher(OccupancyGrid, 'costmap', LATCHED)
         self.raw_pub = self.create_publisher(CostmapMsg, 'costmap_raw', LATCHED)
         self.footprint_pub = self.create_publisher(PolygonStamped, 'published_footprint', 1)
@@ -288,23 +293,53 @@ class CostmapNode(Node):
             self.obstacles = moved
         self.grid = cm.Costmap(g.costs, res, (ox, oy), g.frame)
 
-    def _observe(self, params):
-        layer = cm.Costmap(self.obstacles, self.grid.resolution, self.grid.origin)
-        for src, scan in list(self.scans.items()):
-            sp = params['sources'][src]
+    def _queue(self, src):
+        """Return ``src``'s scans waiting for their transform (oldest first, at most 10)."""
+        return self.scans.setdefault(src, collections.deque(maxlen=SCAN_QUEUE))
+
+    def _transformable(self, src, sp):
+        """
+        Return ``(scan, T)``: ``src``'s newest scan whose stamp TF can transform, or None.
+
+        As the tf2 MessageFilter in front of Nav2's observation buffers: a scan waits for the
+        transform at its own stamp, and the buffer keeps the newest one transformed. Older
+        scans go; newer ones, still waiting, stay. Taking the latest transform instead (up to
+        ``transform_tolerance``, 0.3 s, old) could turn the rays of a robot turning at
+        1.8 rad/s 0.54 rad and mark obstacles where there are none.
+        """
+        queue = self._queue(src)
+        for k in range(len(queue) - 1, -1, -1):
+            scan = queue[k]
             frame = sp['sensor_frame'] or scan.header.frame_id
             stamp = scan.header.stamp.sec + scan.header.stamp.nanosec * 1e-9
             try:
-                try:
-                    T, _ = self.tf.lookup(self.p['global_frame'], frame, stamp)
-                except TransformException:
-                    T, t = self.tf.lookup(self.p['global_frame'], frame)
-                    if abs(t - stamp) > self.p['transform_tolerance']:
-                        raise
+                T, _ = self.tf.lookup(self.p['global_frame'], frame, stamp)
             except TransformException as exc:
-                self.get_logger().warning(f"{sp['topic']}: {str(exc).strip()}",
-                                          throttle_duration_sec=5.0)
+                if k == 0 and not self._transform_pending(frame, stamp):
+                    self.get_logger().warning(f"{sp['topic']}: {str(exc).strip()}",
+                                              throttle_duration_sec=5.0)
+                    queue.popleft()  # it never will be
                 continue
+            for _ in range(k + 1):
+                queue.popleft()
+            return scan, T
+        return None
+
+    def _transform_pending(self, frame, stamp):
+        """Return True when TF's latest ``global_frame <- frame`` is older than ``stamp``."""
+        try:
+            _, latest = self.tf.lookup(self.p['global_frame'], frame)
+        except TransformException:
+            return True  # not connected yet: wait for it too
+        return latest < stamp
+
+    def _observe(self, params):
+        layer = cm.Costmap(self.obstacles, self.grid.resolution, self.grid.origin)
+        for src, sp in params['sources'].items():
+            found = self._transformable(src, sp)
+            if found is None:
+                continue
+            scan, T = found
             points, hit = cm.scan_rays(scan.ranges, scan.angle_min, scan.angle_increment,
                                        scan.range_min, scan.range_max, sp['inf_is_valid'],
                                        sp['raytrace_max_range'])
@@ -316,7 +351,6 @@ class CostmapNode(Node):
             if sp['marking']:
                 layer.mark(world[hit], origin, sp['obstacle_max_range'],
                            sp['obstacle_min_range'])
-        self.scans.clear()
         if params['footprint_clearing_enabled'] and self.robot is not None:
             self._clear_footprint(layer)
 

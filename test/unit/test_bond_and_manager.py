@@ -6,11 +6,9 @@ Bonds formed on a heartbeat heard just before they start; the lifecycle manager'
 In-process rclpy (own ROS_DOMAIN_ID, localhost discovery), no processes.
 """
 
-import os
 import threading
 import time
 
-from conftest import next_domain_id
 import pytest
 
 rclpy = pytest.importorskip('rclpy')
@@ -27,34 +25,6 @@ from lifecycle_msgs.srv import ChangeState  # noqa: E402
 
 SLOW = 30.0
 """A heartbeat period (s) longer than any test: a bond sends its first status only."""
-
-
-@pytest.fixture
-def ros():
-    os.environ['ROS_DOMAIN_ID'] = str(next_domain_id())
-    os.environ['ROS_AUTOMATIC_DISCOVERY_RANGE'] = 'LOCALHOST'
-    context = rclpy.context.Context()
-    rclpy.init(context=context)
-    executor = rclpy.executors.SingleThreadedExecutor(context=context)
-    nodes = []
-
-    def make(name):
-        node = rclpy.node.Node(name, context=context)
-        executor.add_node(node)
-        nodes.append(node)
-        return node
-
-    def spin_until(condition, timeout=30.0):
-        deadline = time.monotonic() + timeout
-        while not condition() and time.monotonic() < deadline:
-            executor.spin_once(timeout_sec=0.05)
-        return condition()
-
-    yield make, spin_until
-    for node in nodes:
-        node.destroy_node()
-    executor.shutdown()
-    rclpy.shutdown(context=context)
 
 
 def test_a_bond_forms_on_the_sisters_status_heard_before_it_started(ros):
@@ -174,30 +144,3 @@ def test_manager_waits_for_a_transition_and_counts_a_dropped_answer_by_get_state
     assert not manager._change(step)
     assert len(change.removed) == 3
     manager.destroy_node()
-
-
-def test_a_costmap_activates_once_tf_joins_its_frames_and_fails_after_the_timeout(ros, caplog):
-    from amr_description.core.tf_buffer import TransformBuffer
-    from amr_description.nodes.costmap_2d import CostmapNode
-    from rclpy.parameter import Parameter
-    make, _ = ros
-    tf = TransformBuffer()
-    costmap = CostmapNode('global_costmap', tf, context=make('unused2').context,
-                          parameter_overrides=[Parameter('initial_transform_timeout',
-                                                         value=0.3)])
-    started = time.monotonic()
-    with pytest.raises(RuntimeError, match='Failed to activate global_costmap because '
-                       'transform from base_link to map did not become available'):
-        costmap.wait_for_transform(period=0.05)
-    assert 0.3 <= time.monotonic() - started < 5.0
-    tf.set_transform('map', 'base_link', 0.0, (1.0, 2.0, 0.0), (0.0, 0.0, 0.0, 1.0),
-                     static=True)
-    costmap.wait_for_transform(period=0.05)  # returns at once
-    costmap.tf = tf = TransformBuffer()
-    threading.Timer(0.2, lambda: tf.set_transform(
-        'map', 'base_link', 0.0, (1.0, 2.0, 0.0), (0.0, 0.0, 0.0, 1.0), static=True)).start()
-    costmap.p['initial_transform_timeout'] = 30.0
-    started = time.monotonic()
-    costmap.wait_for_transform(period=0.05)  # waits until the transform comes
-    assert 0.15 <= time.monotonic() - started < 5.0
-    costmap.destroy_node()
