@@ -224,10 +224,11 @@ def test_map_particles_and_the_pose_estimate_tool(procs, exe, ros_env, tmp_path)
             # "collision ahead" in 2 of 3 tries, docs/navigation.md)
             send(2.2, 2.0)
             assert page.wait_for_text('Feedback: active', 60.0), page.page.inner_text('body')
-            assert page.wait_for_text('Distance remaining:', 60.0)
-            # at once: the goal takes about 15 s of sim time, the checks below longer
+            # at once: the goal takes about 14 s of sim time, and beside a busy machine the
+            # page's next check came after the goal had been reached ("Feedback: reached")
             page.page.get_by_text('Cancel', exact=True).click()  # enabled while it runs
             assert page.wait_for_text('Feedback: canceled', 60.0), page.page.inner_text('body')
+            assert page.wait_for_text('Distance remaining:', 60.0)  # the last feedback stays
             assert nav.wait_for_output('Goal canceled', 30.0), nav.output[-3000:]
             for label in ('ParticleCloud', 'Map', 'LaserScan'):  # their colours, out of the way
                 page.page.get_by_text(label, exact=True).click()
