@@ -4,12 +4,13 @@
 """
 End to end: ``./scripts/main --navigate``'s job maps warehouse.sdf, saves the map, navigates.
 
-Runs ``navigate_job --goals 2`` (the job's default world, route and seed; two goals instead of
-ten to keep the suite's time) without the viewer and checks what a user sees: the mapping
-route's seven waypoints reached, the map saved in Nav2's format (a YAML beside a trinary PGM,
-its free and occupied cells where the warehouse's true map has them), a table row per goal
-with SUCCEEDED and a closest approach above 0 (no contact), both PNGs, exit code 0, and every
-process of both stacks gone afterwards.
+Runs ``navigate_job --goals 2 --rtf 0`` (the job's default world, route and seed; two goals
+instead of ten, in lock-step, to keep the suite's time) without the viewer and checks what a
+user sees: the lock-step's report for both phases (the simulator paused and advanced in
+ticks), the mapping route's seven waypoints reached, the map saved in Nav2's format (a YAML
+beside a trinary PGM, its free and occupied cells where the warehouse's true map has them), a
+table row per goal with SUCCEEDED and a closest approach above 0 (no contact), both PNGs, exit
+code 0, and every process of both stacks gone afterwards.
 """
 
 import os
@@ -23,6 +24,7 @@ import pytest
 pytest.importorskip('nav2_msgs.action')
 
 ROUTE = re.compile(r'route SUCCEEDED: (\d+) of (\d+) waypoints')
+LOCKSTEP = re.compile(r'real-time factor ([\d.]+)\); lock-step: (\d+) ticks')
 ROW = re.compile(r'^\s+(\d+)\s+(-?[\d.]+)\s+(-?[\d.]+)\s+(-?[\d.]+)\s+(\w+)\s+([\d.]+)\s+'
                  r'([\d.]+)\s+([\d.]+)\s+([\d.]+)\s+([\d.]+)\s+([\d.]+)\s+(-?[\d.]+)$', re.M)
 
@@ -44,10 +46,13 @@ def test_navigate_job_maps_saves_and_reaches_its_goals(ros_env, procs, exe, tmp_
     from amr_description.nav import map_io
     from amr_description.nav.world_map import world_map
     out = tmp_path / 'out'
-    proc = procs.start([exe('navigate_job'), '--goals', '2', '--output-dir', str(out),
-                        '--viewer-port', '0'], ros_env)
+    proc = procs.start([exe('navigate_job'), '--goals', '2', '--rtf', '0', '--output-dir',
+                        str(out), '--viewer-port', '0'], ros_env)
     assert proc.wait(timeout=1500) == 0, proc.output[-4000:]
     text = proc.output
+    # both phases ran in lock-step: over 500 ticks of 0.05 s each (the route alone takes ~90 s)
+    phases = LOCKSTEP.findall(text)
+    assert len(phases) == 2 and all(int(ticks) > 500 for _, ticks in phases), text[-4000:]
 
     match = ROUTE.search(text)
     assert match and match.group(1) == match.group(2) == '7', text[-4000:]

@@ -122,17 +122,39 @@ def test_the_jobs_robot_params_and_table(tmp_path):
         in text, text
     assert "1 of 1 goals SUCCEEDED; the ground truth ended within Nav2's default " \
         'tolerances (0.25 m, 0.25 rad) at 1' in text
+    # the time runs from the goal's sending to its result, not to the last ground truth
+    settled = dict(row, span=(10.0, 14.0))
+    assert f'  SUCCEEDED     4.0 {bound:7.1f}' in format_table([settled], truth, wall, robot)[0]
     touching = dict(row, truth=[(t, x, 1.35, yaw) for t, x, _, yaw in truth])
     assert format_table([row, touching], truth, wall, robot)[1] is False  # 0.02 m into it
     assert format_table([dict(row, result='ABORTED')], truth, wall, robot)[1] is False
 
 
-def test_the_job_refuses_a_free_running_simulator(capsys):
+def test_the_jobs_real_time_factor_is_a_factor_or_0_for_lock_step(capsys):
     from amr_description.nodes.navigate_job.main import _parse
     assert _parse(['--rtf', '2']).rtf == 2.0
-    for bad in ('0', '-1', 'nan'):
+    assert _parse(['--rtf', '0']).rtf == 0.0
+    for bad in ('-1', 'nan'):
         with pytest.raises(SystemExit) as exit_info:
             _parse(['--rtf', bad])
         assert exit_info.value.code == 2
-        assert 'argument --rtf: must be > 0 (a factor the navigation stack can follow' in \
-            capsys.readouterr().err
+        assert 'argument --rtf: must be >= 0 (0: lock-step)' in capsys.readouterr().err
+
+
+def test_the_jobs_amcl_error_is_against_the_ground_truth_at_amcls_stamp():
+    import math
+
+    from amr_description.nodes.navigate_job.main import Recorder
+
+    class Node:
+
+        def create_subscription(self, *args, **kwargs):
+            return None
+
+    recorder = Recorder(Node())
+    assert recorder.amcl_error() is None
+    recorder.samples = [(0.02 * i, 0.01 * i, 0.0, 0.001 * i) for i in range(1000)]
+    recorder.amcl = (4.005, 2.03, 0.04, 0.25)  # nearest sample: 4.00
+    distance, yaw = recorder.amcl_error()
+    assert distance == pytest.approx(math.hypot(0.03, 0.04))   # truth at 4.00: (2.00, 0)
+    assert yaw == pytest.approx(0.05)

@@ -29,5 +29,10 @@ Exit 0 when every goal SUCCEEDED with no collision in either phase; 1 otherwise,
 route is not finished, a stack does not come up or the map is not saved (one line on stderr).
 Each stack's output goes to ``out/slam_stack.log`` and ``out/navigation_stack.log``.
 
-Modules: :mod:`.main` (command line, phases), :mod:`.report` (table and pictures).
+``--rtf`` sets the simulator's real-time factor (1.0); ``--rtf 0`` runs it as fast as the
+navigation stack keeps up, advanced in lock-step with the stack's commands and localizer
+(:mod:`.lockstep`). Each phase's real-time factor is printed.
+
+Modules: :mod:`.main` (command line, phases), :mod:`.report` (table and pictures),
+:mod:`.lockstep` (``--rtf 0``).
 """

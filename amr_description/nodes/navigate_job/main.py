@@ -3,6 +3,7 @@
 """``navigate_job``'s command line, its two stacks and ``main`` (see the package docstring)."""
 
 import argparse
+import bisect
 import math
 import os
 import shutil
@@ -10,6 +11,7 @@ import subprocess
 import sys
 import time
 
+from amr_description.core.course import wrap_angle
 from amr_description.launch.actions import LaunchError
 from amr_description.nodes.drive_square.main import StackLog
 from amr_description.nodes.navigate_job.report import fail
@@ -45,9 +47,34 @@ class Recorder:
     """
 
     def __init__(self, node):
+        from geometry_msgs.msg import PoseWithCovarianceStamped
         from nav_msgs.msg import Odometry
+        from rclpy.qos import DurabilityPolicy
+        from rclpy.qos import QoSProfile
         self.samples = []  # (t, x, y, yaw): sim s, world-frame m and rad
+        self.amcl = None  # the last /amcl_pose as (t, x, y, yaw), map frame
         node.create_subscription(Odometry, '/ground_truth/odom', self._on_truth, 50)
+        node.create_subscription(PoseWithCovarianceStamped, '/amcl_pose', self._on_amcl,
+                                 QoSProfile(depth=1,
+                                            durability=DurabilityPolicy.TRANSIENT_LOCAL))
+
+    def _on_amcl(self, msg):
+        p = msg.pose.pose
+        self.amcl = (stamp_seconds(msg.header.stamp), p.position.x, p.position.y,
+                     yaw_of(p.orientation))
+
+    def amcl_error(self):
+        """
+        Return AMCL's last pose against the ground truth at its stamp: (m, rad), or None.
+
+        The SLAM map's frame is the world's (the robot starts mapping at the world origin).
+        """
+        if self.amcl is None or not self.samples:
+            return None
+        t, x, y, yaw = self.amcl
+        k = bisect.bisect_left(self.samples, t, key=lambda s: s[0])
+        truth = min(self.samples[max(0, k - 1):k + 1], key=lambda s: abs(s[0] - t))
+        return math.hypot(x - truth[1], y - truth[2]), abs(wrap_angle(yaw - truth[3]))
 
     def _on_truth(self, msg):
         p = msg.pose.pose.position
@@ -77,7 +104,8 @@ def _parse(argv):
                         help='m of clearance on the way to a goal (0.3: through the 0.9 m gaps '
                         'between the shelves; 0.45 keeps the goals in the aisle of the start)')
     parser.add_argument('--rtf', type=float, default=1.0,
-                        help='real-time factor of the simulation (1.0; the factor reached is '
+                        help='real-time factor of the simulation (1.0; 0 = as fast as the '
+                        'navigation stack keeps up, in lock-step; the factor reached is '
                         'printed per phase)')
     parser.add_argument('--output-dir', default='out', help='where the map and PNGs go (out/)')
     parser.add_argument('--goal-timeout', type=float, default=300.0,
@@ -92,12 +120,8 @@ def _parse(argv):
     opts = parser.parse_args(argv)
     if opts.goals < 1:
         parser.error(f'argument --goals: must be >= 1, got {opts.goals}')
-    if not opts.rtf > 0:
-        # free-running, the simulator ran at 5.7x while SLAM and Nav2 fell behind its clock and
-        # the route missed 5 of 7 waypoints (docs/navigation.md); drive_square's lock-step
-        # needs one commander, and Nav2 has several
-        parser.error(f'argument --rtf: must be > 0 (a factor the navigation stack can follow, '
-                     f'e.g. 2.0), got {opts.rtf:g}')
+    if not opts.rtf >= 0:
+        parser.error(f'argument --rtf: must be >= 0 (0: lock-step), got {opts.rtf:g}')
     return opts
 
 
@@ -105,7 +129,8 @@ def _start(opts, name, extra):
     """Start the ``navigation`` stack with ``extra`` arguments; return (orchestrator, log)."""
     from amr_description.launch import registry
     from amr_description.launch.orchestrator import Orchestrator
-    argv = [f'world:={opts.world}', f'rtf:={opts.rtf}', 'headless:=true'] + extra
+    # with --rtf 0 the stack comes up in real time; the lock-step starts once it is active
+    argv = [f'world:={opts.world}', f'rtf:={opts.rtf or 1.0}', 'headless:=true'] + extra
     if opts.viewer_port == 0:
         argv.append('viewer:=false')
     elif opts.viewer_port is not None:
@@ -119,7 +144,37 @@ def _start(opts, name, extra):
     return orchestrator, log
 
 
-def _stop(orchestrator, log):
+def _govern(opts):
+    """With ``--rtf 0``, pause the simulator and start the lock-step; return it (or None)."""
+    if opts.rtf:
+        return None
+    from amr_description.nodes.navigate_job.lockstep import LockStepGovernor
+    governor = LockStepGovernor()
+    try:
+        governor.start()
+    except RuntimeError:
+        governor.stop()
+        raise
+    print(f'[{PROGRAM}] lock-step: the simulator advances as the navigation stack keeps up',
+          flush=True)
+    return governor
+
+
+def _speed(what, sim, wall, governor):
+    """Print a phase's sim and wall seconds, its real-time factor and the lock-step's waits."""
+    text = (f'[{PROGRAM}] {what} in {sim:.1f} s of sim time ({wall:.1f} s wall, real-time '
+            f'factor {sim / max(wall, 1e-9):.2f})')
+    if governor is not None:
+        if governor.error:
+            raise RuntimeError(f'lock-step: {governor.error}')
+        text += (f'; lock-step: {governor.ticks} ticks, {governor.waited:.1f} s waiting for '
+                 f'the stack, {governor.late} waits given up')
+    print(text, flush=True)
+
+
+def _stop(orchestrator, log, governor=None):
+    if governor is not None:
+        governor.stop()
     if orchestrator is not None:
         orchestrator.shutdown()
         orchestrator.wait(timeout=30.0)
@@ -165,6 +220,7 @@ def _up(navigator, recorder, log, managers, timeout):
 def _map_phase(opts, navigator, recorder):
     """Drive the route with SLAM and save the map; return (map yaml, route samples) or fail."""
     orchestrator, log = _start(opts, 'slam', ['slam:=True'])
+    governor = None
     try:
         if not _up(navigator, recorder, log, 1, opts.startup_timeout):
             raise RuntimeError(f'the slam stack was not active within {opts.startup_timeout:g} '
@@ -179,6 +235,7 @@ def _map_phase(opts, navigator, recorder):
             raise RuntimeError('SLAM published no map -> odom transform within 120 s of the '
                                'stack being active')
         navigator.destroy_subscription(sub)
+        governor = _govern(opts)
         route = [_pose(navigator, *p) for p in ROUTES[opts.world]]
         t0 = recorder.now()
         started = time.monotonic()
@@ -190,9 +247,8 @@ def _map_phase(opts, navigator, recorder):
         missed = list(getattr(navigator.result_future.result().result, 'missed_waypoints', []))
         t1 = recorder.now()
         wall = time.monotonic() - started
-        print(f'[{PROGRAM}] route {result.name}: {len(route) - len(missed)} of {len(route)} '
-              f'waypoints in {t1 - t0:.1f} s of sim time ({wall:.1f} s wall, real-time factor '
-              f'{(t1 - t0) / max(wall, 1e-9):.2f})', flush=True)
+        _speed(f'route {result.name}: {len(route) - len(missed)} of {len(route)} waypoints',
+               t1 - t0, wall, governor)
         if result.name != 'SUCCEEDED' or missed:
             raise RuntimeError(f'the mapping route ended {result.name} with waypoints '
                                f'{[m.index for m in missed]} missed')
@@ -212,7 +268,7 @@ def _map_phase(opts, navigator, recorder):
         print(f'[{PROGRAM}] saved the map: {stem}.yaml', flush=True)
         return stem + '.yaml', recorder.between(t0, t1)
     finally:
-        _stop(orchestrator, log)
+        _stop(orchestrator, log, governor)
 
 
 def _goal_phase(opts, navigator, recorder, map_yaml, true_map, saved_map):
@@ -223,12 +279,14 @@ def _goal_phase(opts, navigator, recorder, map_yaml, true_map, saved_map):
     recorder.samples.clear()
     orchestrator, log = _start(opts, 'navigation', [f'map:={map_yaml}'])
     rows = []
+    governor = None
     try:
         if not _up(navigator, recorder, log, 2, opts.startup_timeout):
             raise RuntimeError(f'the navigation stack was not active within '
                                f'{opts.startup_timeout:g} s (see its log)')
         if not _spin_until(navigator, lambda: navigator.initial_pose_received, 60.0):
             raise RuntimeError('no amcl_pose within 60 s of the stack being active')
+        governor = _govern(opts)
         start = recorder.samples[-1]
         began = time.monotonic()
         goals = sample_goals([true_map, saved_map], start[1:3], opts.goals, opts.seed,
@@ -244,16 +302,20 @@ def _goal_phase(opts, navigator, recorder, map_yaml, true_map, saved_map):
             t0 = recorder.now()
             result = (_wait_task(navigator, opts.goal_timeout)
                       if navigator.goToPose(goal) else None)
+            t1 = recorder.now()  # the result's time; the robot then settles
+            error = recorder.amcl_error()
+            print(f'[{PROGRAM}] goal {i}/{len(goals)}: '
+                  f'{"REJECTED" if result is None else result.name} after {t1 - t0:.1f} s'
+                  + ('' if error is None else f'; AMCL {error[0]:.3f} m and '
+                     f'{math.degrees(error[1]):.1f} deg from the ground truth'), flush=True)
             _spin_until(navigator, lambda: False, 0.5)  # the last ground truth
             rows.append({'goal': (x, y, yaw), 'start': here[1:], 'result':
                          'REJECTED' if result is None else result.name, 'planned': planned,
-                         'truth': recorder.between(t0, recorder.now())})
-        wall = time.monotonic() - began
-        print(f'[{PROGRAM}] goals: {recorder.now() - start[0]:.1f} s of sim time in {wall:.1f} s '
-              f'wall (real-time factor {(recorder.now() - start[0]) / max(wall, 1e-9):.2f})',
-              flush=True)
+                         'truth': recorder.between(t0, recorder.now()), 'span': (t0, t1)})
+        _speed(f'goals: {len(goals)}', recorder.now() - start[0], time.monotonic() - began,
+               governor)
     finally:
-        _stop(orchestrator, log)
+        _stop(orchestrator, log, governor)
     return rows
 
 

@@ -53,7 +53,10 @@ def goal_figures(row, sections, robot):
     Return one goal's figures from its ground truth and plan.
 
     :param row: dict ``goal`` (x, y, yaw), ``start`` (x, y, yaw), ``planned`` [(x, y)],
-        ``truth`` [(t, x, y, yaw)] (sim s, world m, rad), ``result``.
+        ``truth`` [(t, x, y, yaw)] (sim s, world m, rad), ``result``; optionally ``span``
+        (sim s when the goal was sent and when its result came; else the ground truth's
+        first and last stamps). The ground truth may go on after the result (the robot
+        settling): its last sample is the end pose.
     :param sections: the world's shapes (:func:`amr_description.core.scan_map.world_sections`).
     :param robot: :func:`robot_params`.
     :returns: dict ``time`` and ``bound`` (s; bound from the plan, or None without one),
@@ -70,7 +73,8 @@ def goal_figures(row, sections, robot):
     if len(row['planned']) > 1:
         bound = time_bound(row['planned'], row['start'][2], yaw, robot['speed'],
                            robot['turn_rate'])
-    return {'time': float(truth[-1, 0] - truth[0, 0]) if len(truth) > 1 else 0.0,
+    span = row.get('span') or ((truth[0, 0], truth[-1, 0]) if len(truth) > 1 else (0.0, 0.0))
+    return {'time': float(span[1] - span[0]),
             'bound': bound, 'planned': path_length(row['planned']),
             'driven': path_length(truth[:, 1:3]),
             'error': math.hypot(end[1] - x, end[2] - y),
