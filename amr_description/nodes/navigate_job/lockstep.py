@@ -92,7 +92,8 @@ class LockStepGovernor:
     :param namespace: the robot's namespace ('' for a single robot).
     :ivar ticks: advances made.
     :ivar waited: wall seconds spent waiting for owed commands.
-    :ivar late: owed commands not heard within :data:`WAIT_LIMIT`.
+    :ivar late: owed commands not heard within :data:`WAIT_LIMIT`, and waits for the localizer
+        given up after :data:`LOCALIZER_WAIT`.
     :ivar error: the one-line error that stopped the thread, or None.
     """
 
@@ -104,6 +105,7 @@ class LockStepGovernor:
         from rclpy.executors import SingleThreadedExecutor
         from amr_description.ros.simulation_services import SimulationServices
         from amr_description.ros.transforms import stamp_seconds
+        self._stamp_seconds = stamp_seconds
         self.node = rclpy.create_node('navigate_job_lockstep')
         self.executor = SingleThreadedExecutor()
         self.executor.add_node(self.node)
@@ -125,10 +127,9 @@ class LockStepGovernor:
         self._thread = None
 
     def _on_tf(self, msg):
-        from amr_description.ros.transforms import stamp_seconds
         for transform in msg.transforms:
             if transform.header.frame_id.lstrip('/') == 'map':
-                t = stamp_seconds(transform.header.stamp)
+                t = self._stamp_seconds(transform.header.stamp)
                 self.map_stamp = t if self.map_stamp is None else max(self.map_stamp, t)
 
     def _spin_until(self, predicate):
