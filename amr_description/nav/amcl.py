@@ -15,7 +15,12 @@ frame, both of the base frame. The pieces, each after ``nav2_amcl``'s sources:
   ``alpha1 rot^2 + alpha2 trans^2`` (rotations) and ``alpha3 trans^2 + alpha4 (rot1^2 +
   rot2^2)`` (translation); rot1 is 0 below 1 cm of translation, and the rotations are folded
   so that driving backwards is not a half turn (Thrun et al., Probabilistic Robotics, table
-  5.6).
+  5.6). With ``robot_model_type`` ``nav2_amcl::OmniMotionModel``
+  (``src/motion_model/omni_motion_model.cpp``): the step as a translation along its bearing
+  in the odom frame, a rotation and a sideways (strafe) part, each particle moving by them
+  with noise of standard deviations ``sqrt(alpha3 trans^2 + alpha4 rot^2)`` (translation),
+  ``sqrt(alpha1 rot^2 + alpha2 trans^2)`` (rotation) and ``sqrt(alpha4 rot^2 + alpha5
+  trans^2)`` (strafe, zero-mean); a base that slides sideways is covered by ``alpha5``.
 - **sensor** (``src/sensors/laser/likelihood_field_model.cpp``): ``max_beams`` evenly spaced
   beams; a beam at or beyond range_max, or NaN, is skipped; for each other beam ``pz =
   z_hit exp(-d^2 / (2 sigma_hit^2)) + z_rand / range_max`` and the particle's weight is
@@ -47,6 +52,11 @@ BIN = (0.5, 0.5, math.radians(10.0))
 """Histogram bin size of KLD sampling and clustering (m, m, rad), ``pf_kdtree`` of nav2_amcl."""
 
 
+DIFFERENTIAL = ('nav2_amcl::DifferentialMotionModel', 'differential')
+OMNI = ('nav2_amcl::OmniMotionModel', 'omnidirectional')
+"""``robot_model_type`` values: Jazzy's plugin names and the older short names."""
+
+
 @dataclass
 class AmclParameters:
     """Nav2 ``amcl``'s filter parameters with ``nav2_amcl/src/amcl_node.cpp``'s defaults."""
@@ -72,6 +82,7 @@ class AmclParameters:
     z_rand: float = 0.5
     update_min_a: float = 0.2
     update_min_d: float = 0.25
+    robot_model_type: str = 'nav2_amcl::DifferentialMotionModel'
 
     @classmethod
     def names(cls):
@@ -191,6 +202,8 @@ class ParticleFilter:
     def move(self, old, new):
         """Apply the odometry step from ``old`` to ``new`` (odom frame) with sampled noise."""
         p = self.params
+        if p.robot_model_type in OMNI:
+            return self._move_omni(old, new)
         d = between(old, new)
         trans = math.hypot(d[0], d[1])
         heading = math.atan2(new[1] - old[1], new[0] - old[0])
@@ -209,6 +222,22 @@ class ParticleFilter:
         self.particles[:, 0] += trans_hat * np.cos(heading)
         self.particles[:, 1] += trans_hat * np.sin(heading)
         self.particles[:, 2] = wrap(heading + rot2_hat)
+
+    def _move_omni(self, old, new):
+        """Apply the odometry step with the omnidirectional motion model (module docstring)."""
+        p = self.params
+        dx, dy = new[0] - old[0], new[1] - old[1]
+        trans = math.hypot(dx, dy)
+        rot = float(wrap(new[2] - old[2]))
+        normal = self.rng.standard_normal((len(self.particles), 3))
+        trans_hat = trans + normal[:, 0] * math.sqrt(p.alpha3 * trans ** 2 + p.alpha4 * rot ** 2)
+        rot_hat = rot + normal[:, 1] * math.sqrt(p.alpha1 * rot ** 2 + p.alpha2 * trans ** 2)
+        strafe_hat = normal[:, 2] * math.sqrt(p.alpha4 * rot ** 2 + p.alpha5 * trans ** 2)
+        bearing = float(wrap(math.atan2(dy, dx) - old[2])) + self.particles[:, 2]
+        c, s = np.cos(bearing), np.sin(bearing)
+        self.particles[:, 0] += trans_hat * c + strafe_hat * s
+        self.particles[:, 1] += trans_hat * s - strafe_hat * c
+        self.particles[:, 2] = wrap(self.particles[:, 2] + rot_hat)
 
     def weigh(self, likelihood_map, beams, range_max):
         """

@@ -5,8 +5,9 @@
 
 Parameters: Nav2's (``nav2_amcl/src/amcl_node.cpp``) with its defaults; the filter's are
 :class:`~amr_description.nav.amcl.AmclParameters`, the node's :data:`NODE_PARAMETERS`. Only
-the ``likelihood_field`` laser model and ``nav2_amcl::DifferentialMotionModel`` are
-implemented: another value fails configure with one line. A parameter of the wrong type fails
+the ``likelihood_field`` laser model and the ``nav2_amcl::DifferentialMotionModel`` and
+``nav2_amcl::OmniMotionModel`` motion models are implemented: another value fails configure
+with one line. A parameter of the wrong type fails
 configure with one line naming it.
 
 On activate: ``map_topic`` (``map``, transient local) in; ``scan_topic`` (``scan``, sensor data
@@ -65,7 +66,6 @@ LATCHED = QoSProfile(depth=1, reliability=ReliabilityPolicy.RELIABLE,
 NODE_PARAMETERS = {
     'base_frame_id': 'base_footprint', 'global_frame_id': 'map', 'odom_frame_id': 'odom',
     'laser_model_type': 'likelihood_field',
-    'robot_model_type': 'nav2_amcl::DifferentialMotionModel',
     'set_initial_pose': False, 'initial_pose.x': 0.0, 'initial_pose.y': 0.0,
     'initial_pose.z': 0.0, 'initial_pose.yaw': 0.0, 'always_reset_initial_pose': False,
     'save_pose_rate': 0.5, 'tf_broadcast': True, 'transform_tolerance': 1.0,
@@ -79,8 +79,6 @@ NODE_PARAMETERS = {
 SCAN_QUEUE = 10
 """Scans waiting for the odometry at their stamps (1 s at 10 Hz), as the queue of 10 of
 amcl_node's ``tf2_ros::MessageFilter``."""
-
-DIFFERENTIAL = ('nav2_amcl::DifferentialMotionModel', 'differential')
 
 
 class Amcl(ManagedNode):
@@ -107,9 +105,10 @@ class Amcl(ManagedNode):
         if self.p['laser_model_type'] != 'likelihood_field':
             raise ValueError(f"parameter 'laser_model_type': only likelihood_field is "
                              f"implemented, got '{self.p['laser_model_type']}'")
-        if self.p['robot_model_type'] not in DIFFERENTIAL:
-            raise ValueError(f"parameter 'robot_model_type': only {DIFFERENTIAL[0]} is "
-                             f"implemented, got '{self.p['robot_model_type']}'")
+        if self.p['robot_model_type'] not in amcl.DIFFERENTIAL + amcl.OMNI:
+            raise ValueError(f"parameter 'robot_model_type': only {amcl.DIFFERENTIAL[0]} and "
+                             f'{amcl.OMNI[0]} are implemented, got '
+                             f"'{self.p['robot_model_type']}'")
         params = amcl.AmclParameters(**{n: self.p[n] for n in amcl.AmclParameters.names()})
         if params.min_particles > params.max_particles or params.min_particles < 1:
             raise ValueError(f"parameters 'min_particles' ({params.min_particles}) and "

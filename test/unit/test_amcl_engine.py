@@ -65,6 +65,27 @@ def test_motion_model_mean_follows_odometry():
         math.sqrt(0.2 * 0.25 + 0.2 * 0.04), rel=0.1)
 
 
+def test_omni_motion_model_moves_along_the_bearing_and_strafes_with_alpha5():
+    params = amcl.AmclParameters(robot_model_type='nav2_amcl::OmniMotionModel', alpha1=0.0,
+                                 alpha2=0.0, alpha3=0.0, alpha4=0.0, alpha5=0.0)
+    filt = amcl.ParticleFilter(params, seed=3)
+    filt.initialize((1.0, 2.0, math.pi / 2), np.zeros((3, 3)))
+    # in odom: from (0, 0, 0) a step of 0.3 m at a bearing of 0.4 rad, turning 0.1 rad; a
+    # particle facing +y moves 0.3 m at pi/2 + 0.4 and turns 0.1 rad, with no noise
+    filt.move((0.0, 0.0, 0.0), (0.3 * math.cos(0.4), 0.3 * math.sin(0.4), 0.1))
+    assert filt.particles[:, 0] == pytest.approx(1.0 + 0.3 * math.cos(math.pi / 2 + 0.4))
+    assert filt.particles[:, 1] == pytest.approx(2.0 + 0.3 * math.sin(math.pi / 2 + 0.4))
+    assert filt.particles[:, 2] == pytest.approx(math.pi / 2 + 0.1)
+    # alpha5 alone: sideways spread only, sd sqrt(alpha5) x trans
+    params.alpha5 = 0.25
+    filt = amcl.ParticleFilter(params, seed=3)
+    filt.initialize((0.0, 0.0, 0.0), np.zeros((3, 3)))
+    filt.move((0.0, 0.0, 0.0), (0.4, 0.0, 0.0))
+    assert filt.particles[:, 0] == pytest.approx(0.4)
+    assert filt.particles[:, 1].std() == pytest.approx(0.5 * 0.4, rel=0.1)
+    assert filt.particles[:, 1].mean() == pytest.approx(0.0, abs=0.01)
+
+
 def test_estimate_is_the_heaviest_cluster_across_the_seam():
     filt = amcl.ParticleFilter(amcl.AmclParameters(), seed=1)
     rng = np.random.default_rng(2)

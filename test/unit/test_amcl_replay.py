@@ -45,3 +45,10 @@ def test_params_come_from_the_amcl_section_then_the_overrides(tmp_path):
         params_from_file(str(path), ['sigma=0.1'])
     with pytest.raises(ValueError, match='not a number'):
         params_from_file(str(path), ['alpha1=high'])
+
+
+def test_a_text_parameter_is_kept_as_text(tmp_path):
+    path = tmp_path / 'p.yaml'
+    path.write_text('amcl:\n  ros__parameters:\n    alpha5: 0.3\n')
+    p = params_from_file(str(path), ['robot_model_type=nav2_amcl::OmniMotionModel'])
+    assert (p.robot_model_type, p.alpha5) == ('nav2_amcl::OmniMotionModel', 0.3)

@@ -149,26 +149,29 @@ def params_from_file(path, overrides):
     """
     Return AmclParameters from a Nav2 params file's ``amcl`` section and ``name=value`` texts.
 
-    :raises ValueError: an override that is not ``name=value`` with a known name and a number.
+    :raises ValueError: an override that is not ``name=value`` with a known name and, for a
+        numeric parameter, a number.
     """
     import dataclasses
     import yaml
     from amr_description.nav.amcl import AmclParameters
     with open(path, encoding='utf-8') as f:
         section = ((yaml.safe_load(f) or {}).get('amcl') or {}).get('ros__parameters') or {}
-    names = {f.name: f.type for f in dataclasses.fields(AmclParameters)}
-    values = {k: v for k, v in section.items() if k in names}
+    kinds = {f.name: type(f.default) for f in dataclasses.fields(AmclParameters)}
+    values = {k: v for k, v in section.items() if k in kinds}
     for text in overrides:
         name, sep, value = text.partition('=')
-        if not sep or name not in names:
+        if not sep or name not in kinds:
             raise ValueError(f'--set {text}: expected name=value with a name of '
-                             f'{sorted(names)}')
+                             f'{sorted(kinds)}')
+        if kinds[name] is str:
+            values[name] = value
+            continue
         try:
             values[name] = float(value)
         except ValueError:
             raise ValueError(f'--set {text}: {value!r} is not a number') from None
-    kinds = {f.name: f.default for f in dataclasses.fields(AmclParameters)}
-    return AmclParameters(**{k: type(kinds[k])(v) for k, v in values.items()})
+    return AmclParameters(**{k: kinds[k](v) for k, v in values.items()})
 
 
 def main(argv=None):
