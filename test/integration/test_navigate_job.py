@@ -55,7 +55,7 @@ def test_navigate_job_maps_saves_and_reaches_its_goals(ros_env, procs, exe, tmp_
     assert len(phases) == 2 and all(int(ticks) > 500 for _, ticks in phases), text[-4000:]
 
     match = ROUTE.search(text)
-    assert match and match.group(1) == match.group(2) == '9', text[-4000:]
+    assert match and match.group(1) == match.group(2) == '7', text[-4000:]
     # the map in Nav2's format; its walls where the world's shapes are (within 10 cm: the
     # first run's map 100 %, the same map shifted 0.3 m 82 %)
     saved, meta = map_io.load_map(str(out / 'map.yaml'))

@@ -30,16 +30,13 @@ ACTIVE = 'Managed nodes are active'
 """The line each lifecycle manager prints once its nodes are active (nav2_lifecycle_manager)."""
 
 ROUTES = {
-    'warehouse': ((4.85, 0.0, math.pi / 2), (4.85, 2.0, 0.0), (7.9, 2.0, math.pi),
-                  (-2.0, 2.0, 0.0), (0.95, 4.0, 0.0), (4.85, 4.0, math.pi / 2),
-                  (4.85, 6.0, 0.0), (7.9, 6.0, math.pi), (-2.0, 6.0, math.pi)),
+    'warehouse': ((4.85, 0.0, 0.0), (4.85, 2.0, math.pi), (0.95, 2.0, math.pi / 2),
+                  (0.95, 4.0, 0.0), (4.85, 4.0, math.pi / 2), (4.85, 6.0, math.pi),
+                  (0.95, 6.0, math.pi)),
 }
 """Mapping routes ``(x, y, yaw)`` per world, from the spawn pose (0, 0, 0): in warehouse.sdf
 along the south aisle, through the gaps between the shelves (x 0.5 .. 1.4 and 4.4 .. 5.3) and
-along each aisle (y 2, 4, 6), so that the lidar sees both faces of every shelf; the aisles y 2
-and 6 end to end (x -2.0 .. 7.9), so that it also sees the narrow passages between the shelves'
-ends and the east and west walls (0.7 and 0.5 m), which a map leaves unknown otherwise and NavFn
-(``allow_unknown``) then plans through."""
+along each aisle (y 2, 4, 6), so that the lidar sees both faces of every shelf."""
 
 
 class Recorder:
