@@ -73,14 +73,6 @@ def summary(errors):
             f'{a.max():.1f} deg max')
 
 
-def _yaw(q):
-    return math.atan2(2.0 * (q.w * q.z + q.x * q.y), 1.0 - 2.0 * (q.y * q.y + q.z * q.z))
-
-
-def _stamp(msg):
-    return msg.header.stamp.sec + msg.header.stamp.nanosec * 1e-9
-
-
 def read_bag(path, scan_topic, odom_topic, truth_topic, amcl_topic):
     """
     Return the scans, odometry, ground truth and AMCL poses of a bag's last clock run.
@@ -91,6 +83,8 @@ def read_bag(path, scan_topic, odom_topic, truth_topic, amcl_topic):
     :raises ValueError: a topic missing from the bag.
     """
     from pathlib import Path
+    from amr_description.ros.transforms import stamp_seconds
+    from amr_description.ros.transforms import yaw_of
     from rosbags.highlevel import AnyReader
     topics = (scan_topic, odom_topic, truth_topic, amcl_topic)
     rows = {t: [] for t in topics}
@@ -103,13 +97,13 @@ def read_bag(path, scan_topic, odom_topic, truth_topic, amcl_topic):
         for connection, _, raw in reader.messages(connections=connections):
             msg = reader.deserialize(raw, connection.msgtype)
             if connection.topic == scan_topic:
-                rows[scan_topic].append((_stamp(msg), np.asarray(msg.ranges, dtype=float),
-                                         msg.angle_min, msg.angle_increment, msg.range_min,
-                                         msg.range_max))
+                rows[scan_topic].append((stamp_seconds(msg.header.stamp),
+                                         np.asarray(msg.ranges, dtype=float), msg.angle_min,
+                                         msg.angle_increment, msg.range_min, msg.range_max))
             else:
                 pose = msg.pose.pose
-                rows[connection.topic].append((_stamp(msg), pose.position.x, pose.position.y,
-                                               _yaw(pose.orientation)))
+                rows[connection.topic].append((stamp_seconds(msg.header.stamp), pose.position.x,
+                                               pose.position.y, yaw_of(pose.orientation)))
     scans = rows[scan_topic][last_clock_run([s[0] for s in rows[scan_topic]]):]
     tracks = []
     for topic in topics[1:]:
