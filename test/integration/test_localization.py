@@ -5,12 +5,14 @@ Localization over real DDS as a Nav2 user runs it: ``localization_launch.py`` be
 
 The ``sim`` stack in arena.sdf and ``localization_launch.py map:=arena.yaml`` (a Nav2 map of
 the arena's walls and pillars, written with map_io); amcl waits for a pose, saying so; an
-``/initialpose`` 0.3 m and 15 deg off with RViz's covariance is refined while the robot
-drives, until ``/amcl_pose`` is within 12 cm and 5 deg of the ground truth (the skid-steer
-odometry slips in the turn; the engine benchmark's 5 cm is with exact odometry);
+``/initialpose`` 0.5 m and 20 deg off (issue 30's target) with RViz's covariance is refined
+while the robot drives 2.8 m, until ``/amcl_pose`` is within 12 cm and 5 deg of the ground
+truth (the skid-steer odometry slips in the turn; the distance driven before the pose stays
+within the target's 5 cm and 3 deg is printed for docs/navigation.md);
 ``/particle_cloud`` (best effort) holds Nav2's particle count; poses in the wrong frame or
 with NaN are refused with one line and the node stays active;
-``reinitialize_global_localization`` spreads the particles over the map.
+``reinitialize_global_localization`` spreads the particles over the map (and the distance
+driven before the poses after it settle within 5 cm and 3 deg is printed).
 """
 
 import math
@@ -67,6 +69,29 @@ def _arena_map(folder):
     return path + '.yaml'
 
 
+def _converged(poses, odom):
+    """Say after how much driving every later ``/amcl_pose`` was within 5 cm and 3 deg."""
+    from test_slam import _truth_at
+    from test_slam import _yaw
+    truth = [(m.pose.pose.position.x, m.pose.pose.position.y) for m in odom]
+    driven = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(np.array(truth), axis=0).T))])
+    stamps = np.array([m.header.stamp.sec + m.header.stamp.nanosec * 1e-9 for m in odom])
+    since = None
+    for msg in poses:
+        stamp = msg.header.stamp.sec + msg.header.stamp.nanosec * 1e-9
+        x, y, yaw = _truth_at(odom, stamp)
+        p = msg.pose.pose
+        inside = (math.hypot(p.position.x - x, p.position.y - y) <= 0.05 and
+                  abs(math.remainder(_yaw(p.orientation) - yaw, math.tau)) <= math.radians(3))
+        if not inside:
+            since = None
+        elif since is None:
+            since = float(driven[np.argmin(abs(stamps - stamp))])
+    if since is None:
+        return 'not within 5 cm and 3 deg at the end'
+    return f'within 5 cm and 3 deg from {since:.2f} m of driving on (of {driven[-1]:.2f} m)'
+
+
 def test_amcl_localizes_the_driving_robot(procs, exe, ros_env, tmp_path):
     from test_slam import _truth_at
     from test_slam import _yaw
@@ -88,8 +113,9 @@ def test_amcl_localizes_the_driving_robot(procs, exe, ros_env, tmp_path):
         assert peer.spin_until(lambda: peer.set_pose(float('nan'), 0.0, 0.0) or
                                'initialpose: NaN or infinite value' in loc.output, 60.0)
 
-        # 0.3 m and 15 deg off, then drive a 0.35 m circle between the pillars
-        assert peer.spin_until(lambda: peer.set_pose(0.25, -0.17, math.radians(15.0))
+        # 0.5 m and 20 deg off (the robot stands at the origin facing +x), then drive a
+        # 0.35 m circle between the pillars
+        assert peer.spin_until(lambda: peer.set_pose(0.4, -0.3, math.radians(20.0))
                                or peer.amcl_poses, 60.0), loc.output[-2000:]
         start = peer.now
         assert peer.spin_until(lambda: peer.drive(0.14, 0.4) or peer.now - start > 20.0,
@@ -102,7 +128,8 @@ def test_amcl_localizes_the_driving_robot(procs, exe, ros_env, tmp_path):
         error = math.hypot(p.position.x - x, p.position.y - y)
         turn = abs(math.remainder(_yaw(p.orientation) - yaw, math.tau))
         print(f'amcl_pose after {len(peer.amcl_poses)} updates: {100 * error:.1f} cm, '
-              f'{math.degrees(turn):.2f} deg from the ground truth')
+              f'{math.degrees(turn):.2f} deg from the ground truth; '
+              + _converged(peer.amcl_poses, peer.odom))
         assert last.header.frame_id == 'map'
         # the engine benchmark (exact odometry) reaches 2 cm; here the skid-steer odometry
         # slips in the turn and amcl_pose lags by 5-10 cm (docs/navigation.md)
@@ -122,6 +149,18 @@ def test_amcl_localizes_the_driving_robot(procs, exe, ros_env, tmp_path):
         assert peer.spin_until(lambda: peer.drive(0.14, 0.4) or spread(), 60.0)
         xs = [q.pose.position.x for q in spread()[0].particles]
         assert np.std(xs) > 0.8, np.std(xs)
+        # measured, not asserted (a symmetric arena may keep a wrong mode): 5.6 m more of the
+        # circle, and where the poses after the request settled within 5 cm and 3 deg
+        begin = peer.now
+        assert peer.spin_until(lambda: peer.drive(0.14, 0.4) or peer.now - begin > 40.0,
+                               400.0)
+        peer.drive(0.0, 0.0)
+
+        def after(messages):
+            return [m for m in messages
+                    if m.header.stamp.sec + m.header.stamp.nanosec * 1e-9 > since]
+        print('after global localization: ' + _converged(after(peer.amcl_poses),
+                                                         after(peer.odom)))
     finally:
         peer.drive(0.0, 0.0)
         peer.close()
