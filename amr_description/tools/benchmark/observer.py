@@ -20,9 +20,10 @@ class Observer:
         :param domain_id: ROS domain of the stack.
         :param robot_namespaces: list of namespaces ('' for the robot without one).
         :param listen: ``(topic, message class)`` pairs to subscribe to (reliable, depth 10),
-            so that the stack publishes them as to any listener; DDS delivers them into the
-            subscriptions' queues, which the observer does not take (its CPU stays out of
-            the figures as much as a listener's can).
+            or ``(topic, message class, QoS profile)``, so that the stack publishes them as to
+            any listener; DDS delivers them into the subscriptions' queues, which the
+            observer does not take (its CPU stays out of the figures as much as a
+            listener's can).
         """
         import rclpy
         from rclpy.context import Context
@@ -41,8 +42,9 @@ class Observer:
         self.twist = TwistStamped()
         self.twist.header.frame_id = 'base_link'
         self.twist.twist.linear.x, self.twist.twist.angular.z = TURN_TWIST
-        self.subscriptions = [self.node.create_subscription(kind, topic, lambda msg: None, 10)
-                              for topic, kind in listen]
+        self.subscriptions = [self.node.create_subscription(
+            item[1], item[0], lambda msg: None, item[2] if len(item) > 2 else 10)
+            for item in listen]
 
     def clock_sample(self, timeout=10.0):
         """Return ``(wall, sim)`` of one /clock message, or None (:func:`sample_clock`)."""
