@@ -71,28 +71,30 @@ def _arena_map(folder):
 
 def _converged(poses, odom):
     """Say after how much driving every later ``/amcl_pose`` was within 5 cm and 3 deg."""
-    from test_slam import _truth_at
-    from test_slam import _yaw
-    truth = [(m.pose.pose.position.x, m.pose.pose.position.y) for m in odom]
-    driven = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(np.array(truth), axis=0).T))])
-    stamps = np.array([m.header.stamp.sec + m.header.stamp.nanosec * 1e-9 for m in odom])
+    from amr_description.ros.transforms import stamp_seconds
+    from amr_description.ros.transforms import yaw_of
+    truth = np.array([(m.pose.pose.position.x, m.pose.pose.position.y,
+                       yaw_of(m.pose.pose.orientation)) for m in odom])
+    driven = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(truth[:, :2], axis=0).T))])
+    stamps = np.array([stamp_seconds(m.header.stamp) for m in odom])
     since = None
     for msg in poses:
-        stamp = msg.header.stamp.sec + msg.header.stamp.nanosec * 1e-9
-        x, y, yaw = _truth_at(odom, stamp)
+        nearest = int(np.argmin(abs(stamps - stamp_seconds(msg.header.stamp))))
+        x, y, yaw = truth[nearest]
         p = msg.pose.pose
         inside = (math.hypot(p.position.x - x, p.position.y - y) <= 0.05 and
-                  abs(math.remainder(_yaw(p.orientation) - yaw, math.tau)) <= math.radians(3))
+                  abs(math.remainder(yaw_of(p.orientation) - yaw, math.tau)) <= math.radians(3))
         if not inside:
             since = None
         elif since is None:
-            since = float(driven[np.argmin(abs(stamps - stamp))])
+            since = float(driven[nearest])
     if since is None:
         return 'not within 5 cm and 3 deg at the end'
     return f'within 5 cm and 3 deg from {since:.2f} m of driving on (of {driven[-1]:.2f} m)'
 
 
 def test_amcl_localizes_the_driving_robot(procs, exe, ros_env, tmp_path):
+    from amr_description.ros.transforms import stamp_seconds
     from test_slam import _truth_at
     from test_slam import _yaw
     map_yaml = _arena_map(tmp_path)
@@ -146,7 +148,7 @@ def test_amcl_localizes_the_driving_robot(procs, exe, ros_env, tmp_path):
 
         def spread():
             return [c for c in peer.clouds
-                    if c.header.stamp.sec + c.header.stamp.nanosec * 1e-9 > since]
+                    if stamp_seconds(c.header.stamp) > since]
         assert peer.spin_until(lambda: peer.drive(0.14, 0.4) or spread(), 60.0)
         xs = [q.pose.position.x for q in spread()[0].particles]
         assert np.std(xs) > 0.8, np.std(xs)
@@ -158,8 +160,7 @@ def test_amcl_localizes_the_driving_robot(procs, exe, ros_env, tmp_path):
         peer.drive(0.0, 0.0)
 
         def after(messages):
-            return [m for m in messages
-                    if m.header.stamp.sec + m.header.stamp.nanosec * 1e-9 > since]
+            return [m for m in messages if stamp_seconds(m.header.stamp) > since]
         print('after global localization: ' + _converged(after(peer.amcl_poses),
                                                          after(peer.odom)))
     finally:

@@ -25,6 +25,7 @@ from browser import colour_mask
 from browser import free_port
 from browser import open_page
 import numpy as np
+from playwright.sync_api import expect
 import pytest
 from test_localization import _arena_map
 from test_localization import LocalizationPeer
@@ -231,9 +232,7 @@ def test_map_particles_and_the_pose_estimate_tool(procs, exe, ros_env, tmp_path)
             # software WebGL, and the viewer never logged the panel's cancel; the goal was
             # reached (three runs on 2026-11-25 ended "reached", one in a clean-clone suite)
             button = page.page.get_by_role('button', name='Cancel', exact=True)
-            deadline = time.monotonic() + 60.0
-            while not button.is_enabled() and time.monotonic() < deadline:
-                page.page.wait_for_timeout(100)
+            expect(button).to_be_enabled(timeout=60_000)
             button.dispatch_event('click')
             assert page.wait_for_text('Feedback: canceled', 60.0), (
                 page.page.inner_text('body')[:400],
