@@ -134,7 +134,7 @@ def test_amcl_localizes_the_driving_robot(procs, exe, ros_env, tmp_path):
               + _converged(peer.amcl_poses, peer.odom))
         assert last.header.frame_id == 'map'
         # the engine benchmark (exact odometry) reaches 2 cm; here the skid-steer odometry
-        # slips in the turn: 2.2-4.9 cm in six runs with the omni motion model, 5-10 cm
+        # slips in the turn: 2.2-4.9 cm in seven runs with the omni motion model, 5-10 cm
         # before it (docs/navigation.md), hence the margin
         assert error < 0.12 and turn < math.radians(5.0)
         assert peer.map_tf and peer.clouds
