@@ -81,10 +81,25 @@ def interrupted():
 
 
 def ignore_signals():
-    """Ignore further SIGINT/SIGTERM (the cleanup is under way); main thread only."""
+    """
+    Ignore further SIGINT/SIGTERM (the cleanup is under way); main thread only.
+
+    The handler stays a Python function that returns at once, not ``SIG_IGN``: CPython runs a
+    signal's Python handler after its C handler caught it, and a signal caught just before the
+    switch to ``SIG_IGN`` found no Python handler and raised ``OSError: Signal 2 ignored due
+    to race condition`` from the next ``signal.signal`` call (a terminal's Ctrl-C followed
+    by an orchestrator's SIGINT, seen in a test run).
+
+    :raises ValueError: when called outside the main thread (``signal.signal``'s rule).
+    """
     _interrupted.set()
     for signum in _SIGNALS:
-        signal.signal(signum, signal.SIG_IGN)
+        while True:
+            try:
+                signal.signal(signum, _interrupt)
+                break
+            except KeyboardInterrupt:  # caught earlier under another handler: ignored too
+                continue
 
 
 def _one_line(text):

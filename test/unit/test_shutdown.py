@@ -63,6 +63,23 @@ def test_signal_outside_spin_raises_at_once(pattern):
     pattern.shutdown()
 
 
+def test_signals_during_the_cleanup_reach_a_python_handler_that_ignores_them(pattern):
+    # SIG_IGN raced: a SIGINT caught by CPython's C handler just before the switch found no
+    # Python handler and the next signal.signal call raised "OSError: Signal 2 ignored due to
+    # race condition" (teleop_twist_keyboard, Ctrl-C then the orchestrator's SIGINT)
+    pattern.init(['test_shutdown'])
+    pattern.ignore_signals()
+    for signum in (signal.SIGINT, signal.SIGTERM):
+        assert signal.getsignal(signum) is shutdown._interrupt
+    for signum in (signal.SIGINT, signal.SIGTERM, signal.SIGINT):
+        os.kill(os.getpid(), signum)
+        for _ in range(10 ** 6):  # the handler runs between these bytecodes
+            pass
+    pattern.ignore_signals()  # a second call (shutdown() calls it again) changes nothing
+    assert pattern.interrupted()
+    pattern.shutdown()
+
+
 def test_an_error_after_a_signal_during_construction_is_the_interrupt(pattern):
     # trimesh catches a KeyboardInterrupt raised in the middle of its import and fails later
     # with a TypeError: the node's main must stop quietly, not print that traceback
