@@ -103,6 +103,10 @@ def add_no_daemon_argument(parser):
                         help='Do not spawn nor use an already running daemon')
 
 
+def _ignore(signum, frame):
+    """Ignore a signal (a Python handler that does nothing)."""
+
+
 class _Interrupts:
     """
     SIGINT for the CLI: ``KeyboardInterrupt`` at once, except inside :func:`spin_once`.
@@ -185,9 +189,11 @@ def cli_node(name='_ros2cli', args=None):
     try:
         yield node
     finally:
-        # a second Ctrl-C must not cut the teardown short (main thread only)
+        # a second Ctrl-C must not cut the teardown short (main thread only); a no-op Python
+        # handler, not SIG_IGN: a SIGINT caught by CPython just before a switch to SIG_IGN
+        # raises OSError ('ignored due to race condition') from the next signal.signal call
         main = threading.current_thread() is threading.main_thread()
-        previous = signal.signal(signal.SIGINT, signal.SIG_IGN) if main else None
+        previous = signal.signal(signal.SIGINT, _ignore) if main else None
         try:
             executor = getattr(node, '_cli_executor', None)
             if executor is not None:
