@@ -101,14 +101,20 @@ class RegulatedPurePursuit:
     :param params: ``{name: value}`` overriding :data:`RPP_DEFAULTS`.
     :param goal_xy_tolerance: the goal checker's ``xy_goal_tolerance`` (m).
     :param inscribed_radius: the footprint's inscribed radius (m), for cost regulation.
+    :param circumscribed_radius: the footprint's circumscribed radius (m), for the time step
+        of the collision check while rotating in place (0: ``inscribed_radius``, or 0.1 m).
+    :param resolution: the local costmap's resolution (m), the collision check's step.
     """
 
-    def __init__(self, params=None, goal_xy_tolerance=0.25, inscribed_radius=0.0):
+    def __init__(self, params=None, goal_xy_tolerance=0.25, inscribed_radius=0.0,
+                 circumscribed_radius=0.0, resolution=0.05):
         """Merge the parameters over the defaults."""
         self.p = dict(RPP_DEFAULTS)
         self.p.update(params or {})
         self.goal_xy_tolerance = float(goal_xy_tolerance)
         self.inscribed_radius = float(inscribed_radius)
+        self.circumscribed_radius = float(circumscribed_radius) or self.inscribed_radius or 0.1
+        self.resolution = float(resolution)
         self.reset()
 
     def reset(self):
@@ -143,7 +149,9 @@ class RegulatedPurePursuit:
         :param cost: the local costmap's cost under the robot (0..255).
         :param remaining: the path's length from the robot (m; default: from ``path``).
         :param collision: ``f(x, y, yaw) -> bool`` in the robot frame, or None (no check).
-        :raises NoValidControl: when the arc to the carrot is in collision.
+        :raises NoValidControl: when the robot's footprint is in collision now or on the
+            command's arc (a rotation in place included) within the carrot's distance and
+            ``max_allowed_time_to_collision_up_to_carrot``.
         """
         p = self.p
         path = np.asarray(path, float)
@@ -151,19 +159,21 @@ class RegulatedPurePursuit:
         goal = path[-1]
         c = carrot(path[:, :2], L)
         c_dist = math.hypot(c[0], c[1])
+        heading = math.atan2(c[1], c[0])
         if p['use_rotate_to_heading'] and (c_dist < self.goal_xy_tolerance or
                                            (p['stateful'] and self.rotating_to_goal)):
             self.rotating_to_goal = p['stateful']
             yaw = goal[2] if math.isfinite(goal[2]) else 0.0
-            return self._rotate(math.atan2(math.sin(yaw), math.cos(yaw)), speed[1], dt)
-        heading = math.atan2(c[1], c[0])
-        if p['use_rotate_to_heading'] and abs(heading) > p['rotate_to_heading_min_angle']:
-            return self._rotate(heading, speed[1], dt)
-        kappa = curvature(c[0], c[1])
-        v = self._regulate(kappa, cost, path, remaining)
-        w = v * kappa
+            v, w = self._rotate(math.atan2(math.sin(yaw), math.cos(yaw)), speed[1], dt)
+        elif p['use_rotate_to_heading'] and abs(heading) > p['rotate_to_heading_min_angle']:
+            v, w = self._rotate(heading, speed[1], dt)
+        else:
+            kappa = curvature(c[0], c[1])
+            v = self._regulate(kappa, cost, path, remaining)
+            w = v * kappa
+        # every command is checked, a rotation in place too, as computeVelocityCommands does
         if collision is not None and p['use_collision_detection'] and \
-                self._arc_collides(v, w, c_dist, collision):
+                self.collision_imminent(v, w, c_dist, collision):
             raise NoValidControl('RegulatedPurePursuitController detected collision ahead!')
         return v, w
 
@@ -191,16 +201,40 @@ class RegulatedPurePursuit:
                     p['min_approach_linear_velocity'])
         return min(max(v, 0.0), p['desired_linear_vel'])
 
-    def _arc_collides(self, v, w, c_dist, collision):
-        if abs(v) < 1e-9:
-            return False
-        horizon = min(self.p['max_allowed_time_to_collision_up_to_carrot'], c_dist / abs(v))
-        step = 0.05 / abs(v)  # about one 5 cm cell per step
+    def collision_imminent(self, v, w, c_dist, collision):
+        """
+        Return True when the robot collides now or while ``(v, w)`` is applied.
+
+        The robot's pose is checked, then poses along the arc, one step apart, until
+        ``max_allowed_time_to_collision_up_to_carrot`` or past the carrot's distance. The step
+        is the time to move one costmap cell: ``resolution / |v|``, or while rotating in place
+        (``|v| < 0.01`` and ``|w| > 0.01``) ``2 sin(resolution / 2 / r_max) / |w|``, r_max
+        the circumscribed radius. Source: ``CollisionChecker::isCollisionImminent``
+        (``collision_checker.cpp`` of nav2_regulated_pure_pursuit_controller).
+
+        :param v: linear velocity (m/s).
+        :param w: angular velocity (rad/s).
+        :param c_dist: the carrot's distance (m).
+        :param collision: ``f(x, y, yaw) -> bool``, in the robot frame (m, rad).
+        """
+        if collision(0.0, 0.0, 0.0):
+            return True
+        if abs(v) < 0.01 and abs(w) > 0.01:
+            step = 2.0 * math.sin(self.resolution / 2.0 / self.circumscribed_radius) / abs(w)
+        elif abs(v) > 0.0:
+            step = self.resolution / abs(v)
+        else:
+            return False  # standing still: only the pose now
+        horizon = self.p['max_allowed_time_to_collision_up_to_carrot']
         x = y = yaw = 0.0
-        for _ in range(int(math.ceil(horizon / step))):
-            x += v * step * math.cos(yaw)
-            y += v * step * math.sin(yaw)
-            yaw += w * step
+        i = 1
+        while i * step < horizon:
+            i += 1
+            x += step * v * math.cos(yaw)
+            y += step * v * math.sin(yaw)
+            yaw += step * w
+            if math.hypot(x, y) > c_dist:
+                break
             if collision(x, y, yaw):
                 return True
         return False

@@ -222,7 +222,8 @@ class ControllerServer(ManagedNode):
         if not same:
             gc, pc = self.goal_checkers[gid], self.progress_checkers[pid]
             controller = rpp.RegulatedPurePursuit(
-                self.controllers[cid]['params'], gc['xy'], self.costmap.inscribed)
+                self.controllers[cid]['params'], gc['xy'], self.costmap.inscribed,
+                self.costmap.circumscribed, self.costmap.p['resolution'])
             self.run = {'cid': cid, 'rpp': controller, 'failing_since': None,
                         'goal': rpp.SimpleGoalChecker(gc['xy'], gc['yaw'], gc['stateful']),
                         'progress': rpp.SimpleProgressChecker(pc['radius'], pc['time'])}

@@ -204,12 +204,57 @@ def test_a_new_path_restarts_the_goal_latches_as_nav2s_set_planner_path():
 
 def test_rpp_refuses_an_arc_into_an_obstacle():
     local = cm.Costmap.empty(3.0, 3.0, 0.05, origin=(-1.5, -1.5), frame='odom')
-    local.costs[:, 40] = cm.LETHAL_OBSTACLE  # a wall 0.5 m ahead
+    # a wall 0.45 m ahead: at 0.5 m/s, steps of 0.1 s (one 5 cm cell) while i * 0.1 < 1 s
+    # reach 0.45 m (upstream's loop), so a wall at 0.5 m is not yet in collision
+    local.costs[:, 39] = cm.LETHAL_OBSTACLE
     rpp = RegulatedPurePursuit()
     with pytest.raises(NoValidControl):
         rpp.compute(_line(), collision=lambda x, y, yaw: circle_collides(local, x, y))
     local.costs[:] = 0
     assert rpp.compute(_line(), collision=lambda x, y, yaw: circle_collides(local, x, y))[0] == 0.5
+
+
+def _wall_beside(wall_y):
+    """Return ``collision(x, y, yaw)``: the 0.6 x 0.34 m footprint's outline at y >= wall_y."""
+    t = np.linspace(-1.0, 1.0, 41)
+    outline = np.concatenate([np.column_stack((0.3 * t, np.full_like(t, 0.17))),
+                              np.column_stack((0.3 * t, np.full_like(t, -0.17))),
+                              np.column_stack((np.full_like(t, 0.3), 0.17 * t)),
+                              np.column_stack((np.full_like(t, -0.3), 0.17 * t))])
+    checked = []
+
+    def collision(x, y, yaw):
+        checked.append((x, y, yaw))
+        return bool((y + outline[:, 0] * math.sin(yaw) + outline[:, 1] * math.cos(yaw)
+                     >= wall_y).any())
+
+    return collision, checked
+
+
+def test_rpp_checks_a_rotation_in_place_for_collision():
+    # a path to the left: RPP turns in place at 1.8 rad/s; the footprint's corners sweep the
+    # circumscribed radius hypot(0.3, 0.17) = 0.345 m, so a wall 0.25 m to the side (the
+    # robot's side 0.08 m from it) is hit within 1 s of turning and one 0.40 m away is not
+    left = np.column_stack((np.zeros(61), np.arange(61) * 0.05, np.full(61, math.pi / 2)))
+    for wall, hit in ((0.25, True), (0.40, False)):
+        rpp = RegulatedPurePursuit(circumscribed_radius=math.hypot(0.3, 0.17))
+        collision, checked = _wall_beside(wall)
+        if hit:
+            with pytest.raises(NoValidControl):
+                rpp.compute(left, speed=(0.0, 1.8), collision=collision)
+        else:
+            assert rpp.compute(left, speed=(0.0, 1.8), collision=collision) == (0.0, 1.8)
+        # the pose now first, then steps of 2 sin(0.025 / 0.345) / 1.8 = 0.0805 rad / 1.8
+        step = 2.0 * math.sin(0.025 / math.hypot(0.3, 0.17))
+        assert checked[0] == (0.0, 0.0, 0.0) and checked[1][2] == pytest.approx(step)
+        assert all(x == y == 0.0 for x, y, _ in checked) and checked[-1][2] < 1.8 * 1.0
+
+
+def test_rpp_refuses_to_move_a_footprint_already_in_collision():
+    collision, checked = _wall_beside(0.15)  # the side at y 0.17 is past the wall
+    with pytest.raises(NoValidControl):
+        RegulatedPurePursuit().compute(_line(), collision=collision)
+    assert checked == [(0.0, 0.0, 0.0)]  # the pose now, before any step
 
 
 def test_goal_and_progress_checkers():
