@@ -65,6 +65,10 @@ def clearance_at(grid, clearance, xy):
     return out
 
 
+MAX_DRAWS = 100000
+"""Draws :func:`sample_goals` makes for one goal before it gives up."""
+
+
 def sample_goals(grids, start, count, seed, clearance=0.45, spacing=1.5, passage=0.3):
     """
     Return ``count`` seeded random goals the robot can reach from ``start``.
@@ -75,6 +79,11 @@ def sample_goals(grids, start, count, seed, clearance=0.45, spacing=1.5, passage
     drive through for a robot of half width below it). Each goal is at least ``spacing`` from
     the one before (the first from ``start``); yaws are uniform in [-pi, pi).
 
+    Goals are drawn by rejection: a point uniform over ``grids[0]``'s extent and a yaw, kept
+    (as its cell's centre) when its cell is a candidate ``spacing`` away. Each draw's fate
+    depends on the maps at that point only, so maps that differ in a few cells (two SLAM runs
+    of one world) give the same goals wherever they agree.
+
     :param grids: list of GridMap in one map frame (e.g. the true map and a SLAM map).
     :param start: ``(x, y)`` m, the robot's position.
     :param count: number of goals.
@@ -84,7 +93,7 @@ def sample_goals(grids, start, count, seed, clearance=0.45, spacing=1.5, passage
     :param passage: m.
     :returns: list of ``(x, y, yaw)`` (m, m, rad).
     :raises ValueError: ``start`` not ``passage`` clear, or no candidate ``spacing`` from a
-        goal.
+        goal (none in 100000 draws).
     """
     from scipy import ndimage
     base = grids[0]
@@ -102,16 +111,21 @@ def sample_goals(grids, start, count, seed, clearance=0.45, spacing=1.5, passage
         raise ValueError(f'sample_goals: start ({start[0]:.2f}, {start[1]:.2f}) is not '
                          f'{passage} m clear of every obstacle')
     reachable = (labels == labels[srow[0], scol[0]]).ravel()
-    candidates = centres[reachable & (room >= clearance)]
+    candidate = reachable & (room >= clearance)
+    height, width = base.data.shape
     rng = np.random.default_rng(seed)
     goals, here = [], np.asarray(start, dtype=float)
     for _ in range(count):
-        far = candidates[np.hypot(*(candidates - here).T) >= spacing]
-        if not len(far):
+        for _ in range(MAX_DRAWS):
+            u, v, turn = rng.uniform((0.0, 0.0, -math.pi), (width, height, math.pi))
+            k = min(int(v), height - 1) * width + min(int(u), width - 1)
+            if candidate[k] and math.hypot(*(centres[k] - here)) >= spacing:
+                break
+        else:
             raise ValueError(f'sample_goals: no reachable cell {spacing} m from '
                              f'({here[0]:.2f}, {here[1]:.2f})')
-        here = far[rng.integers(len(far))]
-        goals.append((float(here[0]), float(here[1]), float(rng.uniform(-math.pi, math.pi))))
+        here = centres[k]
+        goals.append((float(here[0]), float(here[1]), float(turn)))
     return goals
 
 
