@@ -84,22 +84,34 @@ def ignore_signals():
     """
     Ignore further SIGINT/SIGTERM (the cleanup is under way); main thread only.
 
-    The handler stays a Python function that returns at once, not ``SIG_IGN``: CPython runs a
-    signal's Python handler after its C handler caught it, and a signal caught just before the
-    switch to ``SIG_IGN`` found no Python handler and raised ``OSError: Signal 2 ignored due
-    to race condition`` from the next ``signal.signal`` call (a terminal's Ctrl-C followed
-    by an orchestrator's SIGINT, seen in a test run).
+    ``SIG_IGN`` stays set through the interpreter's finalization (a Python handler would be
+    reset to ``SIG_DFL`` there, and a late second Ctrl-C would kill the process with -2). A
+    signal caught by CPython's C handler just before the switch is then found with no Python
+    handler and reported, through ``sys.unraisablehook``, as ``OSError: Signal 2 ignored due to
+    race condition`` with a traceback (seen in a test run of teleop_twist_keyboard: a
+    terminal's Ctrl-C, then the orchestrator's SIGINT); that report is dropped, any other is
+    passed on to the previous hook.
 
     :raises ValueError: when called outside the main thread (``signal.signal``'s rule).
     """
+    global _previous_unraisablehook
+    if sys.unraisablehook is not _unraisable:
+        _previous_unraisablehook = sys.unraisablehook
+        sys.unraisablehook = _unraisable
     _interrupted.set()
     for signum in _SIGNALS:
-        while True:
-            try:
-                signal.signal(signum, _interrupt)
-                break
-            except KeyboardInterrupt:  # caught earlier under another handler: ignored too
-                continue
+        signal.signal(signum, signal.SIG_IGN)
+
+
+_previous_unraisablehook = None
+
+
+def _unraisable(info):
+    """Drop CPython's report of a signal that came just before its switch to ``SIG_IGN``."""
+    if isinstance(info.exc_value, OSError) and \
+            'ignored due to race condition' in str(info.exc_value):
+        return  # the signal was to be ignored, and it was
+    _previous_unraisablehook(info)
 
 
 def _one_line(text):
