@@ -190,8 +190,9 @@ def cli_node(name='_ros2cli', args=None):
         yield node
     finally:
         # a second Ctrl-C must not cut the teardown short (main thread only); a no-op Python
-        # handler, not SIG_IGN: a SIGINT caught by CPython just before a switch to SIG_IGN
-        # raises OSError ('ignored due to race condition') from the next signal.signal call
+        # handler, not SIG_IGN: a SIGINT caught by CPython just before a switch to SIG_IGN is
+        # reported with a traceback ('OSError: Signal 2 ignored due to race condition');
+        # the previous handler is restored below, so finalization is not concerned
         main = threading.current_thread() is threading.main_thread()
         previous = signal.signal(signal.SIGINT, _ignore) if main else None
         try:

@@ -93,7 +93,7 @@ def sample_goals(grids, start, count, seed, clearance=0.45, spacing=1.5, passage
     :param passage: m.
     :returns: list of ``(x, y, yaw)`` (m, m, rad).
     :raises ValueError: ``start`` not ``passage`` clear, or no candidate ``spacing`` from a
-        goal (none in 100000 draws).
+        goal (none in :data:`MAX_DRAWS` draws).
     """
     from scipy import ndimage
     base = grids[0]
