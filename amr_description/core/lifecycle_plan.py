@@ -57,6 +57,28 @@ ACTIVE_AFTER = {STARTUP: True, RESUME: True, PAUSE: False, RESET: False, SHUTDOW
                 CONFIGURE_COMMAND: False, CLEANUP_COMMAND: False}
 """Whether the managed system counts as active (``~/is_active``) after each command."""
 
+TRANSITION_STATES = 10
+"""lifecycle_msgs/msg/State ids from this one up are transition states (configuring, ...)."""
+
+
+def settled(state_id, goal):
+    """
+    Tell from a node's ``get_state`` answer whether a transition without an answer has ended.
+
+    rmw_fastrtps drops a service response whose client reader the server has not matched
+    within 100 ms ("failed to send response ... (timeout)", ros2/rmw_fastrtps#706), so a
+    ``change_state`` may never be answered although the node made the transition. A node in a
+    primary state has finished its transition.
+
+    :param state_id: ``current_state.id`` from ``get_state``, or None (no answer).
+    :param goal: the primary state the transition leads to (:data:`GOAL_STATE`).
+    :returns: None while the node is in a transition state or did not answer; otherwise
+        whether the node is in ``goal``.
+    """
+    if state_id is None or not 0 < state_id < TRANSITION_STATES:
+        return None
+    return state_id == goal
+
 
 @dataclass(frozen=True)
 class Step:

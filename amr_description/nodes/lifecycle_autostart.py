@@ -10,20 +10,73 @@ emits ``ChangeState(TRANSITION_CONFIGURE)`` and, on the node reaching *inactive*
 [TRANSITION ...]`` (default ``configure activate``) waits up to 60 s for
 ``NODE/change_state``, requests each transition in turn and exits 0, or 1 with one line
 naming the node and the transition that failed.
+
+Before each transition the node is asked ``get_state`` until it answers, and while the
+``change_state`` has no answer it is asked again every :data:`CHECK_PERIOD` s: a node in the
+transition's goal state has made it, and the wait ends there; any other answer ends it only
+after :data:`SERVICE_WAIT` s, as a failure. rmw_fastrtps drops a service response whose
+client reader the server has not matched within 100 ms
+(:func:`amr_description.core.lifecycle_plan.settled`): on a loaded machine, in a clean-clone
+test run, the SLAM node configured but its answer never came, and the stack stopped after
+60 s.
 """
 
 import os
 import sys
+import time
 
+from amr_description.core import lifecycle_plan
 from amr_description.ros import shutdown
 from amr_description.ros.node import Node
 from lifecycle_msgs.msg import Transition
 from lifecycle_msgs.srv import ChangeState
+from lifecycle_msgs.srv import GetState
 import rclpy
 
 SERVICE_WAIT = 60.0
+"""Seconds to wait for the node's services, and for each transition to end."""
+
+CHECK_PERIOD = 2.0
+"""Seconds between ``get_state`` requests while a ``change_state`` has no answer."""
+
 TRANSITIONS = {'configure': Transition.TRANSITION_CONFIGURE,
                'activate': Transition.TRANSITION_ACTIVATE}
+
+
+def _call(node, client, request, timeout):
+    """Return the response of one service call, or None after ``timeout`` s."""
+    future = client.call_async(request)
+    rclpy.spin_until_future_complete(node, future, timeout_sec=timeout)
+    if not future.done():
+        client.remove_pending_request(future)
+        return None
+    return future.result()
+
+
+def _state(node, get_state):
+    """Return the node's ``current_state.id``, or None without an answer."""
+    answer = _call(node, get_state, GetState.Request(), CHECK_PERIOD)
+    return None if answer is None else answer.current_state.id
+
+
+def _transition(node, change_state, get_state, transition):
+    """Request ``transition`` (an id); return True when the node reached its goal state."""
+    deadline = time.monotonic() + SERVICE_WAIT
+    while _state(node, get_state) is None:  # the node answers: it is up and not busy
+        if time.monotonic() > deadline:
+            return False
+    goal = lifecycle_plan.GOAL_STATE[transition]
+    future = change_state.call_async(ChangeState.Request(transition=Transition(id=transition)))
+    while True:
+        rclpy.spin_until_future_complete(node, future, timeout_sec=CHECK_PERIOD)
+        if future.done():
+            return future.result().success
+        # the goal state ends the wait at once; any other state only at the deadline (the
+        # node may answer get_state before it takes the change_state request)
+        reached = lifecycle_plan.settled(_state(node, get_state), goal)
+        if reached or time.monotonic() > deadline:
+            change_state.remove_pending_request(future)
+            return bool(reached)
 
 
 def main(args=None):
@@ -37,15 +90,14 @@ def main(args=None):
     node = Node(f'launch_ros_{os.getpid()}')
     code = 0
     try:
-        client = node.create_client(ChangeState, f'{target}/change_state')
-        if not client.wait_for_service(timeout_sec=SERVICE_WAIT):
+        change_state = node.create_client(ChangeState, f'{target}/change_state')
+        get_state = node.create_client(GetState, f'{target}/get_state')
+        if not change_state.wait_for_service(timeout_sec=SERVICE_WAIT) or \
+                not get_state.wait_for_service(timeout_sec=SERVICE_WAIT):
             shutdown.fail('lifecycle_autostart',
                           f'{target}/change_state not offered after {SERVICE_WAIT:g} s')
         for step in steps:
-            future = client.call_async(ChangeState.Request(
-                transition=Transition(id=TRANSITIONS[step])))
-            rclpy.spin_until_future_complete(node, future, timeout_sec=SERVICE_WAIT)
-            if not future.done() or not future.result().success:
+            if not _transition(node, change_state, get_state, TRANSITIONS[step]):
                 shutdown.fail('lifecycle_autostart', f"{target}: transition '{step}' failed")
     except KeyboardInterrupt:
         code = 130

@@ -58,8 +58,6 @@ FIRST_CALL_RETRY = 1.0
 BOND_HEARTBEAT_PERIOD = 0.1
 BOND_CHECK_PERIOD = 0.2
 RESPAWN_CHECK_PERIOD = 1.0
-TRANSITION_STATES = 10
-"""lifecycle_msgs/State ids from here up are transition states (configuring = 10, ...)."""
 
 
 class _Managed:
@@ -219,9 +217,11 @@ class LifecycleManager(Node):
             if state is None and not managed.get_state.service_is_ready():
                 managed.change_state.remove_pending_request(future)
                 return False  # the node is gone (its process ended mid-transition)
-            if state is not None and 0 < state.current_state.id < TRANSITION_STATES:
+            ended = lifecycle_plan.settled(
+                None if state is None else state.current_state.id, step.goal)
+            if ended is not None:
                 managed.change_state.remove_pending_request(future)
-                return state.current_state.id == step.goal
+                return ended
         answer = future.result()
         return answer is not None and answer.success
 

@@ -83,3 +83,78 @@ def test_lifecycle_nodes_are_those_with_get_state():
                 ('/map_server/get_state', ['lifecycle_msgs/srv/GetState'])]
     assert lifecycle_node_names(['/talker', '/map_server', '/amcl'], services) == \
         ['/amcl', '/map_server']
+
+
+def test_a_transition_without_an_answer_is_settled_by_the_nodes_state():
+    # lifecycle_msgs/msg/State: 1-4 primary, 10-15 transition states
+    assert lp.settled(lp.INACTIVE, lp.INACTIVE) is True
+    assert lp.settled(lp.UNCONFIGURED, lp.INACTIVE) is False
+    assert lp.settled(10, lp.INACTIVE) is None  # configuring
+    assert lp.settled(None, lp.ACTIVE) is None  # no answer
+    assert lp.settled(0, lp.ACTIVE) is None  # unknown
+
+
+class _Future:
+    """A future that is done when it has a result."""
+
+    def __init__(self, result=None):
+        self._result = result
+
+    def done(self):
+        return self._result is not None
+
+    def result(self):
+        return self._result
+
+
+class _Client:
+    """A service client whose answers are scripted; None is an answer that never comes."""
+
+    def __init__(self, answers):
+        self.answers = list(answers)
+        self.requests = []
+        self.dropped = 0
+
+    def call_async(self, request):
+        self.requests.append(request)
+        return _Future(self.answers.pop(0) if self.answers else None)
+
+    def remove_pending_request(self, future):
+        self.dropped += 1
+
+
+def _autostart(monkeypatch, wait):
+    from amr_description.nodes import lifecycle_autostart as autostart
+    monkeypatch.setattr(autostart, 'SERVICE_WAIT', wait)
+    monkeypatch.setattr(autostart.rclpy, 'spin_until_future_complete',
+                        lambda node, future, timeout_sec=None: None)
+    return autostart
+
+
+def _state(state_id):
+    from lifecycle_msgs.srv import GetState
+    answer = GetState.Response()
+    answer.current_state.id = state_id
+    return answer
+
+
+def test_autostart_goes_on_when_the_change_state_answer_is_dropped(monkeypatch):
+    autostart = _autostart(monkeypatch, 60.0)
+    change = _Client([None])  # configured, but its answer was dropped
+    get = _Client([_state(lp.UNCONFIGURED), None, _state(10), _state(lp.INACTIVE)])
+    assert autostart._transition(None, change, get, lp.CONFIGURE) is True
+    assert len(change.requests) == 1 and change.requests[0].transition.id == lp.CONFIGURE
+    assert len(get.requests) == 4 and change.dropped == 1
+
+
+def test_autostart_fails_only_at_the_deadline_when_the_node_stays_put(monkeypatch):
+    from lifecycle_msgs.srv import ChangeState
+    autostart = _autostart(monkeypatch, 0.05)
+    change = _Client([None])
+    get = _Client([_state(lp.UNCONFIGURED)] * 10000)
+    assert autostart._transition(None, change, get, lp.CONFIGURE) is False
+    assert change.dropped == 1
+    # an answer that comes is taken as it is
+    refused = ChangeState.Response(success=False)
+    get = _Client([_state(lp.UNCONFIGURED)])
+    assert autostart._transition(None, _Client([refused]), get, lp.CONFIGURE) is False
