@@ -31,7 +31,7 @@ from amr_description.ros.node import Node
 from lifecycle_msgs.msg import Transition
 from lifecycle_msgs.srv import ChangeState
 from lifecycle_msgs.srv import GetState
-import rclpy
+from rclpy.executors import SingleThreadedExecutor
 
 SERVICE_WAIT = 60.0
 """Seconds to wait for the node's services, and for each transition to end."""
@@ -43,37 +43,45 @@ TRANSITIONS = {'configure': Transition.TRANSITION_CONFIGURE,
                'activate': Transition.TRANSITION_ACTIVATE}
 
 
-def _call(node, client, request, timeout):
+def _waiter(executor):
+    """Return ``wait(future, timeout)``: spin ``executor`` the house way until done or late."""
+    def wait(future, timeout):
+        deadline = time.monotonic() + timeout
+        shutdown.spin(executor, until=lambda: future.done() or time.monotonic() > deadline)
+    return wait
+
+
+def _call(wait, client, request, timeout):
     """Return the response of one service call, or None after ``timeout`` s."""
     future = client.call_async(request)
-    rclpy.spin_until_future_complete(node, future, timeout_sec=timeout)
+    wait(future, timeout)
     if not future.done():
         client.remove_pending_request(future)
         return None
     return future.result()
 
 
-def _state(node, get_state):
+def _state(wait, get_state):
     """Return the node's ``current_state.id``, or None without an answer."""
-    answer = _call(node, get_state, GetState.Request(), CHECK_PERIOD)
+    answer = _call(wait, get_state, GetState.Request(), CHECK_PERIOD)
     return None if answer is None else answer.current_state.id
 
 
-def _transition(node, change_state, get_state, transition):
+def _transition(wait, change_state, get_state, transition):
     """Request ``transition`` (an id); return True when the node reached its goal state."""
     deadline = time.monotonic() + SERVICE_WAIT
-    while _state(node, get_state) is None:  # the node answers: it is up and not busy
+    while _state(wait, get_state) is None:  # the node answers: it is up and not busy
         if time.monotonic() > deadline:
             return False
     goal = lifecycle_plan.GOAL_STATE[transition]
     future = change_state.call_async(ChangeState.Request(transition=Transition(id=transition)))
     while True:
-        rclpy.spin_until_future_complete(node, future, timeout_sec=CHECK_PERIOD)
+        wait(future, CHECK_PERIOD)
         if future.done():
             return future.result().success
         # the goal state ends the wait at once; any other state only at the deadline (the
         # node may answer get_state before it takes the change_state request)
-        reached = lifecycle_plan.settled(_state(node, get_state), goal)
+        reached = lifecycle_plan.settled(_state(wait, get_state), goal)
         if reached or time.monotonic() > deadline:
             change_state.remove_pending_request(future)
             return bool(reached)
@@ -88,6 +96,9 @@ def main(args=None):
     target, steps = argv[0], argv[1:] or ['configure', 'activate']
     shutdown.init(args)
     node = Node(f'launch_ros_{os.getpid()}')
+    executor = SingleThreadedExecutor(context=node.context)
+    executor.add_node(node)
+    wait = _waiter(executor)
     code = 0
     try:
         change_state = node.create_client(ChangeState, f'{target}/change_state')
@@ -97,12 +108,12 @@ def main(args=None):
             shutdown.fail('lifecycle_autostart',
                           f'{target}/change_state not offered after {SERVICE_WAIT:g} s')
         for step in steps:
-            if not _transition(node, change_state, get_state, TRANSITIONS[step]):
+            if not _transition(wait, change_state, get_state, TRANSITIONS[step]):
                 shutdown.fail('lifecycle_autostart', f"{target}: transition '{step}' failed")
     except KeyboardInterrupt:
         code = 130
     finally:
-        shutdown.shutdown(node)
+        shutdown.shutdown(node, executor=executor)
     return code
 
 
