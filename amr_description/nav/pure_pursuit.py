@@ -281,6 +281,7 @@ class SimpleProgressChecker:
 
     The robot must move ``required_movement_radius`` (m) from a baseline pose within
     ``movement_time_allowance`` (s); the baseline resets each time it does.
+    Source: ``nav2_controller/plugins/simple_progress_checker.cpp``.
     """
 
     def __init__(self, required_movement_radius=0.5, movement_time_allowance=10.0):
@@ -293,13 +294,45 @@ class SimpleProgressChecker:
         """Start over at the next pose."""
         self.baseline = None
 
+    def moved_enough(self, pose):
+        """Return True when ``pose`` (x, y[, yaw]) is farther than the radius from the baseline."""
+        b = self.baseline
+        return math.hypot(pose[0] - b[0], pose[1] - b[1]) > self.radius
+
     def check(self, pose, now):
-        """Return False when the robot at ``pose`` (x, y) at ``now`` (s) made no progress."""
-        if self.baseline is None or \
-                math.hypot(pose[0] - self.baseline[0], pose[1] - self.baseline[1]) > self.radius:
-            self.baseline = (pose[0], pose[1], now)
+        """
+        Return False when the robot made no progress.
+
+        :param pose: the robot's ``(x, y, yaw)`` (m, rad; ``(x, y)`` is enough here).
+        :param now: the time (s).
+        """
+        if self.baseline is None or self.moved_enough(pose):
+            self.baseline = tuple(pose)
+            self.since = now
             return True
-        return now - self.baseline[2] <= self.allowance
+        return now - self.since <= self.allowance
+
+
+class PoseProgressChecker(SimpleProgressChecker):
+    """
+    ``nav2_controller::PoseProgressChecker`` (Jazzy): a turn in place is progress too.
+
+    As :class:`SimpleProgressChecker`, and the baseline also resets when the heading has turned
+    more than ``required_movement_angle`` (rad, default 0.5) from the baseline's.
+    Source: ``nav2_controller/plugins/pose_progress_checker.cpp``.
+    """
+
+    def __init__(self, required_movement_radius=0.5, movement_time_allowance=10.0,
+                 required_movement_angle=0.5):
+        """Keep the limits (m, s, rad)."""
+        super().__init__(required_movement_radius, movement_time_allowance)
+        self.angle = float(required_movement_angle)
+
+    def moved_enough(self, pose):
+        """Return True when ``pose`` (x, y, yaw) moved or turned enough from the baseline."""
+        turned = pose[2] - self.baseline[2]
+        return super().moved_enough(pose) or \
+            abs(math.atan2(math.sin(turned), math.cos(turned))) > self.angle
 
 
 def to_robot_frame(path, pose):

@@ -12,8 +12,9 @@ reads all of RPP's parameters under ``<id>.``; a DWB or MPPI section is said in 
 runs as RPP with its desired speed (DWB ``max_vel_x``, MPPI ``vx_max``);
 ``goal_checker_plugins`` ([goal_checker]; SimpleGoalChecker or StoppedGoalChecker with
 ``xy_goal_tolerance`` 0.25, ``yaw_goal_tolerance`` 0.25, ``stateful`` true),
-``progress_checker_plugins`` ([progress_checker]; ``required_movement_radius`` 0.5,
-``movement_time_allowance`` 10.0), ``min_x_velocity_threshold``,
+``progress_checker_plugins`` ([progress_checker]; SimpleProgressChecker with
+``required_movement_radius`` 0.5, ``movement_time_allowance`` 10.0, or PoseProgressChecker with
+``required_movement_angle`` 0.5 too), ``min_x_velocity_threshold``,
 ``min_theta_velocity_threshold`` (0.0001), ``failure_tolerance`` (0.0 s; -1 forever),
 ``odom_topic`` (odom), ``speed_limit_topic`` (speed_limit, nav2_msgs/SpeedLimit),
 ``enable_stamped_cmd_vel`` (false: geometry_msgs/Twist; true: TwistStamped in the robot base
@@ -109,11 +110,8 @@ class ControllerServer(ManagedNode):
             'yaw': float(d(f'{gid}.yaw_goal_tolerance', 0.25).value),
             'stateful': bool(d(f'{gid}.stateful', True).value)}
             for gid in d('goal_checker_plugins', ['goal_checker']).value}
-        self.progress_checkers = {pid: {
-            'plugin': str(d(f'{pid}.plugin', 'nav2_controller::SimpleProgressChecker').value),
-            'radius': float(d(f'{pid}.required_movement_radius', 0.5).value),
-            'time': float(d(f'{pid}.movement_time_allowance', 10.0).value)}
-            for pid in d('progress_checker_plugins', ['progress_checker']).value}
+        self.progress_checkers = {pid: self._progress_params(pid) for pid in
+                                  d('progress_checker_plugins', ['progress_checker']).value}
         self.tf_buffer = TransformBuffer()
         ns = self.get_namespace()
         self.costmap = CostmapNode('local_costmap', self.tf_buffer, ns if ns != '/' else '',
@@ -124,6 +122,16 @@ class ControllerServer(ManagedNode):
         self.speed = (0.0, 0.0)
         self.speed_limit = None
         self.run = None
+
+    def _progress_params(self, pid):
+        d = self.declare_parameter
+        params = {
+            'plugin': str(d(f'{pid}.plugin', 'nav2_controller::SimpleProgressChecker').value),
+            'radius': float(d(f'{pid}.required_movement_radius', 0.5).value),
+            'time': float(d(f'{pid}.movement_time_allowance', 10.0).value)}
+        if params['plugin'].endswith('PoseProgressChecker'):
+            params['angle'] = float(d(f'{pid}.required_movement_angle', 0.5).value)
+        return params
 
     def _controller_params(self, cid):
         d = self.declare_parameter
@@ -231,7 +239,9 @@ class ControllerServer(ManagedNode):
                 self.costmap.circumscribed, self.costmap.p['resolution'])
             self.run = {'cid': cid, 'rpp': controller, 'failing_since': None,
                         'goal': rpp.SimpleGoalChecker(gc['xy'], gc['yaw'], gc['stateful']),
-                        'progress': rpp.SimpleProgressChecker(pc['radius'], pc['time'])}
+                        'progress': rpp.PoseProgressChecker(pc['radius'], pc['time'],
+                                                            pc['angle']) if 'angle' in pc else
+                        rpp.SimpleProgressChecker(pc['radius'], pc['time'])}
             self.get_logger().info('Received a goal, begin computing control effort.')
         else:
             self.get_logger().info('Passing new path to controller.')
@@ -268,7 +278,7 @@ class ControllerServer(ManagedNode):
             return self._fail(codes.TF_ERROR, f'Unable to transform the robot pose: '
                                               f'{str(exc).strip()}')
         robot, robot_cost = planar_pose(T_path), planar_pose(T_cost)
-        if not run['progress'].check(robot_cost[:2], self._now()):
+        if not run['progress'].check(robot_cost, self._now()):
             return self._fail(codes.FAILED_TO_MAKE_PROGRESS, 'Failed to make progress')
         path = run['path']
         search = run['rpp'].p['max_robot_pose_search_dist']

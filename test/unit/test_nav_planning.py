@@ -11,6 +11,7 @@ from amr_description.nav.planner import PlanError
 from amr_description.nav.pure_pursuit import carrot
 from amr_description.nav.pure_pursuit import circle_collides
 from amr_description.nav.pure_pursuit import NoValidControl
+from amr_description.nav.pure_pursuit import PoseProgressChecker
 from amr_description.nav.pure_pursuit import RegulatedPurePursuit
 from amr_description.nav.pure_pursuit import SimpleGoalChecker
 from amr_description.nav.pure_pursuit import SimpleProgressChecker
@@ -266,3 +267,39 @@ def test_goal_and_progress_checkers():
     assert progress.check((0.0, 0.0), 0.0) and progress.check((0.4, 0.0), 9.0)
     assert progress.check((0.6, 0.0), 10.5)  # moved 0.6 m: a new baseline at 10.5 s
     assert progress.check((0.7, 0.0), 20.5) and not progress.check((0.7, 0.0), 20.6)
+
+
+def test_pose_progress_checker_counts_a_turn_in_place():
+    simple, pose = SimpleProgressChecker(), PoseProgressChecker()  # 0.5 m, 10 s, 0.5 rad
+    for checker in (simple, pose):
+        assert checker.check((1.0, 2.0, 3.0), 0.0)
+    # turning in place 0.6 rad (across +-pi: 3.0 -> -2.683) by 9 s, then standing until 19.5 s
+    assert simple.check((1.0, 2.0, 3.6 - 2 * math.pi), 9.0)
+    assert pose.check((1.0, 2.0, 3.6 - 2 * math.pi), 9.0)  # turned 0.6 > 0.5: a new baseline
+    assert not simple.check((1.0, 2.0, 3.6 - 2 * math.pi), 10.5)  # 10.5 s without 0.5 m
+    assert pose.check((1.0, 2.0, 3.6 - 2 * math.pi), 19.0)  # 10.0 s since the turn
+    assert not pose.check((1.0, 2.0, 3.5 - 2 * math.pi), 19.1)  # 0.1 rad back is not enough
+    assert pose.check((1.6, 2.0, 3.5 - 2 * math.pi), 19.2)  # 0.6 m counts as before
+
+
+def test_controller_server_reads_the_progress_checker_plugin_parameters():
+    from types import SimpleNamespace
+
+    from amr_description.nodes.controller_server import ControllerServer
+    declared = {}
+
+    def declare_parameter(name, default):
+        declared[name] = overrides.get(name, default)
+        return SimpleNamespace(value=declared[name])
+
+    node = SimpleNamespace(declare_parameter=declare_parameter)
+    overrides = {'pc.plugin': 'nav2_controller::PoseProgressChecker',
+                 'pc.required_movement_angle': 0.3, 'pc.movement_time_allowance': 5.0}
+    assert ControllerServer._progress_params(node, 'pc') == {
+        'plugin': 'nav2_controller::PoseProgressChecker', 'radius': 0.5, 'time': 5.0,
+        'angle': 0.3}
+    overrides = {}
+    declared.clear()
+    assert ControllerServer._progress_params(node, 'pc') == {
+        'plugin': 'nav2_controller::SimpleProgressChecker', 'radius': 0.5, 'time': 10.0}
+    assert 'pc.required_movement_angle' not in declared  # upstream declares it for Pose only
