@@ -265,14 +265,41 @@ class SimpleGoalChecker:
         """Forget the latched position."""
         self.xy_reached = False
 
-    def is_goal_reached(self, pose, goal):
-        """Return True for ``pose`` and ``goal`` as ``(x, y, yaw)`` in one frame."""
+    def is_goal_reached(self, pose, goal, speed=(0.0, 0.0)):
+        """
+        Return True for ``pose`` and ``goal`` as ``(x, y, yaw)`` in one frame.
+
+        :param speed: the robot's ``(v, w)`` (m/s, rad/s); not used here (see
+            :class:`StoppedGoalChecker`).
+        """
         if not self.xy_reached:
             if (pose[0] - goal[0]) ** 2 + (pose[1] - goal[1]) ** 2 > self.xy * self.xy:
                 return False
             self.xy_reached = self.stateful
         d = math.atan2(math.sin(goal[2] - pose[2]), math.cos(goal[2] - pose[2]))
         return abs(d) <= self.yaw
+
+
+class StoppedGoalChecker(SimpleGoalChecker):
+    """
+    ``nav2_controller::StoppedGoalChecker``: as :class:`SimpleGoalChecker`, and stopped.
+
+    The goal counts as reached only while the odometry's speed is at most
+    ``trans_stopped_velocity`` (m/s, 0.25) and its turn rate at most ``rot_stopped_velocity``
+    (rad/s, 0.25). Source: ``nav2_controller/plugins/stopped_goal_checker.cpp``.
+    """
+
+    def __init__(self, xy_goal_tolerance=0.25, yaw_goal_tolerance=0.25, stateful=True,
+                 rot_stopped_velocity=0.25, trans_stopped_velocity=0.25):
+        """Keep the tolerances (m, rad, rad/s, m/s)."""
+        super().__init__(xy_goal_tolerance, yaw_goal_tolerance, stateful)
+        self.rot_stopped = float(rot_stopped_velocity)
+        self.trans_stopped = float(trans_stopped_velocity)
+
+    def is_goal_reached(self, pose, goal, speed=(0.0, 0.0)):
+        """Return True at the goal (:class:`SimpleGoalChecker`) with ``speed`` (v, w) stopped."""
+        return super().is_goal_reached(pose, goal) and abs(speed[1]) <= self.rot_stopped and \
+            abs(speed[0]) <= self.trans_stopped
 
 
 class SimpleProgressChecker:

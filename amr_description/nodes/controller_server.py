@@ -10,8 +10,9 @@ code defaults: ``controller_frequency`` (20.0 Hz), ``controller_plugins`` ([Foll
 ``<id>.plugin``; ``nav2_regulated_pure_pursuit_controller::RegulatedPurePursuitController``
 reads all of RPP's parameters under ``<id>.``; a DWB or MPPI section is said in one line and
 runs as RPP with its desired speed (DWB ``max_vel_x``, MPPI ``vx_max``);
-``goal_checker_plugins`` ([goal_checker]; SimpleGoalChecker or StoppedGoalChecker with
-``xy_goal_tolerance`` 0.25, ``yaw_goal_tolerance`` 0.25, ``stateful`` true),
+``goal_checker_plugins`` ([goal_checker]; SimpleGoalChecker with ``xy_goal_tolerance`` 0.25,
+``yaw_goal_tolerance`` 0.25, ``stateful`` true, or StoppedGoalChecker with
+``rot_stopped_velocity`` and ``trans_stopped_velocity`` 0.25 too, against the odometry's twist),
 ``progress_checker_plugins`` ([progress_checker]; SimpleProgressChecker with
 ``required_movement_radius`` 0.5, ``movement_time_allowance`` 10.0, or PoseProgressChecker with
 ``required_movement_angle`` 0.5 too), ``min_x_velocity_threshold``,
@@ -104,12 +105,8 @@ class ControllerServer(ManagedNode):
         d('costmap_update_timeout', 0.30)
         self.controllers = {cid: self._controller_params(cid) for cid in
                             d('controller_plugins', ['FollowPath']).value}
-        self.goal_checkers = {gid: {
-            'plugin': str(d(f'{gid}.plugin', 'nav2_controller::SimpleGoalChecker').value),
-            'xy': float(d(f'{gid}.xy_goal_tolerance', 0.25).value),
-            'yaw': float(d(f'{gid}.yaw_goal_tolerance', 0.25).value),
-            'stateful': bool(d(f'{gid}.stateful', True).value)}
-            for gid in d('goal_checker_plugins', ['goal_checker']).value}
+        self.goal_checkers = {gid: self._goal_params(gid) for gid in
+                              d('goal_checker_plugins', ['goal_checker']).value}
         self.progress_checkers = {pid: self._progress_params(pid) for pid in
                                   d('progress_checker_plugins', ['progress_checker']).value}
         self.tf_buffer = TransformBuffer()
@@ -122,6 +119,18 @@ class ControllerServer(ManagedNode):
         self.speed = (0.0, 0.0)
         self.speed_limit = None
         self.run = None
+
+    def _goal_params(self, gid):
+        d = self.declare_parameter
+        params = {
+            'plugin': str(d(f'{gid}.plugin', 'nav2_controller::SimpleGoalChecker').value),
+            'xy': float(d(f'{gid}.xy_goal_tolerance', 0.25).value),
+            'yaw': float(d(f'{gid}.yaw_goal_tolerance', 0.25).value),
+            'stateful': bool(d(f'{gid}.stateful', True).value)}
+        if params['plugin'].endswith('StoppedGoalChecker'):
+            params['rot_stopped'] = float(d(f'{gid}.rot_stopped_velocity', 0.25).value)
+            params['trans_stopped'] = float(d(f'{gid}.trans_stopped_velocity', 0.25).value)
+        return params
 
     def _progress_params(self, pid):
         d = self.declare_parameter
@@ -238,7 +247,10 @@ class ControllerServer(ManagedNode):
                 self.controllers[cid]['params'], gc['xy'], self.costmap.inscribed,
                 self.costmap.circumscribed, self.costmap.p['resolution'])
             self.run = {'cid': cid, 'rpp': controller, 'failing_since': None,
-                        'goal': rpp.SimpleGoalChecker(gc['xy'], gc['yaw'], gc['stateful']),
+                        'goal': rpp.StoppedGoalChecker(gc['xy'], gc['yaw'], gc['stateful'],
+                                                       gc['rot_stopped'], gc['trans_stopped'])
+                        if 'rot_stopped' in gc else
+                        rpp.SimpleGoalChecker(gc['xy'], gc['yaw'], gc['stateful']),
                         'progress': rpp.PoseProgressChecker(pc['radius'], pc['time'],
                                                             pc['angle']) if 'angle' in pc else
                         rpp.SimpleProgressChecker(pc['radius'], pc['time'])}
@@ -305,7 +317,7 @@ class ControllerServer(ManagedNode):
         feedback.distance_to_goal = float(remaining + math.hypot(*local[0, :2]))
         self._server.feedback(feedback)
         self._publish(v, w)
-        if run['goal'].is_goal_reached(robot, path[-1]):
+        if run['goal'].is_goal_reached(robot, path[-1], self.speed):
             self.get_logger().info('Reached the goal!')
             self._stop_robot()
             self._server.finish_current('succeed', FollowPath.Result())

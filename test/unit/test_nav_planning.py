@@ -15,6 +15,7 @@ from amr_description.nav.pure_pursuit import PoseProgressChecker
 from amr_description.nav.pure_pursuit import RegulatedPurePursuit
 from amr_description.nav.pure_pursuit import SimpleGoalChecker
 from amr_description.nav.pure_pursuit import SimpleProgressChecker
+from amr_description.nav.pure_pursuit import StoppedGoalChecker
 import numpy as np
 import pytest
 
@@ -269,6 +270,20 @@ def test_goal_and_progress_checkers():
     assert progress.check((0.7, 0.0), 20.5) and not progress.check((0.7, 0.0), 20.6)
 
 
+def test_stopped_goal_checker_waits_for_the_robot_to_stop():
+    goal = (1.0, 2.0, 0.5)
+    at_goal = (1.1, 2.0, 0.6)  # 0.1 m and 0.1 rad away, within the default 0.25 and 0.25
+    assert SimpleGoalChecker().is_goal_reached(at_goal, goal, (0.0, 1.0))  # speed not checked
+    checker = StoppedGoalChecker()  # 0.25 m, 0.25 rad, stopped below 0.25 rad/s and 0.25 m/s
+    assert not checker.is_goal_reached(at_goal, goal, (0.0, 0.26))  # still turning
+    assert not checker.is_goal_reached(at_goal, goal, (-0.26, 0.0))  # still backing up
+    assert checker.is_goal_reached((1.3, 2.0, 0.6), goal, (0.0, 0.25))  # xy latched, stopped
+    checker = StoppedGoalChecker(0.25, 0.25, True, rot_stopped_velocity=0.1,
+                                 trans_stopped_velocity=0.05)
+    assert not checker.is_goal_reached(at_goal, goal, (0.06, 0.0))
+    assert checker.is_goal_reached(at_goal, goal, (0.05, -0.1))
+
+
 def test_pose_progress_checker_counts_a_turn_in_place():
     simple, pose = SimpleProgressChecker(), PoseProgressChecker()  # 0.5 m, 10 s, 0.5 rad
     for checker in (simple, pose):
@@ -282,7 +297,7 @@ def test_pose_progress_checker_counts_a_turn_in_place():
     assert pose.check((1.6, 2.0, 3.5 - 2 * math.pi), 19.2)  # 0.6 m counts as before
 
 
-def test_controller_server_reads_the_progress_checker_plugin_parameters():
+def test_controller_server_reads_the_checker_plugins_parameters():
     from types import SimpleNamespace
 
     from amr_description.nodes.controller_server import ControllerServer
@@ -303,3 +318,14 @@ def test_controller_server_reads_the_progress_checker_plugin_parameters():
     assert ControllerServer._progress_params(node, 'pc') == {
         'plugin': 'nav2_controller::SimpleProgressChecker', 'radius': 0.5, 'time': 10.0}
     assert 'pc.required_movement_angle' not in declared  # upstream declares it for Pose only
+    overrides = {'gc.plugin': 'nav2_controller::StoppedGoalChecker',
+                 'gc.rot_stopped_velocity': 0.1, 'gc.xy_goal_tolerance': 0.15}
+    assert ControllerServer._goal_params(node, 'gc') == {
+        'plugin': 'nav2_controller::StoppedGoalChecker', 'xy': 0.15, 'yaw': 0.25,
+        'stateful': True, 'rot_stopped': 0.1, 'trans_stopped': 0.25}
+    overrides = {}
+    declared.clear()
+    assert ControllerServer._goal_params(node, 'gc') == {
+        'plugin': 'nav2_controller::SimpleGoalChecker', 'xy': 0.25, 'yaw': 0.25,
+        'stateful': True}
+    assert 'gc.rot_stopped_velocity' not in declared
