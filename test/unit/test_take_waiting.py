@@ -3,36 +3,18 @@
 """
 ``take_waiting``: a callback takes every message waiting in a queue, oldest first.
 
-In-process rclpy (own ROS_DOMAIN_ID, localhost discovery), no processes, no executor.
+In-process rclpy (conftest's ``ros``: own ROS_DOMAIN_ID, localhost discovery), no processes;
+the executor is never spun.
 """
 
-import os
 import time
 
-from conftest import next_domain_id
 import pytest
 
 rclpy = pytest.importorskip('rclpy')
 
-import rclpy.node  # noqa: E402, I100
-
 from amr_description.ros.subscriptions import take_waiting  # noqa: E402, I100
 from std_msgs.msg import Int32  # noqa: E402
-
-
-@pytest.fixture
-def node():
-    """Make a node on a fresh context (own domain); shut it down at the end."""
-    os.environ['ROS_DOMAIN_ID'] = str(next_domain_id())
-    os.environ['ROS_AUTOMATIC_DISCOVERY_RANGE'] = 'LOCALHOST'
-    context = rclpy.context.Context()
-    rclpy.init(context=context)
-    made = rclpy.node.Node('take_waiting_test', context=context)
-    try:
-        yield made
-    finally:
-        made.destroy_node()
-        rclpy.shutdown(context=context)
 
 
 def _collect(subscription, count, timeout=30.0):
@@ -45,7 +27,8 @@ def _collect(subscription, count, timeout=30.0):
     return got
 
 
-def test_takes_every_waiting_message_oldest_first_and_not_the_callback(node):
+def test_takes_every_waiting_message_oldest_first_and_not_the_callback(ros):
+    node = ros[0]('take_waiting_test')  # its executor never spins here
     heard = []
     sub = node.create_subscription(Int32, 'numbers', heard.append, 10)
     pub = node.create_publisher(Int32, 'numbers', 10)
@@ -60,7 +43,8 @@ def test_takes_every_waiting_message_oldest_first_and_not_the_callback(node):
     assert heard == []  # the callback is not called: the caller handles what it took
 
 
-def test_a_destroyed_subscription_gives_nothing(node):
+def test_a_destroyed_subscription_gives_nothing(ros):
+    node = ros[0]('take_waiting_test')
     sub = node.create_subscription(Int32, 'numbers', lambda msg: None, 10)
     node.destroy_subscription(sub)
     assert take_waiting(sub) == []
