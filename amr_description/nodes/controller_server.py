@@ -23,10 +23,7 @@ frame) and ``publish_zero_velocity`` (true).
 
 Action ``follow_path`` (nav2_msgs/action/FollowPath), one goal at a time, a new one replacing
 the path (:class:`amr_description.ros.goal_server.SingleGoalServer`). Each cycle: the robot's
-pose from TF, the odometry messages waiting in the queue taken
-(:func:`amr_description.ros.subscriptions.take_waiting`: upstream's loop runs on its own thread
-and sees the newest odometry; ours is a timer behind the executor's one message per wake), the
-progress check (FAILED_TO_MAKE_PROGRESS), the path pruned to the pose
+pose from TF, the progress check (FAILED_TO_MAKE_PROGRESS), the path pruned to the pose
 nearest the robot and put in the robot's frame, RPP's command with the collision check on the
 local costmap's footprint cost (NO_VALID_CONTROL after ``failure_tolerance``), feedback
 (``distance_to_goal`` along the path, ``speed``), ``cmd_vel`` (reliable, depth 1), then the
@@ -48,7 +45,6 @@ from amr_description.nodes.costmap_2d import CostmapNode
 from amr_description.ros import shutdown
 from amr_description.ros.goal_server import SingleGoalServer
 from amr_description.ros.managed_node import ManagedNode
-from amr_description.ros.subscriptions import take_waiting
 from amr_description.ros.transforms import planar_pose
 from amr_description.ros.transforms import TransformListener
 from amr_description.ros.transforms import yaw_of
@@ -114,7 +110,7 @@ class ControllerServer(ManagedNode):
         self.costmap = CostmapNode('local_costmap', self.tf_buffer, ns if ns != '/' else '',
                                    **kwargs)
         self.companion_nodes = [self.costmap]
-        self._listener = self._server = self._cmd_pub = self._odom_sub = None
+        self._listener = self._server = self._cmd_pub = None
         self._entities = []
         self.speed = (0.0, 0.0)
         self.speed_limit = None
@@ -175,11 +171,10 @@ class ControllerServer(ManagedNode):
         self.costmap.start()
         self._cmd_pub = TwistPublisher(self, 'cmd_vel', self.stamped,
                                        self.costmap.p['robot_base_frame'])
-        self._odom_sub = self.create_subscription(Odometry, self.odom_topic, self._on_odom,
-                                                  qos_profile_sensor_data)
         self._entities = [
             self._cmd_pub.pub,
-            self._odom_sub,
+            self.create_subscription(Odometry, self.odom_topic, self._on_odom,
+                                     qos_profile_sensor_data),
             self.create_subscription(SpeedLimit, self.speed_limit_topic, self._on_speed_limit,
                                      10),
             self.create_timer(1.0 / max(self.frequency, 1e-3), self._cycle)]
@@ -194,7 +189,7 @@ class ControllerServer(ManagedNode):
             self._server = None
         self.destroy_entities(self._entities)
         self._entities = []
-        self._cmd_pub = self._odom_sub = None
+        self._cmd_pub = None
         self.costmap.stop()
 
     def cleanup(self):
@@ -280,8 +275,6 @@ class ControllerServer(ManagedNode):
             return
         codes = FollowPath.Result
         run = self.run
-        for msg in take_waiting(self._odom_sub):  # the newest odometry, as upstream's loop sees
-            self._on_odom(msg)
         base = self.costmap.p['robot_base_frame']
         try:
             T_path, _ = self.tf_buffer.lookup(run['frame'], base)
