@@ -319,7 +319,8 @@ class SimpleProgressChecker:
 
     def reset(self):
         """Start over at the next pose."""
-        self.baseline = None
+        self.baseline = None  # the pose the robot must move (or turn) away from
+        self.since = None  # when it was there (s)
 
     def moved_enough(self, pose):
         """Return True when ``pose`` (x, y[, yaw]) is farther than the radius from the baseline."""

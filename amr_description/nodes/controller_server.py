@@ -242,13 +242,7 @@ class ControllerServer(ManagedNode):
                 self.controllers[cid]['params'], gc['xy'], self.costmap.inscribed,
                 self.costmap.circumscribed, self.costmap.p['resolution'])
             self.run = {'cid': cid, 'rpp': controller, 'failing_since': None,
-                        'goal': rpp.StoppedGoalChecker(gc['xy'], gc['yaw'], gc['stateful'],
-                                                       gc['rot_stopped'], gc['trans_stopped'])
-                        if 'rot_stopped' in gc else
-                        rpp.SimpleGoalChecker(gc['xy'], gc['yaw'], gc['stateful']),
-                        'progress': rpp.PoseProgressChecker(pc['radius'], pc['time'],
-                                                            pc['angle']) if 'angle' in pc else
-                        rpp.SimpleProgressChecker(pc['radius'], pc['time'])}
+                        'goal': _goal_checker(gc), 'progress': _progress_checker(pc)}
             self.get_logger().info('Received a goal, begin computing control effort.')
         else:
             self.get_logger().info('Passing new path to controller.')
@@ -361,6 +355,21 @@ class ControllerServer(ManagedNode):
         if self._server is not None:
             self._server.finish_current('abort', result)
         self.run = None
+
+
+def _goal_checker(params):
+    """Return the goal checker of a :meth:`ControllerServer._goal_params` dict."""
+    if 'rot_stopped' in params:  # declared for StoppedGoalChecker only
+        return rpp.StoppedGoalChecker(params['xy'], params['yaw'], params['stateful'],
+                                      params['rot_stopped'], params['trans_stopped'])
+    return rpp.SimpleGoalChecker(params['xy'], params['yaw'], params['stateful'])
+
+
+def _progress_checker(params):
+    """Return the progress checker of a :meth:`ControllerServer._progress_params` dict."""
+    if 'angle' in params:  # declared for PoseProgressChecker only
+        return rpp.PoseProgressChecker(params['radius'], params['time'], params['angle'])
+    return rpp.SimpleProgressChecker(params['radius'], params['time'])
 
 
 def main(args=None):
