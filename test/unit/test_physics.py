@@ -95,3 +95,22 @@ def test_report_table_and_bad_file(tmp_path, capsys):
     text = physics_report.format_table(rows).splitlines()
     assert text[0].split() == ['case', 'quantity', 'value', 'target', 'ok']
     assert text[2].endswith('yes') and text[3].endswith('NO')
+
+
+def test_arc_rows_compare_the_sideways_slip_with_the_coulomb_model():
+    # an arc's row is the measured sideways velocity minus the model's, within 1 cm/s
+    def arc(sideways, model):
+        return physics_report.Drive(
+            left=2.0, right=6.0, all4=1.0, mean_contacts=4.0, jitter_mm=0.0, yaw_rate=1.0,
+            model_yaw_rate=1.0, wheel_speeds=(2.0, 2.0, 6.0, 6.0), tracking=0.0, distance=1.0,
+            odometry_distance=1.0, sideways=sideways, model_sideways=model)
+
+    def slip_rows(drive):
+        result = {'turns': [], 'straights': [], 'arcs': [drive], 'rest_s': 0.1,
+                  'creep_mm': 0.0}
+        return [r for r in physics_report.table_rows(result) if r[1].startswith('sideways')]
+
+    (row,) = slip_rows(arc(-0.0833, -0.0057))
+    assert row[2] == '-7.76 cm/s (-8.33 vs -0.57)' and row[3] == '+- 1 cm/s' and not row[4]
+    (row,) = slip_rows(arc(-0.0061, -0.0057))
+    assert row[2] == '-0.04 cm/s (-0.61 vs -0.57)' and row[4]
