@@ -107,8 +107,9 @@ class ControllerServer(ManagedNode):
                                   d('progress_checker_plugins', ['progress_checker']).value}
         self.tf_buffer = TransformBuffer()
         ns = self.get_namespace()
-        self.costmap = CostmapNode('local_costmap', self.tf_buffer, ns if ns != '/' else '',
-                                   **kwargs)
+        self.costmap = CostmapNode(
+            'local_costmap', self.tf_buffer, ns if ns != '/' else '',
+            use_sim_time=self.get_parameter('use_sim_time').value, **kwargs)
         self.companion_nodes = [self.costmap]
         self._listener = self._server = self._cmd_pub = None
         self._entities = []

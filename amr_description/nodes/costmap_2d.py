@@ -13,7 +13,10 @@ one overrides the radius), ``footprint_padding`` (0.01), ``width``/``height`` (5
 (255), ``trinary_costmap`` (true), ``update_frequency`` (5.0 Hz), ``publish_frequency``
 (1.0 Hz), ``transform_tolerance`` (0.3 s), ``initial_transform_timeout`` (60.0 s), ``map_topic``
 (map), ``plugins`` ([static_layer, obstacle_layer, inflation_layer]) and each layer's
-``<layer>.plugin``:
+``<layer>.plugin``. As ``Costmap2DROS``: ``use_sim_time`` is the server's; the layers update
+every ``1 / update_frequency`` seconds of wall time (its ``mapUpdateLoop`` runs on a
+``WallRate``), and the costmap is published every ``1 / publish_frequency`` seconds of the
+node's clock, stamped with that clock (sim time in a simulation):
 
 - ``nav2_costmap_2d::StaticLayer``: the map on ``map_topic`` (reliable, transient local unless
   ``map_subscribe_transient_local`` is false); a costmap that is not a rolling window takes
@@ -62,6 +65,9 @@ from nav2_msgs.srv import ClearEntireCostmap
 from nav2_msgs.srv import GetCostmap
 from nav_msgs.msg import OccupancyGrid
 import numpy as np
+from rclpy.clock import Clock
+from rclpy.clock import ClockType
+from rclpy.parameter import Parameter
 from rclpy.qos import DurabilityPolicy
 from rclpy.qos import qos_profile_sensor_data
 from rclpy.qos import QoSProfile
@@ -100,11 +106,17 @@ class CostmapNode(Node):
     :param namespace: the server's namespace ('' at the root).
     :param cli_args: the server's own ROS arguments (a composed server's ``--params-file``
         and remappings), or None.
+    :param use_sim_time: the server's ``use_sim_time``, which overrides the costmap's own
+        (Nav2's servers hand theirs to ``Costmap2DROS``), or None to keep the costmap's.
     :param kwargs: the server's other rclpy node options (``use_global_arguments``).
     """
 
-    def __init__(self, name, tf_buffer, namespace='', cli_args=None, **kwargs):
+    def __init__(self, name, tf_buffer, namespace='', cli_args=None, use_sim_time=None,
+                 **kwargs):
         """Declare the parameters and the layers' parameters."""
+        if use_sim_time is not None:
+            kwargs['parameter_overrides'] = list(kwargs.get('parameter_overrides') or []) + [
+                Parameter('use_sim_time', value=bool(use_sim_time))]
         ns = f'{namespace.rstrip("/")}/{name}' if namespace else name
         # node-local remaps win over the process's ``-r __node:=<server>`` (as Nav2's
         # Costmap2DROS does with ``<name>:__node:=<name>``), and the first matching rule wins
@@ -233,7 +245,8 @@ class CostmapNode(Node):
             self.create_service(ClearEntireCostmap, f'clear_entirely_{self.name}',
                                 self._on_clear),
             self.create_service(GetCostmap, 'get_costmap', self._on_get),
-            self.create_timer(1.0 / max(self.p['update_frequency'], 1e-3), self.update),
+            self.create_timer(1.0 / max(self.p['update_frequency'], 1e-3), self.update,
+                              clock=Clock(clock_type=ClockType.STEADY_TIME)),
             self.create_timer(1.0 / max(self.p['publish_frequency'], 1e-3), self.publish)]
 
     def _parent_topic(self, topic):

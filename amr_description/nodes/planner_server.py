@@ -70,8 +70,9 @@ class PlannerServer(ManagedNode):
                     f'{pid}.use_final_approach_orientation', False).value)}
         self.tf_buffer = TransformBuffer()
         ns = self.get_namespace()
-        self.costmap = CostmapNode('global_costmap', self.tf_buffer, ns if ns != '/' else '',
-                                   **kwargs)
+        self.costmap = CostmapNode(
+            'global_costmap', self.tf_buffer, ns if ns != '/' else '',
+            use_sim_time=self.get_parameter('use_sim_time').value, **kwargs)
         self.companion_nodes = [self.costmap]
         self._listener = self._action = self._plan_pub = None
 

@@ -105,3 +105,38 @@ def test_a_scan_waits_for_the_transform_at_its_stamp(ros):
     costmap._observe(params)
     assert not costmap._queue('scan')
     costmap.destroy_node()
+
+
+@pytest.mark.parametrize('server', ['controller_server', 'planner_server'])
+def test_a_servers_costmap_takes_its_use_sim_time_and_updates_on_wall_time(ros, tmp_path,
+                                                                          server):
+    # nav2_bringup hands use_sim_time to the server alone (a launch file's dict is keyed to
+    # the server's name); the server passes it to its costmap, as Nav2's do to Costmap2DROS.
+    # The layers then update on wall time (mapUpdateLoop's WallRate) and the costmap is
+    # published on the node's clock, here sim time
+    import importlib
+
+    from amr_description.launch.actions import params_key
+    from rclpy.clock import ClockType
+    import yaml
+    make, _ = ros
+    params = tmp_path / 'server.yaml'
+    params.write_text(yaml.safe_dump({params_key(server, '/r1'): {
+        'ros__parameters': {'use_sim_time': True}}}))
+    module = importlib.import_module(f'amr_description.nodes.{server}')
+    cls = {'controller_server': 'ControllerServer', 'planner_server': 'PlannerServer'}[server]
+    node = getattr(module, cls)(
+        context=make('unused4').context, use_global_arguments=False,
+        cli_args=['--ros-args', '-r', f'__node:={server}', '-r', '__ns:=/r1',
+                  '--params-file', str(params)])
+    costmap = node.costmap
+    assert node.get_parameter('use_sim_time').value is True
+    assert costmap.get_fully_qualified_name().startswith('/r1/')
+    assert costmap.get_parameter('use_sim_time').value is True
+    costmap.tf.set_transform(costmap.p['global_frame'], costmap.p['robot_base_frame'], 0.0,
+                             (0.0, 0.0, 0.0), (0.0, 0.0, 0.0, 1.0), static=True)
+    costmap.start()
+    timers = {t.callback.__name__: t.clock.clock_type for t in costmap.timers}
+    assert timers == {'update': ClockType.STEADY_TIME, 'publish': ClockType.ROS_TIME}
+    costmap.destroy_node()
+    node.destroy_node()
