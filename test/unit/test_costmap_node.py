@@ -108,8 +108,8 @@ def test_a_scan_waits_for_the_transform_at_its_stamp(ros):
 
 
 @pytest.mark.parametrize('server', ['controller_server', 'planner_server'])
-def test_a_servers_costmap_takes_its_use_sim_time_and_updates_on_wall_time(ros, tmp_path,
-                                                                          server):
+def test_a_servers_costmap_takes_its_use_sim_time_and_updates_on_wall_time(
+        ros, tmp_path, server):
     # nav2_bringup hands use_sim_time to the server alone (a launch file's dict is keyed to
     # the server's name); the server passes it to its costmap, as Nav2's do to Costmap2DROS.
     # The layers then update on wall time (mapUpdateLoop's WallRate) and the costmap is
