@@ -94,8 +94,8 @@ class Drive:
     tracking: float
     distance: float
     odometry_distance: float
-    sideways: float = 0.0
-    model_sideways: float = 0.0
+    sideways: float
+    model_sideways: float
 
     @property
     def turn_ratio(self):
