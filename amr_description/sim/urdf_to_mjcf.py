@@ -30,19 +30,22 @@ Mapping (URDF -> MuJoCo, units SI, REP 103 axes):
   ``armature`` (kg m^2, the motor's rotor inertia reflected through its gearbox) is added to
   the joint.
 - contact ``friction`` (and optional ``solref``, ``solimp``, ``condim``) from ``<mujoco>``;
-  per link, ``shape="sphere"`` replaces its collision cylinders by spheres of the cylinder
-  radius at the same origin (a wheel then touches the ground in one point below its axle),
-  and ``solreffriction`` (time constant s, damping ratio) is the reference of the friction
-  directions of the contacts between the link and the ground plane
-  (:class:`amr_description.sim.world.World` makes them explicit contact pairs; a text element
-  ``ground_contact/<geom>`` of the spec carries the request).
+  per link, ``shape="ellipsoid"`` replaces its collision cylinders by ellipsoids with the
+  cylinder's radius in the cylinder's cross-section and half its length along its axis, at the
+  same origin (a wheel then touches the ground in one point below its axle, as a tyre with a
+  rounded profile, and is no wider than its cylinder), ``shape="sphere"`` by spheres of the
+  cylinder's radius (one point below the axle too, but as wide as the wheel is tall: it
+  touches walls and pillars the cylinder clears), and ``solreffriction`` (time constant s,
+  damping ratio) is the reference of the friction directions of the contacts between the
+  link and the ground plane (:class:`amr_description.sim.world.World` makes them explicit
+  contact pairs; a text element ``ground_contact/<geom>`` of the spec carries the request).
 
 The ``<mujoco>`` block (see docs/architecture.md)::
 
     <mujoco>
       <ros2_control parameters="package://amr_description/config/controllers.yaml"/>
       <contact friction="1.0 0.005 0.0001" solref="0.02 1" solimp="0.9 0.95 0.001"/>
-      <link name="wheel_front_left" friction="1.0 0.005 0.0001" shape="sphere"
+      <link name="wheel_front_left" friction="1.0 0.005 0.0001" shape="ellipsoid"
             solreffriction="1 1"/>
       <actuator kv="5.0" ki="100" armature="0.05" forcerange="-20 20"/>
       <actuator joint="joint_wheel_front_left" kv="5.0" forcerange="-20 20"/>
@@ -358,6 +361,26 @@ def _root_link(robot):
     return roots[0]
 
 
+def _round_wheel(geom, shape):
+    """
+    Replace a collision cylinder by the ``<mujoco><link shape=...>`` asked for, in place.
+
+    MuJoCo's cylinder size is ``(radius, half length)`` along the geom's z; an ellipsoid's is
+    its three semi-axes along the geom's x, y and z, so ``(r, r, half length)`` keeps the
+    cylinder's cross-section circle (where a wheel rolls) and its width.
+
+    :param geom: a ``mujoco.MjsGeom`` of type cylinder.
+    :param shape: 'sphere', 'ellipsoid', or anything else for the cylinder unchanged.
+    """
+    radius, half_length = float(geom.size[0]), float(geom.size[1])
+    if shape == 'sphere':
+        geom.type = mujoco.mjtGeom.mjGEOM_SPHERE
+        geom.size = [radius, 0.0, 0.0]
+    elif shape == 'ellipsoid':
+        geom.type = mujoco.mjtGeom.mjGEOM_ELLIPSOID
+        geom.size = [radius, radius, half_length]
+
+
 def urdf_to_spec(urdf_xml, name='amr', pose=(0.0, 0.0, 0.0, 0.0, 0.0, 0.0), free=True):
     """
     Build a MuJoCo spec holding the robot described by a URDF.
@@ -432,9 +455,8 @@ def urdf_to_spec(urdf_xml, name='amr', pose=(0.0, 0.0, 0.0, 0.0, 0.0, 0.0), free
             if geom is None:
                 continue
             geom.name = f'{link_name}/{collision.name or f"collision_{index}"}'
-            if contact.get('shape') == 'sphere' and geom.type == mujoco.mjtGeom.mjGEOM_CYLINDER:
-                geom.type = mujoco.mjtGeom.mjGEOM_SPHERE
-                geom.size = [geom.size[0], 0.0, 0.0]
+            if geom.type == mujoco.mjtGeom.mjGEOM_CYLINDER:
+                _round_wheel(geom, contact.get('shape'))
             if 'solreffriction' in contact:
                 spec.add_text(name=GROUND_CONTACT_PREFIX + geom.name, data='solreffriction ' +
                               ' '.join(repr(float(v)) for v in contact['solreffriction']))

@@ -8,6 +8,8 @@ from amr_description.tools.benchmark.amcl_replay import interpolate_pose
 from amr_description.tools.benchmark.amcl_replay import last_clock_run
 from amr_description.tools.benchmark.amcl_replay import params_from_file
 from amr_description.tools.benchmark.amcl_replay import pose_error
+from amr_description.tools.benchmark.amcl_replay import replay
+from amr_description.tools.benchmark.amcl_replay import settled_after
 import numpy as np
 import pytest
 
@@ -52,3 +54,19 @@ def test_a_text_parameter_is_kept_as_text(tmp_path):
     path.write_text('amcl:\n  ros__parameters:\n    alpha5: 0.3\n')
     p = params_from_file(str(path), ['robot_model_type=nav2_amcl::OmniMotionModel'])
     assert (p.robot_model_type, p.alpha5) == ('nav2_amcl::OmniMotionModel', 0.3)
+
+
+def test_settled_after_is_where_the_last_excursion_ends():
+    driven = np.array([0.0, 0.5, 1.0, 1.5, 2.0])
+    three = math.radians(3.0)
+    errors = np.array([[0.3, 0.1], [0.04, 0.0], [0.06, 0.0], [0.01, three], [0.02, 0.01]])
+    assert settled_after(errors, driven) == 1.5  # 6 cm at 1.0 m; exactly 3 deg is within
+    assert settled_after(np.zeros((5, 2)), driven) == 0.0
+    errors[-1, 1] = math.radians(3.1)
+    assert settled_after(errors, driven) is None  # outside at the end
+    assert settled_after(np.zeros((0, 2)), np.zeros(0)) is None
+
+
+def test_replay_refuses_an_unknown_start():
+    with pytest.raises(ValueError, match='expected truth, offset or global'):
+        replay([], np.zeros((0, 4)), np.zeros((0, 4)), None, None, start='rviz')

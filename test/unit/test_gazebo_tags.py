@@ -110,7 +110,7 @@ def test_the_tutorial_gazebo_robot_gets_the_drive_defaults():
     assert not description.mujoco.present
     drive = description.mujoco.joint_actuator['front_left_wheel_joint']
     assert (drive['kv'], drive['ki'], drive['forcerange']) == (5.0, 100.0, (-20.0, 20.0))
-    assert description.mujoco.link_contact['front_left_wheel'] == {'shape': 'sphere'}
+    assert description.mujoco.link_contact['front_left_wheel'] == {'shape': 'ellipsoid'}
     assert 'base_link' not in description.mujoco.link_contact
 
 

@@ -183,7 +183,7 @@ def test_package_urdf_total_mass_7kg():
 
 
 def test_wheel_contact_shape_friction_reference_and_pi_drive():
-    extra = """<mujoco><link name="wheel_front_left" shape="sphere" solreffriction="1 1"/>
+    extra = """<mujoco><link name="wheel_front_left" shape="ellipsoid" solreffriction="1 1"/>
       <actuator joint="joint_wheel_front_left" kv="5" ki="100" armature="0.05"
                 forcerange="-3 4"/></mujoco>"""
     spec = urdf_to_spec(tutorial_urdf(extra=extra))
@@ -191,7 +191,8 @@ def test_wheel_contact_shape_friction_reference_and_pi_drive():
     assert spec.texts[0].data == 'solreffriction 1.0 1.0'
     model = spec.compile()
     left = model.geom('wheel_front_left/collision_0')
-    assert left.type[0] == mujoco.mjtGeom.mjGEOM_SPHERE and left.size[0] == 0.1
+    assert left.type[0] == mujoco.mjtGeom.mjGEOM_ELLIPSOID
+    np.testing.assert_allclose(left.size, [0.1, 0.1, 0.02])  # radius, radius, half width
     assert model.geom('wheel_front_left/visual_0').type[0] == mujoco.mjtGeom.mjGEOM_CYLINDER
     assert model.geom('wheel_front_right/collision_0').type[0] == \
         mujoco.mjtGeom.mjGEOM_CYLINDER
@@ -205,9 +206,34 @@ def test_wheel_contact_shape_friction_reference_and_pi_drive():
     assert i.dyntype[0] == mujoco.mjtDyn.mjDYN_INTEGRATOR and i.gainprm[0] == 100.0
     assert i.biasprm[1] == -100.0 and i.biasprm[2] == 0.0 and not i.actlimited[0]
     assert model.nu == 5
-    with pytest.raises(ValueError, match='shape must be one of urdf, sphere'):
+    with pytest.raises(ValueError, match='shape must be one of urdf, sphere, ellipsoid'):
         urdf_to_spec(tutorial_urdf(extra='<mujoco><link name="base_link" shape="box"/>'
                                          '</mujoco>'))
+
+
+@pytest.mark.parametrize('shape, gap, touches', [
+    # the wheel's outer face is at y 0.15 + 0.02 (urdf/amr.urdf: axle at y 0.15, 0.04 wide)
+    ('ellipsoid', 0.005, False), ('ellipsoid', -0.005, True),
+    ('urdf', 0.005, False), ('urdf', -0.005, True),
+    # a sphere of the wheel's radius reaches 0.1 - 0.02 m beyond that face
+    ('sphere', 0.07, True), ('sphere', 0.085, False)])
+def test_a_round_wheel_is_as_wide_as_its_cylinder(shape, gap, touches):
+    extra = f'<mujoco><link name="wheel_front_left" shape="{shape}"/></mujoco>'
+    spec = urdf_to_spec(tutorial_urdf(extra=extra), pose=(0, 0, 0.5, 0, 0, 0))
+    model = spec.compile()
+    data = mujoco.MjData(model)
+    mujoco.mj_forward(model, data)
+    wheel = data.xpos[model.body('wheel_front_left').id]
+    wall = spec.worldbody.add_geom(name='wall', type=mujoco.mjtGeom.mjGEOM_BOX,
+                                   size=[0.5, 0.05, 0.5])
+    wall.pos = [wheel[0], wheel[1] + 0.02 + gap + 0.05, wheel[2]]
+    model = spec.compile()
+    data = mujoco.MjData(model)
+    mujoco.mj_forward(model, data)
+    wall_id = model.geom('wall').id
+    touching = {int(model.geom_bodyid[g]) for c in data.contact[:data.ncon]
+                for g in (c.geom1, c.geom2) if wall_id in (c.geom1, c.geom2) and g != wall_id}
+    assert (model.body('wheel_front_left').id in touching) == touches
 
 
 def test_pose_as_quaternion_matches_rpy():

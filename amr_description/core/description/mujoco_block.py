@@ -24,7 +24,7 @@ DEFAULT_CONTACT = {
 DEFAULT_ACTUATOR = {'kv': 5.0, 'kp': 100.0, 'ki': 0.0, 'armature': 0.0,
                     'forcerange': (-20.0, 20.0)}
 #: contact shapes a ``<mujoco><link shape=...>`` may ask for
-CONTACT_SHAPES = ('urdf', 'sphere')
+CONTACT_SHAPES = ('urdf', 'sphere', 'ellipsoid')
 
 
 @dataclass
@@ -53,9 +53,10 @@ DRIVE_DEFAULTS = {'kv': 5.0, 'ki': 100.0, 'armature': 0.05}
 """The wheel drive of a description without ``<mujoco>``: the PI velocity servo, gains and
 rotor inertia measured for the tutorial robot (docs/simulation.md, "Contact and actuators")."""
 
-WHEEL_CONTACT_DEFAULTS = {'shape': 'sphere'}
+WHEEL_CONTACT_DEFAULTS = {'shape': 'ellipsoid'}
 """The wheel-ground contact of a description without ``<mujoco>``: one point below the axle
-(MuJoCo's cylinder-plane contact puts two on the rim edges). Not the slower friction reference
+(MuJoCo's cylinder-plane contact puts two on the rim edges), the wheel no wider than its
+cylinder (a sphere would be as wide as it is tall). Not the slower friction reference
 of urdf/amr.urdf: without acceleration limits in the controllers YAML (the tutorial's has
 none) it lets the wheels slip when a command steps (0.95 m driven for 1.00 m of odometry,
 docs/gazebo.md)."""

@@ -7,9 +7,13 @@ Reads a rosbag2 (MCAP or SQLite, with rosbags) holding the lidar's ``sensor_msgs
 the wheel odometry and the simulator's ground truth (both ``nav_msgs/Odometry``), and runs
 :class:`~amr_description.nav.amcl.Amcl` over the scans in this process (no ROS): each scan at
 the odometry pose interpolated at its stamp, the filter started at the ground truth of the
-first scan. For each parameter set and seed it prints the position and heading error of the
-filter's pose after every update, against the ground truth at the scan's stamp (median, 90th
-percentile, maximum); with ``/amcl_pose`` in the bag, the live node's error too. A bag of
+first scan (``--start offset``: an ``/initialpose`` ``--offset`` from it with RViz's
+covariance, as test/integration/test_localization.py sends; ``--start global``:
+``reinitialize_global_localization``). For each parameter set and seed it prints the position
+and heading error of the filter's pose after every update, against the ground truth at the
+scan's stamp (median, 90th percentile, maximum), and the distance driven from which every
+later update was within 5 cm and 3 deg (issue 30's target); with ``/amcl_pose`` in the bag,
+the live node's error too. A bag of
 ``navigate_job`` holds two runs of the clock (mapping, then the goals); only the last is used.
 
 The parameters are those of the ``amcl`` section of a Nav2 params file (config/nav2_params.yaml
@@ -26,6 +30,9 @@ import math
 import sys
 
 import numpy as np
+
+RVIZ_COVARIANCE = (0.25, 0.25, 0.06853891945200942)
+"""Variances (m^2, m^2, rad^2) of x, y and yaw in RViz's "2D Pose Estimate" message."""
 
 
 def interpolate_pose(track, t):
@@ -114,29 +121,67 @@ def read_bag(path, scan_topic, odom_topic, truth_topic, amcl_topic):
 
 
 def replay(scans, odom, truth, grid, params, sensor=(0.0, 0.0, 0.0), seed=1,
-           initial_sigma=(0.1, 0.1, 0.05)):
+           initial_sigma=(0.1, 0.1, 0.05), start='truth', offset=(0.0, 0.0, 0.0)):
     """
-    Run the filter over the scans; return the ``(n, 2)`` errors after each update (m, rad).
+    Run the filter over the scans; return the errors and the distance driven at each update.
 
     :param grid: the map (:class:`~amr_description.nav.map_io.GridMap`).
     :param params: :class:`~amr_description.nav.amcl.AmclParameters`.
     :param sensor: the lidar's ``x, y, yaw`` in the base frame.
-    :param initial_sigma: standard deviations (m, m, rad) round the first ground truth.
+    :param initial_sigma: standard deviations (m, m, rad) round the first ground truth
+        (``start`` 'truth').
+    :param start: 'truth' (round the first ground truth), 'offset' (an ``/initialpose``
+        ``offset`` from it, in the map frame, with RViz's "2D Pose Estimate" covariance,
+        :data:`RVIZ_COVARIANCE`) or 'global' (``reinitialize_global_localization``).
+    :param offset: ``dx, dy, dyaw`` (m, m, rad) for ``start`` 'offset'.
+    :returns: ``(errors, driven)``: ``(n, 2)`` m, rad after each update, and ``(n,)`` the
+        ground truth's path length (m) from the first scan to that update.
+    :raises ValueError: an unknown ``start``.
     """
     from amr_description.nav.amcl import Amcl
+    if start not in ('truth', 'offset', 'global'):
+        raise ValueError(f'start: expected truth, offset or global, found {start!r}')
     amcl = Amcl(params, seed=seed)
     amcl.set_map(grid)
-    errors = []
+    errors, driven = [], []
+    path, previous = 0.0, None
     for t, ranges, angle_min, increment, range_min, range_max in scans:
         at_odom, at_truth = interpolate_pose(odom, t), interpolate_pose(truth, t)
         if at_odom is None or at_truth is None:
             continue
+        if previous is not None:
+            path += math.hypot(*(at_truth[:2] - previous[:2]))
+        previous = at_truth
         if not amcl.initialized:
-            amcl.set_initial_pose(at_truth, np.diag(np.square(initial_sigma)))
+            if start == 'global':
+                amcl.global_localization()
+            elif start == 'offset':
+                amcl.set_initial_pose(at_truth + np.asarray(offset, dtype=float),
+                                      np.diag(RVIZ_COVARIANCE))
+            else:
+                amcl.set_initial_pose(at_truth, np.diag(np.square(initial_sigma)))
         beams, limit = amcl.beams(ranges, angle_min, increment, range_min, range_max, sensor)
         if amcl.process(at_odom, beams, limit):
             errors.append(pose_error(amcl.pose, at_truth))
-    return np.array(errors, dtype=float).reshape(-1, 2)
+            driven.append(path)
+    return np.array(errors, dtype=float).reshape(-1, 2), np.array(driven, dtype=float)
+
+
+def settled_after(errors, driven, distance=0.05, heading=math.radians(3.0)):
+    """
+    Return the distance driven from which every later update is within the bounds.
+
+    :param errors: ``(n, 2)`` m, rad, as :func:`replay` returns.
+    :param driven: ``(n,)`` m.
+    :param distance: m.
+    :param heading: rad.
+    :returns: m, or None when the last update is outside the bounds (or there is none).
+    """
+    e = np.asarray(errors, dtype=float).reshape(-1, 2)
+    outside = np.nonzero((e[:, 0] > distance) | (e[:, 1] > heading))[0]
+    if not len(e) or (len(outside) and outside[-1] == len(e) - 1):
+        return None
+    return float(driven[outside[-1] + 1]) if len(outside) else float(driven[0])
 
 
 def params_from_file(path, overrides):
@@ -184,10 +229,16 @@ def main(argv=None):
                         help='name=value over the params file (repeatable)')
     parser.add_argument('--vs', action='append_const', const='--vs', dest='sets',
                         help='start another parameter set')
+    parser.add_argument('--start', default='truth', choices=('truth', 'offset', 'global'),
+                        help='round the first ground truth, an /initialpose --offset from '
+                        'it, or global localization')
+    parser.add_argument('--offset', default='0.4,-0.3,0.349',
+                        help='dx,dy,dyaw of the initial pose for --start offset (m, rad)')
     opts = parser.parse_args(argv)
     try:
         from amr_description.nav import map_io
         sensor = tuple(float(v) for v in opts.sensor.split(','))
+        offset = tuple(float(v) for v in opts.offset.split(','))
         seeds = [int(v) for v in opts.seeds.split(',')]
         groups = [[]]
         for item in opts.sets:
@@ -207,9 +258,13 @@ def main(argv=None):
         print(f'live {opts.amcl}: {summary(errors)}')
     for group, params in sets:
         for seed in seeds:
-            errors = replay(scans, odom, truth, grid, params, sensor, seed)
-            print(f"{' '.join(group) or 'params file'} (seed {seed}): {summary(errors)}",
-                  flush=True)
+            errors, driven = replay(scans, odom, truth, grid, params, sensor, seed,
+                                    start=opts.start, offset=offset)
+            since = settled_after(errors, driven)
+            settled = ('not within 5 cm and 3 deg at the end' if since is None else
+                       f'within 5 cm and 3 deg from {since:.2f} m of driving on')
+            print(f"{' '.join(group) or 'params file'} (seed {seed}): {summary(errors)}; "
+                  f'{settled}', flush=True)
     return 0
 
 
