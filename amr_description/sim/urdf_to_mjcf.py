@@ -37,8 +37,11 @@ Mapping (URDF -> MuJoCo, units SI, REP 103 axes):
   cylinder's radius (one point below the axle too, but as wide as the wheel is tall: it
   touches walls and pillars the cylinder clears), and ``solreffriction`` (time constant s,
   damping ratio) is the reference of the friction directions of the contacts between the
-  link and the ground plane (:class:`amr_description.sim.world.World` makes them explicit
-  contact pairs; a text element ``ground_contact/<geom>`` of the spec carries the request).
+  link and the ground plane, or ``ground_friction="coulomb"`` gives those contacts Coulomb's
+  friction instead of MuJoCo's (:mod:`amr_description.sim.wheel_friction`)
+  (:class:`amr_description.sim.world.World` makes them explicit contact pairs; a text element
+  ``ground_contact/<geom>`` of the spec carries the request: ``solreffriction T D`` or
+  ``coulomb``).
 
 The ``<mujoco>`` block (see docs/architecture.md)::
 
@@ -46,7 +49,7 @@ The ``<mujoco>`` block (see docs/architecture.md)::
       <ros2_control parameters="package://amr_description/config/controllers.yaml"/>
       <contact friction="1.0 0.005 0.0001" solref="0.02 1" solimp="0.9 0.95 0.001"/>
       <link name="wheel_front_left" friction="1.0 0.005 0.0001" shape="ellipsoid"
-            solreffriction="1 1"/>
+            ground_friction="coulomb"/>
       <actuator kv="5.0" ki="100" armature="0.05" forcerange="-20 20"/>
       <actuator joint="joint_wheel_front_left" kv="5.0" forcerange="-20 20"/>
     </mujoco>
@@ -457,7 +460,9 @@ def urdf_to_spec(urdf_xml, name='amr', pose=(0.0, 0.0, 0.0, 0.0, 0.0, 0.0), free
             geom.name = f'{link_name}/{collision.name or f"collision_{index}"}'
             if geom.type == mujoco.mjtGeom.mjGEOM_CYLINDER:
                 _round_wheel(geom, contact.get('shape'))
-            if 'solreffriction' in contact:
+            if contact.get('ground_friction') == 'coulomb':
+                spec.add_text(name=GROUND_CONTACT_PREFIX + geom.name, data='coulomb')
+            elif 'solreffriction' in contact:
                 spec.add_text(name=GROUND_CONTACT_PREFIX + geom.name, data='solreffriction ' +
                               ' '.join(repr(float(v)) for v in contact['solreffriction']))
             geom.group = COLLISION_GROUP

@@ -19,6 +19,7 @@ from amr_description.sim.sdf_to_mjcf import GROUND_BODY
 from amr_description.sim.sdf_to_mjcf import make_world_spec
 from amr_description.sim.sdf_to_mjcf import SEPARATOR
 from amr_description.sim.urdf_to_mjcf import GROUND_CONTACT_PREFIX
+from amr_description.sim.wheel_friction import CoulombWheels
 import mujoco
 import numpy as np
 
@@ -42,6 +43,11 @@ def mujoco_error(exc):
         element = element.rsplit(', id ', 1)[0]
         return f'{what} (element {element})'
     return what
+
+
+def _mj_step(model, data, nstep):
+    """Advance ``nstep`` steps with MuJoCo's own friction everywhere."""
+    mujoco.mj_step(model, data, nstep=nstep)
 
 
 @dataclass
@@ -93,6 +99,8 @@ class World:
             source = description.source if description is not None else 'the empty world'
             raise ValueError(f'{source}: MuJoCo cannot build it: {mujoco_error(exc)}') from None
         self.data = mujoco.MjData(self.model)
+        self.wheels = CoulombWheels()  # Coulomb friction of the pairs it flags
+        self._coulomb_pairs = set()  # names of the wheel-ground pairs with Coulomb friction
         self.robots = {}
         self._initial_joints = {}  # joint (prefixed) -> (position or None, velocity or None)
         mujoco.mj_forward(self.model, self.data)
@@ -204,15 +212,22 @@ class World:
                 continue
             geom = self.spec.geom(prefix + text.name[len(marker):])
             values = text.data.split()
-            if geom is None or len(values) != 3 or values[0] != 'solreffriction':
+            coulomb = values == ['coulomb']
+            if geom is None or not coulomb and (len(values) != 3 or
+                                                values[0] != 'solreffriction'):
                 raise ValueError(f'malformed ground contact request {text.name!r}')
             friction = [max(a, b) for a, b in zip(geom.friction, ground.friction)]
+            name = f'{prefix}ground_pair/{geom.name[len(prefix):]}'
             self.spec.add_pair(
-                name=f'{prefix}ground_pair/{geom.name[len(prefix):]}',
-                geomname1=ground.name, geomname2=geom.name, condim=geom.condim,
+                name=name, geomname1=ground.name, geomname2=geom.name,
+                # Coulomb: MuJoCo's contact keeps the normal force only, the friction
+                # coefficient stays in the pair for amr_description/sim/wheel_friction.py
+                condim=1 if coulomb else geom.condim,
                 friction=[friction[0], friction[0], friction[1], friction[2], friction[2]],
                 solref=list(geom.solref), solimp=list(geom.solimp),
-                solreffriction=[float(values[1]), float(values[2])])
+                solreffriction=[0.0, 0.0] if coulomb else [float(values[1]), float(values[2])])
+            if coulomb:
+                self._coulomb_pairs.add(name)
             body = self._geom_body(geom.name)
             if body not in excluded:
                 excluded.add(body)
@@ -262,6 +277,7 @@ class World:
             for element in list(group):
                 if element.name.startswith(prefix):
                     self.spec.delete(element)
+        self._coulomb_pairs = {n for n in self._coulomb_pairs if not n.startswith(prefix)}
         if body is not None:
             self.spec.delete(body)
 
@@ -339,11 +355,13 @@ class World:
         """Recompile the spec keeping the state; refresh ``model`` and ``data``."""
         self.model, self.data = self.spec.recompile(self.model, self.data)
         mujoco.mj_forward(self.model, self.data)
+        self.wheels.configure(self.model, self._coulomb_pairs)
         self._poses_current = True
 
     def reset(self):
         """Reset every robot to its spawn pose, controls to zero, time to 0 s."""
         mujoco.mj_resetData(self.model, self.data)
+        self.wheels.reset()
         self._apply_initial_joint_states(self._initial_joints)
         self._place_mimic_joints()
         mujoco.mj_forward(self.model, self.data)
@@ -351,7 +369,11 @@ class World:
 
     def step(self, nstep=1):
         """
-        Advance the physics by ``nstep`` steps (``mujoco.mj_step`` batch).
+        Advance the physics by ``nstep`` steps (a batch of ``mj_step`` or of Coulomb wheels).
+
+        The batch is ``mujoco.mj_step``'s, or the loop of
+        :class:`~amr_description.sim.wheel_friction.CoulombWheels` while a wheel has Coulomb
+        friction with the ground.
 
         MuJoCo's sensors (the IMUs' accelerometer, gyro and orientation) are computed in the
         last step only: the steps before it run with ``mjDSBL_SENSOR``, which skips
@@ -362,15 +384,16 @@ class World:
         :param nstep: number of physics steps (int >= 1).
         """
         model, data, nstep = self.model, self.data, int(nstep)
+        step = self.wheels.step if self.wheels.active else _mj_step
         if nstep > 1 and model.nsensor:
             flags = model.opt.disableflags
             model.opt.disableflags = flags | mujoco.mjtDisableBit.mjDSBL_SENSOR
             try:
-                mujoco.mj_step(model, data, nstep=nstep - 1)
+                step(model, data, nstep - 1)
             finally:
                 model.opt.disableflags = flags
             nstep = 1
-        mujoco.mj_step(model, data, nstep=nstep)
+        step(model, data, nstep)
         self._poses_current = False
 
     def update_kinematics(self):

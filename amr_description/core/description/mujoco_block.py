@@ -25,6 +25,9 @@ DEFAULT_ACTUATOR = {'kv': 5.0, 'kp': 100.0, 'ki': 0.0, 'armature': 0.0,
                     'forcerange': (-20.0, 20.0)}
 #: contact shapes a ``<mujoco><link shape=...>`` may ask for
 CONTACT_SHAPES = ('urdf', 'sphere', 'ellipsoid')
+#: friction laws a ``<mujoco><link ground_friction=...>`` may ask for between the link and the
+#: ground: MuJoCo's contact friction, or Coulomb's (amr_description/sim/wheel_friction.py)
+GROUND_FRICTION = ('mujoco', 'coulomb')
 
 
 @dataclass
@@ -141,6 +144,12 @@ def _contact_attrs(element, where):
             raise ValueError(f'<mujoco>: {where} shape must be one of {", ".join(CONTACT_SHAPES)}'
                              f', found {element.get("shape")!r}')
         attrs['shape'] = element.get('shape')
+    if element.get('ground_friction') is not None:
+        if element.get('ground_friction') not in GROUND_FRICTION:
+            raise ValueError(f'<mujoco>: {where} ground_friction must be one of '
+                             f'{", ".join(GROUND_FRICTION)}, found '
+                             f'{element.get("ground_friction")!r}')
+        attrs['ground_friction'] = element.get('ground_friction')
     return attrs
 
 
