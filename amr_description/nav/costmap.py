@@ -22,6 +22,9 @@ import math
 
 import numpy as np
 from scipy import ndimage
+# imported here, not in the functions: composed Nav2 servers call them from threads of their
+# own, and two threads importing one package at once can see it half initialised
+from skimage.draw import line
 
 FREE_SPACE = 0
 MAX_NON_OBSTACLE = 252
@@ -300,7 +303,6 @@ def footprint_cost(costmap, footprint, pose):
     Source: ``FootprintCollisionChecker::footprintCost`` (the cells of the lines between
     consecutive vertices, closing the polygon).
     """
-    from skimage.draw import line
     x, y, yaw = pose
     c, s = math.cos(yaw), math.sin(yaw)
     pts = np.asarray(footprint, float) @ np.array([[c, s], [-s, c]]) + (x, y)

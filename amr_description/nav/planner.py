@@ -22,6 +22,8 @@ from amr_description.nav.costmap import INSCRIBED_INFLATED_OBSTACLE
 from amr_description.nav.costmap import LETHAL_OBSTACLE
 from amr_description.nav.costmap import NO_INFORMATION
 import numpy as np
+# imported here, not in plan(): composed servers plan on threads of their own (nav/costmap.py)
+from skimage.graph import MCP_Geometric
 
 COST_NEUTRAL = 50.0
 COST_FACTOR = 0.8
@@ -74,7 +76,6 @@ def make_plan(costmap, start, goal, tolerance=0.5, allow_unknown=True,
         (NavFn leaves their orientation unset, w = 1).
     :raises PlanError: see its codes.
     """
-    from skimage.graph import MCP_Geometric
     s_cell = costmap.world_to_map(start[0], start[1])
     if s_cell is None:
         raise PlanError('START_OUTSIDE_MAP', f'Start Coordinates of({start[0]:.2f}, '

@@ -60,6 +60,10 @@ from amr_description.ros.node import Node
 from amr_description.ros.transforms import planar_pose
 from geometry_msgs.msg import Point32
 from geometry_msgs.msg import PolygonStamped
+# imported with the module, not in the update: two costmaps updating on their own threads in
+# one container imported it at once and one saw matplotlib half initialised ('no attribute
+# rcParams'), which stopped the container
+from matplotlib.path import Path
 from nav2_msgs.msg import Costmap as CostmapMsg
 from nav2_msgs.srv import ClearEntireCostmap
 from nav2_msgs.srv import GetCostmap
@@ -368,7 +372,6 @@ class CostmapNode(Node):
             self._clear_footprint(layer)
 
     def _clear_footprint(self, layer):
-        from matplotlib.path import Path
         x, y, yaw = self.robot
         c, s = math.cos(yaw), math.sin(yaw)
         poly = self.footprint @ np.array([[c, s], [-s, c]]) + (x, y)
