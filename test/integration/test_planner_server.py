@@ -93,8 +93,12 @@ def test_global_costmap_and_compute_path_to_pose(procs, exe, ros_env, tmp_path):
             'nav2_navfn_planner::NavfnPlanner' in planner.output
 
         # the costmap: the map's size, walls 100, inflated cells between, unknown -1 outside
+        # (before the map arrives it has the params' 5 m x 5 m, as upstream's: wait for the
+        # map's 100 x 110 cells)
         assert peer.spin_until(lambda: peer.grids and peer.raws and
-                               peer.grids[-1].info.width == 100, 120.0), planner.output
+                               (peer.grids[-1].info.width, peer.grids[-1].info.height) ==
+                               (100, 110) and peer.raws[-1].metadata.size_y == 110,
+                               120.0), planner.output
         grid, raw = peer.grids[-1], peer.raws[-1]
         assert grid.header.frame_id == 'map' and (grid.info.width, grid.info.height) == (100, 110)
         assert grid.info.origin.position.x == pytest.approx(-1.5)

@@ -190,6 +190,34 @@ def _spin_until(node, done, timeout):
     return done()
 
 
+def _wait_for_global_costmap(node, timeout):
+    """
+    Spin until ``global_costmap/costmap`` has the size and origin of the latest ``/map``.
+
+    Both are latched (reliable, transient local, depth 1). Returns True when they match
+    within ``timeout`` wall seconds.
+    """
+    from nav_msgs.msg import OccupancyGrid
+    from rclpy.qos import DurabilityPolicy
+    from rclpy.qos import QoSProfile
+    latched = QoSProfile(depth=1, durability=DurabilityPolicy.TRANSIENT_LOCAL)
+    last = {}
+
+    def keep(key):
+        def store(msg):
+            last[key] = (msg.info.width, msg.info.height, round(msg.info.origin.position.x, 6),
+                         round(msg.info.origin.position.y, 6))
+        return store
+    subs = [node.create_subscription(OccupancyGrid, topic, keep(topic), latched)
+            for topic in ('map', 'global_costmap/costmap')]
+    try:
+        return _spin_until(node, lambda: 'map' in last and
+                           last.get('global_costmap/costmap') == last['map'], timeout)
+    finally:
+        for sub in subs:
+            node.destroy_subscription(sub)
+
+
 def _pose(node, x, y, yaw):
     from geometry_msgs.msg import PoseStamped
     pose = PoseStamped()
@@ -235,6 +263,11 @@ def _map_phase(opts, navigator, recorder):
             raise RuntimeError('SLAM published no map -> odom transform within 120 s of the '
                                'stack being active')
         navigator.destroy_subscription(sub)
+        # and the planner's costmap must hold SLAM's map: before it arrives the global
+        # costmap has its parameters' default size, and a plan from the robot's cell fails
+        # with "Start Coordinates ... was outside bounds" (203), as upstream's would
+        if not _wait_for_global_costmap(navigator, 120.0):
+            raise RuntimeError("the global costmap did not take SLAM's /map within 120 s")
         governor = _govern(opts)
         route = [_pose(navigator, *p) for p in ROUTES[opts.world]]
         t0 = recorder.now()
