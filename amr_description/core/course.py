@@ -99,7 +99,11 @@ class CourseFollower:
     ``min(cruise, sqrt(v0^2 + 2 a done), sqrt(v0^2 + 2 a remaining))``, never below
     ``v0 = min_fraction * cruise``, so it ramps up and down at the constant ``acceleration``
     ``a`` (m/s^2 or rad/s^2) without a clock. Each leg ends when its progress reaches the
-    target within ``tolerance``.
+    target within ``tolerance``. A turn's target is the course's heading, not the leg's: the
+    heading at the course's start plus every turn so far, so that what one turn overshoots
+    after its stop (a wheel's velocity servo catching up with its integral, about 0.25 deg per
+    corner with Coulomb wheel friction, docs/simulation.md) the next turn takes back instead
+    of adding it up.
 
     Gentle ramps are part of the accuracy: in the MuJoCo world the yaw a skid-steer turn gains
     or loses against the Coulomb model grows with how fast the wheel speeds change
@@ -127,6 +131,7 @@ class CourseFollower:
         self.tolerance = tolerance
         self.index = 0
         self.start = None
+        self.heading = None  # the course's nominal heading before the current leg, rad
 
     @property
     def done(self):
@@ -160,13 +165,20 @@ class CourseFollower:
         leg = self.legs[self.index]
         if self.start is None:
             self.start = pose
+        if self.heading is None:
+            self.heading = pose[2]
+        straight = leg.kind == 'straight'
         done = math.copysign(1.0, leg.target) * leg_progress(leg, self.start, pose)
         remaining = abs(leg.target) - done
-        straight = leg.kind == 'straight'
+        if not straight:  # less what the turns before overshot the course's heading
+            remaining += math.copysign(1.0, leg.target) * wrap_angle(self.heading -
+                                                                    self.start[2])
         if remaining <= self.tolerance[0 if straight else 1]:
             finished = self.index
             self.index += 1
             self.start = pose
+            if not straight:
+                self.heading = wrap_angle(self.heading + leg.target)
             return 0.0, 0.0, finished
         value = math.copysign(self.speed(leg, done, remaining), leg.target)
         return (value, 0.0, None) if straight else (0.0, value, None)

@@ -99,3 +99,30 @@ def test_leg_delta_and_table():
     assert table[3].split()[-3:] == ['90.0', '90.0', '85.0']
     with pytest.raises(ValueError, match='need 3 poses'):
         format_leg_table(legs, odom[:2], truth)
+
+
+def test_a_turn_takes_back_what_the_turn_before_overshot():
+    legs = [Leg('turn', math.pi / 2, 0.5), Leg('straight', 1.0, 0.5), Leg('turn', math.pi / 2,
+                                                                            0.5)]
+    follower = CourseFollower(legs, tolerance=(0.001, 0.001))
+    assert follower.step((0.0, 0.0, 0.0))[1] > 0.0
+    assert follower.step((0.0, 0.0, math.pi / 2))[2] == 0  # the first turn ends at 90 deg
+    # it overshoots 0.01 rad after its stop; the straight starts there, then the second turn
+    # ends at 180 deg, having turned 90 deg less the 0.01 rad
+    assert follower.step((0.0, 0.0, math.pi / 2 + 0.01))[2] is None
+    assert follower.step((0.0, 1.0, math.pi / 2 + 0.01))[2] == 1
+    assert follower.step((0.0, 1.0, math.pi / 2 + 0.01))[1] > 0.0
+    assert follower.step((0.0, 1.0, math.pi - 0.0005))[2] == 2
+    assert follower.done
+
+
+def test_turns_across_the_wrap_end_at_the_course_heading():
+    three = 3 * math.pi / 4
+    follower = CourseFollower([Leg('turn', three, 0.5), Leg('turn', three, 0.5)])
+    assert follower.step((0.0, 0.0, 0.0))[1] > 0.0
+    assert follower.step((0.0, 0.0, three + 0.0005))[2] == 0  # 0.0005 rad past 135 deg
+    # the yaw wraps to -pi on the way: still turning left, towards 270 deg (-90 deg) less
+    # the first turn's 0.0005 rad
+    assert follower.step((0.0, 0.0, -math.pi + 0.1))[1] > 0.0
+    assert follower.step((0.0, 0.0, -math.pi / 2 - 0.0015))[2] is None
+    assert follower.step((0.0, 0.0, -math.pi / 2 - 0.0009))[2] == 1
