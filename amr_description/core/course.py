@@ -171,8 +171,8 @@ class CourseFollower:
         done = math.copysign(1.0, leg.target) * leg_progress(leg, self.start, pose)
         remaining = abs(leg.target) - done
         if not straight:  # less what the turns before overshot the course's heading
-            remaining += math.copysign(1.0, leg.target) * wrap_angle(self.heading -
-                                                                    self.start[2])
+            overshot = wrap_angle(self.start[2] - self.heading)
+            remaining -= math.copysign(1.0, leg.target) * overshot
         if remaining <= self.tolerance[0 if straight else 1]:
             finished = self.index
             self.index += 1

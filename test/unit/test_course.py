@@ -102,8 +102,8 @@ def test_leg_delta_and_table():
 
 
 def test_a_turn_takes_back_what_the_turn_before_overshot():
-    legs = [Leg('turn', math.pi / 2, 0.5), Leg('straight', 1.0, 0.5), Leg('turn', math.pi / 2,
-                                                                            0.5)]
+    quarter = math.pi / 2
+    legs = [Leg('turn', quarter, 0.5), Leg('straight', 1.0, 0.5), Leg('turn', quarter, 0.5)]
     follower = CourseFollower(legs, tolerance=(0.001, 0.001))
     assert follower.step((0.0, 0.0, 0.0))[1] > 0.0
     assert follower.step((0.0, 0.0, math.pi / 2))[2] == 0  # the first turn ends at 90 deg
