@@ -23,6 +23,20 @@
 #include <math.h>
 #include <mujoco/mujoco.h>
 
+// Return the flagged pair whose two geoms a contact joins, or -1.
+static int flagged_pair(const mjModel * m, const mjContact * con, const int * pair_flag)
+{
+  for (int p = 0; p < m->npair; p++) {
+    if (pair_flag[p] &&
+      ((m->pair_geom1[p] == con->geom[0] && m->pair_geom2[p] == con->geom[1]) ||
+      (m->pair_geom1[p] == con->geom[1] && m->pair_geom2[p] == con->geom[0])))
+    {
+      return p;
+    }
+  }
+  return -1;
+}
+
 // Step the model nstep times with Coulomb friction on the flagged contact pairs.
 //
 // pair_flag[p] != 0 for the wheel-ground pairs (index into m->pair_*); normal[p] holds each
@@ -34,16 +48,7 @@ int amr_wheel_friction_step(const mjModel * m, mjData * d, int nstep, const int 
     mj_step1(m, d);
     for (int i = 0; i < d->ncon; i++) {
       const mjContact * con = d->contact + i;
-      int pair = -1;
-      for (int p = 0; p < m->npair; p++) {
-        if (pair_flag[p] &&
-          ((m->pair_geom1[p] == con->geom[0] && m->pair_geom2[p] == con->geom[1]) ||
-          (m->pair_geom1[p] == con->geom[1] && m->pair_geom2[p] == con->geom[0])))
-        {
-          pair = p;
-          break;
-        }
-      }
+      int pair = flagged_pair(m, con, pair_flag);
       if (pair < 0 || normal[pair] <= 0) {
         continue;
       }
@@ -71,17 +76,11 @@ int amr_wheel_friction_step(const mjModel * m, mjData * d, int nstep, const int 
       normal[p] = 0;
     }
     for (int i = 0; i < d->ncon; i++) {
-      const mjContact * con = d->contact + i;
-      for (int p = 0; p < m->npair; p++) {
-        if (pair_flag[p] &&
-          ((m->pair_geom1[p] == con->geom[0] && m->pair_geom2[p] == con->geom[1]) ||
-          (m->pair_geom1[p] == con->geom[1] && m->pair_geom2[p] == con->geom[0])))
-        {
-          mjtNum f[6];
-          mj_contactForce(m, d, i, f);
-          normal[p] += f[0];
-          break;
-        }
+      int pair = flagged_pair(m, d->contact + i, pair_flag);
+      if (pair >= 0) {
+        mjtNum f[6];
+        mj_contactForce(m, d, i, f);
+        normal[pair] += f[0];
       }
     }
   }

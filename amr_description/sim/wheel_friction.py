@@ -74,6 +74,7 @@ class CoulombWheels:
     :param library: the C loop (:func:`load_library`), False for none (numpy), None to load
         it from :func:`library_path`.
     :param eps: m/s, :data:`EPS`.
+    :ivar active: True while at least one pair is flagged (set by :meth:`configure`).
     """
 
     _warned = False
@@ -84,11 +85,7 @@ class CoulombWheels:
         self.eps = float(eps)
         self.flags = np.zeros(0, dtype=np.int32)
         self.normal = np.zeros(0)
-
-    @property
-    def active(self):
-        """Return True when at least one pair is flagged."""
-        return bool(self.flags.any())
+        self.active = False  # at least one pair flagged (World.step's choice of loop)
 
     def configure(self, model, pair_names):
         """
@@ -104,6 +101,7 @@ class CoulombWheels:
         self.flags = np.array([model.pair(p).name in names for p in range(model.npair)],
                               dtype=np.int32)
         self.normal = np.zeros(model.npair)
+        self.active = bool(self.flags.any())
         if self.active and self.function is None and not CoulombWheels._warned:
             CoulombWheels._warned = True
             _LOG.warning('wheel friction: %s not built (scripts/setup builds it); the Coulomb '
