@@ -32,6 +32,9 @@ GET_STATE_TYPE = 'lifecycle_msgs/srv/GetState'
 SERVICE_WAIT = 30.0
 """Seconds to wait for a lifecycle service of a node the graph has shown."""
 
+RESEND = 5.0
+"""Seconds after which an unanswered query (``get_state``, the transitions) is sent again."""
+
 
 def lifecycle_node_names(node_names, services):
     """
@@ -80,7 +83,7 @@ def _list(args):
     service = 'get_transition_graph' if args.all else 'get_available_transitions'
     with cli_node(default_node_name()) as node:
         answer = call(node, GetAvailableTransitions, f'{target}/{service}',
-                      GetAvailableTransitions.Request(), timeout=SERVICE_WAIT)
+                      GetAvailableTransitions.Request(), timeout=SERVICE_WAIT, resend=RESEND)
     for t in answer.available_transitions:
         print(f'- {t.transition.label} [{t.transition.id}]\n'
               f'\tStart: {t.start_state.label}\n\tGoal: {t.goal_state.label}')
@@ -99,7 +102,8 @@ def _get(args):
         for name in names:
             try:
                 state = call(node, GetState, f'{name}/get_state', GetState.Request(),
-                             timeout=SERVICE_WAIT, service_timeout=args.timeout).current_state
+                             timeout=SERVICE_WAIT, service_timeout=args.timeout,
+                             resend=RESEND).current_state
             except CliError as exc:
                 if args.node_name:
                     raise

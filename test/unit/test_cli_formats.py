@@ -139,3 +139,56 @@ def test_rates_take_the_type_from_a_warm_daemon_without_asking_their_node(monkey
     assert rates._wait_for_type(GraphlessNode(), '/chatter', args) is String
     with pytest.raises(AssertionError):
         rates._wait_for_type(GraphlessNode(), '/chatter', argparse.Namespace(no_daemon=True))
+
+
+class _LostFirstAnswer:
+    """A client, node and executor whose first request's answer never comes."""
+
+    class _Future:
+
+        def __init__(self, result):
+            self._result = result
+
+        def done(self):
+            return self._result is not None
+
+        def exception(self):
+            return None
+
+        def result(self):
+            return self._result
+
+    def __init__(self, clock):
+        self.clock = clock
+        self.sent = []
+        self._cli_executor = self
+
+    def create_client(self, srv_type, service):
+        return self
+
+    def destroy_client(self, client):
+        pass
+
+    def service_is_ready(self):
+        return True
+
+    def call_async(self, request):
+        self.sent.append(self.clock[0])
+        return self._Future(None if len(self.sent) == 1 else 'answer')
+
+    def spin_once(self, timeout_sec=None):
+        self.clock[0] += timeout_sec
+
+
+def test_a_query_resent_after_its_answer_was_lost(monkeypatch):
+    from amr_description.cli.param import api
+    clock = [0.0]
+    monkeypatch.setattr(api.time, 'monotonic', lambda: clock[0])
+    node = _LostFirstAnswer(clock)
+    assert api.call(node, None, '/n/get_state', 'request', resend=5.0) == 'answer'
+    assert len(node.sent) == 2 and 5.0 < node.sent[1] < 5.2
+    # without resend the call waits on (until the service timeout here)
+    node = _LostFirstAnswer(clock)
+    with pytest.raises(api.CliError, match='Timed out waiting'):
+        api.call(node, None, '/n/get_state', 'request', service_timeout=30.0)
+    assert len(node.sent) == 1

@@ -180,7 +180,7 @@ def node_names(node, spin_time, include_hidden=False):
             and (include_hidden or not n.rsplit('/', 1)[-1].startswith('_'))]
 
 
-def call(node, srv_type, service, request, timeout=5.0, service_timeout=None):
+def call(node, srv_type, service, request, timeout=5.0, service_timeout=None, resend=None):
     """
     Call ``service`` and return its response.
 
@@ -190,6 +190,11 @@ def call(node, srv_type, service, request, timeout=5.0, service_timeout=None):
     :param request: the request.
     :param timeout: seconds to wait for the service to appear.
     :param service_timeout: seconds to wait for the response (None: forever).
+    :param resend: for a query that changes nothing (``get_state``): seconds after which an
+        unanswered request is sent again, and again, the first answer taken (None: never).
+        A server can match the client's request writer before its own response writer has
+        matched the client's reader; its answer is then lost, and a CLI waiting forever for
+        it hung in a 2026-11-26 test run (``ros2 lifecycle get``, 90 s).
     :returns: the response.
     :raises CliError: ``Wait for service timed out`` or the call's exception, on one line.
     """
@@ -205,12 +210,17 @@ def call(node, srv_type, service, request, timeout=5.0, service_timeout=None):
             if time.monotonic() > give_up:
                 raise CliError('Wait for service timed out')
             spin_once(node, timeout_sec=0.05)
-        future = client.call_async(request)
+        futures = [client.call_async(request)]
         give_up = None if service_timeout is None else time.monotonic() + service_timeout
-        while not future.done():
+        again = None if resend is None else time.monotonic() + resend
+        while not any(f.done() for f in futures):
             if give_up is not None and time.monotonic() > give_up:
                 raise CliError(f"Timed out waiting for the response of '{service}'")
+            if again is not None and time.monotonic() > again:
+                futures.append(client.call_async(request))
+                again = time.monotonic() + resend
             spin_once(node, timeout_sec=0.05)
+        future = next(f for f in futures if f.done())
         if future.exception() is not None:
             raise CliError('Exception while calling service of node '
                            f"'{service.rsplit('/', 1)[0]}': {future.exception()}")
