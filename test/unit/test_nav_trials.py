@@ -135,6 +135,12 @@ def test_the_jobs_robot_params_and_table(tmp_path):
         in text, text
     assert "1 of 1 goals SUCCEEDED; the ground truth ended within Nav2's default " \
         'tolerances (0.25 m, 0.25 rad) at 1' in text
+    assert 'time to goal within its bound (1.5 x (planned length / desired_linear_vel + ' \
+        f"in-place turns / rotate_to_heading_angular_vel)) at 1; 5.0 s against the bounds' " \
+        f'{bound:.1f} s ({5.0 / bound:.2f})' in text, text
+    slow = dict(row, truth=[(10.0 + 0.2 * i, 0.02 * i, 0.0, 0.0) for i in range(101)])
+    assert f"at 0; 20.0 s against the bounds' {bound:.1f} s" in \
+        format_table([slow], truth, wall, robot)[0]
     # the time runs from the goal's sending to its result, not to the last ground truth
     settled = dict(row, span=(10.0, 14.0))
     assert f'  SUCCEEDED     4.0 {bound:7.1f}' in format_table([settled], truth, wall, robot)[0]

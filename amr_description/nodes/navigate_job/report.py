@@ -87,6 +87,10 @@ def format_table(rows, route, sections, robot):
     """
     Return ``(text, ok)``: the route line and one row per goal; ok when all succeeded untouched.
 
+    The last lines count the goals reached, those whose ground truth ended within Nav2's
+    default tolerances, and those reached within their time bound
+    (:func:`amr_description.nav.trials.time_bound`), with the times' sum against the bounds'.
+
     :param rows: :func:`goal_figures`' rows.
     :param route: the mapping route's ground truth [(t, x, y, yaw)].
     :param sections: the world's shapes.
@@ -104,7 +108,8 @@ def format_table(rows, route, sections, robot):
              '        m     m   rad               s       s        m       m       m      '
              'deg        m']
     ok = route_gap > 0.0
-    reached = within = 0
+    reached = within = timely = 0
+    times = bounds = 0.0
     for i, row in enumerate(rows, 1):
         f = goal_figures(row, sections, robot)
         x, y, yaw = row['goal']
@@ -116,9 +121,17 @@ def format_table(rows, route, sections, robot):
         succeeded = row['result'] == 'SUCCEEDED'
         reached += succeeded
         within += succeeded and f['error'] <= 0.25 and f['yaw_error'] <= 0.25
+        if succeeded and f['bound'] is not None:
+            timely += f['time'] <= f['bound']
+            times, bounds = times + f['time'], bounds + f['bound']
         ok = ok and succeeded and f['clearance'] > 0.0
     lines += ['', f'{reached} of {len(rows)} goals SUCCEEDED; the ground truth ended within '
               f"Nav2's default tolerances (0.25 m, 0.25 rad) at {within}"]
+    if bounds > 0.0:
+        lines.append(f'time to goal within its bound (1.5 x (planned length / '
+                     f'desired_linear_vel + in-place turns / rotate_to_heading_angular_vel)) '
+                     f"at {timely}; {times:.1f} s against the bounds' {bounds:.1f} s "
+                     f'({times / bounds:.2f})')
     return '\n'.join(lines), ok
 
 
