@@ -71,7 +71,7 @@ def test_navigate_job_maps_saves_and_reaches_its_goals(ros_env, procs, exe, tmp_
         assert row[4] == 'SUCCEEDED', row
         assert float(row[11]) > 0.0, row  # closest approach of the footprint to the world
     assert '2 of 2 goals SUCCEEDED' in text, text[-2000:]
-    summary = re.search(r"time to goal within its bound .* at (\d); ([\d.]+) s against the "
+    summary = re.search(r'time to goal within its bound .* at (\d); ([\d.]+) s against the '
                         r"bounds' ([\d.]+) s", text)
     assert summary and int(summary[1]) <= 2, text[-2000:]
     assert float(summary[2]) == pytest.approx(sum(float(row[5]) for row in rows), abs=0.15)
