@@ -110,7 +110,7 @@ class Reference:
 
 
 def correlative_search(reference, points, prior, half_width, resolution, half_angle,
-                       angle_step, sigma):
+                       angle_step, sigma, surface=None):
     """
     Return ``(pose, score)``: the best pose on a grid of offsets around ``prior``.
 
@@ -122,16 +122,23 @@ def correlative_search(reference, points, prior, half_width, resolution, half_an
     :param half_angle: rad, the window is ``prior.yaw +- half_angle``.
     :param angle_step: rad between yaw offsets.
     :param sigma: m, the likelihood's smear deviation.
+    :param surface: a list, or None; when given, the (2n+1, 2n+1) array of each ``(x, y)``
+        offset's best score over the yaw offsets is appended to it, indexed ``[ix, iy]`` from
+        ``-n`` to ``n`` (``n = round(half_width / resolution)``; Karto's search space
+        probabilities, read by :func:`positional_variance`).
     :returns: pose ``(x, y, yaw)`` and its mean likelihood (0..1); ``(prior, 0.0)`` with no
         points.
     """
     points = np.asarray(points, dtype=float).reshape(-1, 2)
+    n = int(round(half_width / resolution))
+    best_xy = np.zeros((2 * n + 1) ** 2)
+    if surface is not None:
+        surface.append(best_xy.reshape(2 * n + 1, 2 * n + 1))
     if len(points) == 0:
         return tuple(prior), 0.0
     reach = float(np.max(np.hypot(points[:, 0], points[:, 1])))
     grid, origin = reference.likelihood_grid(resolution, max(sigma, resolution),
                                              margin=1.0)
-    n = int(round(half_width / resolution))
     offsets = np.arange(-n, n + 1)
     dx, dy = np.meshgrid(offsets, offsets, indexing='ij')
     dx, dy = dx.ravel(), dy.ravel()
@@ -150,11 +157,48 @@ def correlative_search(reference, points, prior, half_width, resolution, half_an
             continue
         scores = padded[cells[None, :, 0] + dx[:, None], cells[None, :, 1] + dy[:, None]]
         scores = scores.sum(axis=1) / len(points)
+        np.maximum(best_xy, scores, out=best_xy)
         i = int(np.argmax(scores))
         if scores[i] > best[0]:
             best = (float(scores[i]), (prior[0] + dx[i] * resolution,
                                        prior[1] + dy[i] * resolution, yaw))
     return best[1], max(best[0], 0.0)
+
+
+def positional_variance(surface, offset, resolution, response):
+    """
+    Return ``(var_xx, var_yy)`` (m^2) of a coarse search's best position, as Karto's.
+
+    Karto's ``ScanMatcher::ComputePositionalCovariance`` (slam_toolbox's
+    ``lib/karto_sdk/src/Mapper.cpp``): the offsets whose best score over yaw is at least
+    ``response - 0.1`` are weighted by their score, the weighted mean square distance from the
+    best offset along x and along y is taken, each at least ``0.1 resolution^2``, then divided
+    by ``response`` (poorer matches are less certain). A look-alike place inside the window
+    (a second aisle) scoring nearly as well as the best spreads the weight and raises the
+    variance; Karto refuses a loop closure whose variance reaches
+    ``loop_match_maximum_variance_coarse``.
+
+    :param surface: (2n+1, 2n+1) scores indexed ``[ix, iy]`` (:func:`correlative_search`).
+    :param offset: ``(dx, dy)`` m, the best position minus the search's centre.
+    :param resolution: m between offsets.
+    :param response: the best score (0..1).
+    :returns: ``(var_xx, var_yy)`` m^2; Karto's ``MAX_VARIANCE`` (500) for a response of 0.
+    """
+    surface = np.asarray(surface, dtype=float)
+    if response <= 1e-9 or surface.size == 0:
+        return 500.0, 500.0
+    n = (surface.shape[0] - 1) // 2
+    coords = np.arange(-n, n + 1) * resolution
+    x, y = np.meshgrid(coords, coords, indexing='ij')
+    keep = surface >= response - 0.1
+    w = surface[keep]
+    norm = float(np.sum(w))
+    if norm <= 1e-9:
+        return 500.0, 500.0
+    floor = 0.1 * resolution ** 2
+    var_xx = max(float(np.sum((x[keep] - offset[0]) ** 2 * w)) / norm, floor) / response
+    var_yy = max(float(np.sum((y[keep] - offset[1]) ** 2 * w)) / norm, floor) / response
+    return var_xx, var_yy
 
 
 def icp(reference, points, pose, iterations=20, max_distance=0.3):

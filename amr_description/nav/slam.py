@@ -16,8 +16,11 @@ Graph SLAM from a 2-D lidar and odometry, as slam_toolbox's Karto mapper does it
 - with ``do_loop_closing``, the keyframes within ``loop_search_maximum_distance`` that are at
   least ``loop_match_minimum_chain_size`` keyframes older are matched against: a coarse
   correlative search in ``loop_search_space_dimension`` (whose response must reach
-  ``loop_match_minimum_response_coarse``) then ICP (``loop_match_minimum_response_fine``);
-  a *loop* edge is added and the graph (:mod:`.pose_graph`) is optimised.
+  ``loop_match_minimum_response_coarse`` and whose positional variance, Karto's
+  ``ComputePositionalCovariance``, must stay below ``loop_match_maximum_variance_coarse``:
+  a look-alike place in the window that fits nearly as well refuses the match) then ICP
+  (``loop_match_minimum_response_fine``); a *loop* edge is added and the graph
+  (:mod:`.pose_graph`) is optimised.
 
 The occupancy grid (:meth:`Mapper.occupancy`) is rebuilt from every keyframe at its optimised
 pose as Karto's ``OccupancyGrid::CreateFromScans``: each ray passes through the cells from
@@ -41,6 +44,7 @@ from amr_description.nav.pose_graph import inverse
 from amr_description.nav.pose_graph import PoseGraph
 from amr_description.nav.scan_matcher import correlative_search
 from amr_description.nav.scan_matcher import icp
+from amr_description.nav.scan_matcher import positional_variance
 from amr_description.nav.scan_matcher import Reference
 from amr_description.nav.scan_matcher import transform_points
 import numpy as np
@@ -82,6 +86,7 @@ class SlamParameters:
     do_loop_closing: bool = True
     loop_search_maximum_distance: float = 3.0
     loop_match_minimum_chain_size: int = 10
+    loop_match_maximum_variance_coarse: float = 3.0
     loop_match_minimum_response_coarse: float = 0.35
     loop_match_minimum_response_fine: float = 0.45
     correlation_search_space_dimension: float = 0.5
@@ -308,12 +313,17 @@ class Mapper:
             return False
         half = p.loop_search_space_dimension / 2.0
         step = max(p.loop_search_space_resolution, half / 20.0)
-        coarse, _ = correlative_search(
+        surface = []
+        coarse, best = correlative_search(
             reference, points, pose, half, step, p.coarse_search_angle_offset,
-            p.coarse_angle_resolution, max(p.loop_search_space_smear_deviation, step))
+            p.coarse_angle_resolution, max(p.loop_search_space_smear_deviation, step), surface)
         coarse_response = reference.response(points, coarse, max(step, 0.05))
         if coarse_response < p.loop_match_minimum_response_coarse:
             return False
+        variance = positional_variance(surface[0], np.subtract(coarse[:2], pose[:2]), step,
+                                       best)
+        if max(variance) >= p.loop_match_maximum_variance_coarse:
+            return False  # a look-alike place in the window scores nearly as well
         fine = np.array(icp(reference, points, coarse))
         if reference.response(points, fine, max(p.loop_search_space_smear_deviation, 0.03)) \
                 < p.loop_match_minimum_response_fine:

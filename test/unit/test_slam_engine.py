@@ -13,6 +13,7 @@ from amr_description.nav import pose_graph
 from amr_description.nav import slam
 from amr_description.nav.scan_matcher import correlative_search
 from amr_description.nav.scan_matcher import icp
+from amr_description.nav.scan_matcher import positional_variance
 from amr_description.nav.scan_matcher import Reference
 from amr_description.nav.scan_matcher import transform_points
 import numpy as np
@@ -89,6 +90,45 @@ def test_scan_matcher_recovers_a_known_offset():
     assert abs(refined[2] - true_pose[2]) < 0.002
     assert reference.response(points, refined, 0.03) > 0.9
     assert reference.response(points, prior, 0.03) < 0.3
+
+
+def test_positional_variance_closed_forms():
+    res = 0.2
+    one = np.zeros((5, 5))
+    one[2, 2] = 0.5  # a single peak at the centre: the floor 0.1 res^2, over the response
+    assert positional_variance(one, (0.0, 0.0), res, 0.5) == pytest.approx(
+        (0.1 * res ** 2 / 0.5, 0.1 * res ** 2 / 0.5))
+    two = one.copy()
+    two[4, 2] = 0.45  # a look-alike 0.4 m along x within 0.1 of the best
+    var_xx, var_yy = positional_variance(two, (0.0, 0.0), res, 0.5)
+    assert var_xx == pytest.approx(0.4 ** 2 * 0.45 / 0.95 / 0.5)
+    assert var_yy == pytest.approx(0.1 * res ** 2 / 0.5)
+    two[4, 2] = 0.39  # more than 0.1 below the best: not counted
+    assert positional_variance(two, (0.0, 0.0), res, 0.5)[0] == pytest.approx(0.008)
+    assert positional_variance(one, (0.0, 0.0), res, 0.0) == (500.0, 500.0)  # Karto's max
+
+
+def test_a_row_of_look_alike_pillars_has_a_large_coarse_variance():
+    # pillars (0.2 m squares) every 2 m along x: a scan among them fits as well 2 m further
+    pillars = np.vstack([np.array([(x + dx, y) for dx in np.linspace(-0.1, 0.1, 5)]
+                                  + [(x, y + dy) for dy in np.linspace(-0.1, 0.1, 5)])
+                         for x in np.arange(-10.0, 10.1, 2.0) for y in (-1.0, 1.0)])
+    reference = Reference(pillars)
+    near = pillars[np.abs(pillars[:, 0]) < 3.5]
+    surface = []
+    pose, score = correlative_search(reference, near, (0.0, 0.0, 0.0), 4.0, 0.2, 0.0, 0.1,
+                                     0.2, surface)
+    assert surface[0].shape == (41, 41) and surface[0].max() == pytest.approx(score)
+    var_xx, var_yy = positional_variance(surface[0], pose[:2], 0.2, score)
+    assert var_xx > 3.0 > var_yy  # refused by slam_toolbox's loop_match_maximum_variance_coarse
+    # a room's scan has one best place
+    points = slam.scan_rays(scan_at((1.0, 0.0, 0.0)), 25.0)[1]
+    room = Reference(transform_points(points, (1.0, 0.0, 0.0)))
+    surface = []
+    pose, score = correlative_search(room, points, (1.3, 0.2, 0.0), 4.0, 0.2, 0.0, 0.1, 0.2,
+                                     surface)
+    assert max(positional_variance(surface[0], np.subtract(pose[:2], (1.3, 0.2)), 0.2,
+                                   score)) < 0.05
 
 
 def test_scan_rays_drop_bad_readings_and_clip_no_returns():
