@@ -31,6 +31,33 @@ def test_kld_limit_closed_form():
     assert amcl.kld_limit(10000, params) == 2000
 
 
+def test_kld_limits_match_kld_limit_one_at_a_time():
+    for params in (amcl.AmclParameters(), amcl.AmclParameters(min_particles=100,
+                                                              max_particles=50000)):
+        ks = np.arange(1, 6001)
+        assert amcl.kld_limits(ks, params).tolist() == [amcl.kld_limit(int(k), params)
+                                                        for k in ks]
+
+
+def test_resample_keeps_the_first_count_that_covers_its_bins():
+    # KLD sampling: the kept count n is the smallest with n >= kld_limit(bins among the first
+    # n draws), checked by brute force on the kept particles' own bins
+    params = amcl.AmclParameters(min_particles=100, max_particles=5000)
+    rng = np.random.default_rng(3)
+    f = amcl.ParticleFilter(params, seed=3)
+    # yaw 0 everywhere: the bins' yaw reference (the circular mean) is the same for any subset
+    f.particles = np.column_stack([rng.normal(0, 0.6, 5000), rng.normal(0, 0.6, 5000),
+                                   np.zeros(5000)])
+    f.weights = np.full(5000, 1 / 5000)
+    f.resample()
+    n = len(f.particles)
+    assert 100 < n < 5000
+    bins = amcl._bins(f.particles, np.full(n, 1 / n))
+    seen = [len({tuple(b) for b in bins[:m]}) for m in range(1, n + 1)]
+    assert n >= amcl.kld_limit(seen[n - 1], params)
+    assert all(m < amcl.kld_limit(seen[m - 1], params) for m in range(1, n))
+
+
 def test_distance_field_and_free_space():
     field = amcl.LikelihoodMap(_room(), 2.0)
     # 1 m from the left wall's cell (x = -1 .. -0.95) and far from the others
