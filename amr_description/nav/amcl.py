@@ -131,27 +131,17 @@ class LikelihoodMap:
         return np.column_stack([xy, rng.uniform(-math.pi, math.pi, count)])
 
 
-def kld_limit(bins, params):
-    """
-    Return the KLD-sampling particle count for ``bins`` occupied histogram bins.
-
-    ``pf_resample_limit`` of nav2_amcl: clamped to ``[min_particles, max_particles]``.
-    """
-    if bins <= 1:
-        return params.max_particles
-    a = 1.0
-    b = 2.0 / (9.0 * (bins - 1))
-    c = math.sqrt(2.0 / (9.0 * (bins - 1))) * float(ndtri(params.pf_z))
-    n = int(math.ceil((bins - 1) / (2.0 * params.pf_err) * (a - b + c) ** 3))
-    return min(max(n, params.min_particles), params.max_particles)
-
-
 def kld_limits(bins, params):
     """
-    Return :func:`kld_limit` of each count in ``bins`` (int array), computed as one array.
+    Return the KLD-sampling particle count for each count of occupied histogram bins.
 
-    :param bins: (K,) int, histogram bin counts.
-    :returns: (K,) int, the same numbers :func:`kld_limit` gives one at a time.
+    ``pf_resample_limit`` of nav2_amcl, for every count in ``bins`` at once: with ``k`` bins
+    (``k > 1``), ``ceil((k - 1) / (2 pf_err) * (1 - 2 / (9 (k - 1)) + sqrt(2 / (9 (k - 1)))
+    z)^3)`` with ``z`` the standard normal quantile of ``pf_z``; ``max_particles`` for
+    ``k <= 1``; clamped to ``[min_particles, max_particles]``.
+
+    :param bins: (K,) int, counts of occupied bins.
+    :returns: (K,) int64 particle counts.
     """
     k = np.asarray(bins, dtype=float)
     with np.errstate(divide='ignore', invalid='ignore'):
@@ -310,7 +300,7 @@ class ParticleFilter:
             swap = self.rng.random(n_max) < random_p
             if swap.any():
                 drawn[swap] = likelihood_map.random_free_poses(int(swap.sum()), self.rng)
-        # the smallest n with n >= kld_limit(bins among the first n): the k-th new bin
+        # the smallest n with n >= kld_limits(bins among the first n): the k-th new bin
         # appears at draw first[k - 1]; n = limit(k) qualifies when no new bin comes before it
         bins = _bins(drawn, np.full(n_max, 1.0 / n_max))
         lo = bins.min(axis=0)

@@ -131,8 +131,9 @@ def correlative_search(reference, points, prior, half_width, resolution, half_an
     """
     points = np.asarray(points, dtype=float).reshape(-1, 2)
     n = int(round(half_width / resolution))
-    best_xy = np.zeros((2 * n + 1) ** 2)
-    if surface is not None:
+    best_xy = None
+    if surface is not None:  # only the loop search asks; the link search skips the work
+        best_xy = np.zeros((2 * n + 1) ** 2)
         surface.append(best_xy.reshape(2 * n + 1, 2 * n + 1))
     if len(points) == 0:
         return tuple(prior), 0.0
@@ -157,7 +158,8 @@ def correlative_search(reference, points, prior, half_width, resolution, half_an
             continue
         scores = padded[cells[None, :, 0] + dx[:, None], cells[None, :, 1] + dy[:, None]]
         scores = scores.sum(axis=1) / len(points)
-        np.maximum(best_xy, scores, out=best_xy)
+        if best_xy is not None:
+            np.maximum(best_xy, scores, out=best_xy)
         i = int(np.argmax(scores))
         if scores[i] > best[0]:
             best = (float(scores[i]), (prior[0] + dx[i] * resolution,

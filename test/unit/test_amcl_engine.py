@@ -10,6 +10,19 @@ import numpy as np
 import pytest
 
 
+Z_99 = 2.3263478740408408
+"""The standard normal quantile of Nav2's ``pf_z`` 0.99."""
+
+
+def kld_limit(k, params):
+    """Nav2 amcl's ``pf_resample_limit`` for ``k`` bins, one at a time (the reference)."""
+    if k <= 1:
+        return params.max_particles
+    n = math.ceil((k - 1) / (2 * params.pf_err) * (1 - 2 / (9 * (k - 1))
+                                                   + math.sqrt(2 / (9 * (k - 1))) * Z_99) ** 3)
+    return min(max(n, params.min_particles), params.max_particles)
+
+
 def _room():
     """Return a 4 x 3 m room (0.05 m cells), walls one cell thick, origin (-1, -1)."""
     data = np.zeros((60, 80), dtype=np.int8)
@@ -20,22 +33,23 @@ def _room():
 
 def test_kld_limit_closed_form():
     params = amcl.AmclParameters()
-    assert amcl.kld_limit(1, params) == params.max_particles
+    limit = dict(zip((1, 2, 10, 10000), amcl.kld_limits([1, 2, 10, 10000], params).tolist()))
+    assert limit[1] == params.max_particles
     # k = 10 bins: (k-1)/(2 err) (1 - 2/(9(k-1)) + sqrt(2/(9(k-1))) z_0.99)^3
-    z = 2.3263478740408408
+    z = Z_99
     k = 10
     expected = math.ceil((k - 1) / 0.1 * (1 - 2 / (9 * (k - 1))
                                           + math.sqrt(2 / (9 * (k - 1))) * z) ** 3)
-    assert amcl.kld_limit(k, params) == min(max(expected, 500), 2000)
-    assert amcl.kld_limit(2, params) == 500  # clamped to min_particles
-    assert amcl.kld_limit(10000, params) == 2000
+    assert limit[k] == min(max(expected, 500), 2000)
+    assert limit[2] == 500  # clamped to min_particles
+    assert limit[10000] == 2000
 
 
-def test_kld_limits_match_kld_limit_one_at_a_time():
+def test_kld_limits_match_the_formula_one_at_a_time():
     for params in (amcl.AmclParameters(), amcl.AmclParameters(min_particles=100,
                                                               max_particles=50000)):
         ks = np.arange(1, 6001)
-        assert amcl.kld_limits(ks, params).tolist() == [amcl.kld_limit(int(k), params)
+        assert amcl.kld_limits(ks, params).tolist() == [kld_limit(int(k), params)
                                                         for k in ks]
 
 
@@ -54,8 +68,8 @@ def test_resample_keeps_the_first_count_that_covers_its_bins():
     assert 100 < n < 5000
     bins = amcl._bins(f.particles, np.full(n, 1 / n))
     seen = [len({tuple(b) for b in bins[:m]}) for m in range(1, n + 1)]
-    assert n >= amcl.kld_limit(seen[n - 1], params)
-    assert all(m < amcl.kld_limit(seen[m - 1], params) for m in range(1, n))
+    assert n >= kld_limit(seen[n - 1], params)
+    assert all(m < kld_limit(seen[m - 1], params) for m in range(1, n))
 
 
 def test_distance_field_and_free_space():

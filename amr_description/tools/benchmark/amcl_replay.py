@@ -194,22 +194,12 @@ def params_from_file(path, overrides):
     import dataclasses
     import yaml
     from amr_description.nav.amcl import AmclParameters
+    from amr_description.tools.benchmark.common import parameter_overrides
     with open(path, encoding='utf-8') as f:
         section = ((yaml.safe_load(f) or {}).get('amcl') or {}).get('ros__parameters') or {}
     kinds = {f.name: type(f.default) for f in dataclasses.fields(AmclParameters)}
     values = {k: v for k, v in section.items() if k in kinds}
-    for text in overrides:
-        name, sep, value = text.partition('=')
-        if not sep or name not in kinds:
-            raise ValueError(f'--set {text}: expected name=value with a name of '
-                             f'{sorted(kinds)}')
-        if kinds[name] is str:
-            values[name] = value
-            continue
-        try:
-            values[name] = float(value)
-        except ValueError:
-            raise ValueError(f'--set {text}: {value!r} is not a number') from None
+    values.update(parameter_overrides(AmclParameters, overrides))
     return AmclParameters(**{k: kinds[k](v) for k, v in values.items()})
 
 

@@ -3,6 +3,7 @@
 
 """Constants and helpers shared by the benchmark's parts (processes, /clock, wheels)."""
 
+import dataclasses
 import os
 import time
 
@@ -136,3 +137,34 @@ def sample_clock(node, executor, timeout):
         executor.spin_once(timeout_sec=0.005)
     node.destroy_subscription(sub)
     return sample[0] if sample else None
+
+
+def parameter_overrides(cls, texts):
+    """
+    Return ``{name: value}`` from ``--set name=value`` texts, each name a field of ``cls``.
+
+    A value takes its field's type: text as given, ``true``/``false`` for a bool, else a
+    number converted to the field's type.
+
+    :param cls: a dataclass of parameters with defaults (``AmclParameters``, ``SlamParameters``).
+    :param texts: list of ``name=value`` strings.
+    :raises ValueError: one line, for text that is not ``name=value`` with a known name, or a
+        value that is not a number where one is needed.
+    """
+    kinds = {f.name: type(f.default) for f in dataclasses.fields(cls)}
+    values = {}
+    for text in texts:
+        name, sep, value = text.partition('=')
+        if not sep or name not in kinds:
+            raise ValueError(f'--set {text}: expected name=value with a name of '
+                             f'{sorted(kinds)}')
+        if kinds[name] is str:
+            values[name] = value
+        elif kinds[name] is bool and value.lower() in ('true', 'false'):
+            values[name] = value.lower() == 'true'
+        else:
+            try:
+                values[name] = kinds[name](float(value))
+            except (ValueError, OverflowError):
+                raise ValueError(f'--set {text}: {value!r} is not a number') from None
+    return values

@@ -145,22 +145,9 @@ def parameters(sets):
     :raises ValueError: one line, for an unknown name or a value that is not a number
         (``true``/``false`` for a bool).
     """
-    import dataclasses
     from amr_description.nav.slam import SlamParameters
-    kinds = {f.name: type(f.default) for f in dataclasses.fields(SlamParameters)}
-    values = {}
-    for text in sets:
-        name, sep, value = text.partition('=')
-        if not sep or name not in kinds:
-            raise ValueError(f'--set {text}: expected name=value with a name of SlamParameters')
-        if kinds[name] is bool and value.lower() in ('true', 'false'):
-            values[name] = value.lower() == 'true'
-            continue
-        try:
-            values[name] = kinds[name](float(value))
-        except (ValueError, OverflowError):
-            raise ValueError(f'--set {text}: {value!r} is not a number') from None
-    return SlamParameters(**values)
+    from amr_description.tools.benchmark.common import parameter_overrides
+    return SlamParameters(**parameter_overrides(SlamParameters, sets))
 
 
 def run(route, params=None):
