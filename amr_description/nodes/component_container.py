@@ -61,7 +61,6 @@ from rclpy.exceptions import InvalidParameterTypeException
 from rclpy.exceptions import InvalidParameterValueException
 from rclpy.exceptions import ParameterException
 from rclpy.executors import ExternalShutdownException
-from rclpy.executors import MultiThreadedExecutor
 from rclpy.executors import SingleThreadedExecutor
 import yaml
 
@@ -165,9 +164,7 @@ class IsolatedSpinner:
     One composed node spun on an executor and thread of its own (``component_container_isolated``).
 
     The node's ``companion_nodes`` (a Nav2 server's costmap node) share its executor, as they
-    share its process when it runs alone; a node with ``executor_threads`` > 1 (the lifecycle
-    manager, whose commands wait for other nodes' answers) gets rclpy's
-    ``MultiThreadedExecutor`` with that many threads, as its own program gives it. An exception
+    share its process when it runs alone. An exception
     escaping a callback is one error line naming the node and sets :attr:`failed`: the
     container then stops, as a process whose node raised ends.
 
@@ -179,11 +176,7 @@ class IsolatedSpinner:
         """Create the executor with the node and its companions, and start the thread."""
         self.node = node
         self.nodes = [node] + list(getattr(node, 'companion_nodes', ()))
-        threads = int(getattr(node, 'executor_threads', 1))
-        if threads > 1:
-            self.executor = MultiThreadedExecutor(num_threads=threads, context=node.context)
-        else:
-            self.executor = SingleThreadedExecutor(context=node.context)
+        self.executor = SingleThreadedExecutor(context=node.context)
         for each in self.nodes:
             self.executor.add_node(each)
         self._failed = failed

@@ -27,9 +27,16 @@ node's name, heartbeat period 0.1 s, timeout ``bond_timeout``) must form within
 ``bond_timeout / 2``. While the system is active the bonds are checked every 0.2 s; a broken
 one resets every node (deactivate, cleanup) and, with ``attempt_respawn_reconnection``, the
 manager starts them up again once all of them answer, for up to ``bond_respawn_max_duration``.
+The commands (start-up, ``~/manage_nodes``, the bond checks and the respawn) run one after
+the other on a thread of their own while a single-threaded executor keeps answering, as
+Nav2's manager runs its service callbacks apart from the executor that hears the managed
+nodes' responses. (rclpy's ``MultiThreadedExecutor``, used before, woke 20-50 times for each
+message, timer and ``/clock`` tick it dispatched: 49-74 % of a core for a manager that sits
+idle; docs/navigation.md, "The lifecycle managers' executor".)
 Source: ``nav2_lifecycle_manager/src/lifecycle_manager.cpp``.
 """
 
+import queue
 import threading
 import time
 
@@ -43,7 +50,7 @@ from lifecycle_msgs.srv import ChangeState
 from lifecycle_msgs.srv import GetState
 from nav2_msgs.srv import ManageLifecycleNodes
 from rclpy.callback_groups import MutuallyExclusiveCallbackGroup
-from rclpy.callback_groups import ReentrantCallbackGroup
+from rclpy.task import Future
 from std_srvs.srv import Trigger
 
 SERVICE_WAIT = 2.0
@@ -73,11 +80,52 @@ class _Managed:
         return self.change_state.service_is_ready() and self.get_state.service_is_ready()
 
 
+class CommandThread:
+    """
+    One daemon thread that runs the calls handed to it, one at a time, in order.
+
+    A call waits there for the managed nodes' answers, which the node's executor (another
+    thread) takes meanwhile. :meth:`submit` returns an rclpy ``Future`` of the call's result
+    (or of the exception it raised), completed through ``executor`` so that a coroutine
+    callback awaiting it is woken.
+    """
+
+    def __init__(self, name):
+        """Start the thread (named ``name``)."""
+        self._queue = queue.SimpleQueue()
+        self._thread = threading.Thread(target=self._loop, daemon=True, name=name)
+        self._thread.start()
+
+    def submit(self, call, executor=None):
+        """Queue ``call()``; return its ``Future``."""
+        future = Future(executor=executor)
+        future.add_done_callback(lambda _: None)  # wakes the executor when it is set
+        self._queue.put((future, call))
+        return future
+
+    def _loop(self):
+        while True:
+            item = self._queue.get()
+            if item is None:
+                return
+            future, call = item
+            try:
+                future.set_result(call())
+            except Exception as exc:  # noqa: B902 - handed to whoever awaits the result
+                future.set_exception(exc)
+
+    def stop(self):
+        """Let the thread end after the call it runs (the queued ones are dropped)."""
+        while True:
+            try:
+                self._queue.get_nowait()
+            except queue.Empty:
+                break
+        self._queue.put(None)
+
+
 class LifecycleManager(Node):
     """Node ``lifecycle_manager``; see the module docstring."""
-
-    executor_threads = 4
-    """Threads of its executor: a command's callback waits for the managed nodes' answers."""
 
     def __init__(self, **kwargs):
         """Declare the parameters, create the clients and services, start up if asked."""
@@ -90,34 +138,33 @@ class LifecycleManager(Node):
             self.declare_parameter('bond_respawn_max_duration', 10.0).value)
         self.attempt_respawn = bool(
             self.declare_parameter('attempt_respawn_reconnection', True).value)
-        self._clients_group = ReentrantCallbackGroup()
-        self._command_group = MutuallyExclusiveCallbackGroup()
+        self._commands = CommandThread(f'{self.get_name()}_commands')
+        self._checking = False  # a bond check is queued or running
         self.system_active = False
-        self.bonds = {}  # touched only by the command group's callbacks
+        self.bonds = {}  # touched only on the command thread
         if self.bond_timeout > 0.0:
             prepare_bonds(self, 'bond')  # matched with the nodes' long before a bond forms
         self._respawn_since = self._respawn_timer = None
         self.get_logger().info('Creating and initializing lifecycle service clients')
-        self.managed = {name: _Managed(self, name, self._clients_group)
-                        for name in self.node_names}
+        self.managed = {name: _Managed(self, name, None) for name in self.node_names}
+        # a group of its own: its callback stays in execution while it awaits the command, and
+        # the clients' and bonds' callbacks (the default group) must run meanwhile
         self.create_service(ManageLifecycleNodes, '~/manage_nodes', self._on_manage,
-                            callback_group=self._command_group)
-        self.create_service(Trigger, '~/is_active', self._on_is_active,
-                            callback_group=self._clients_group)
-        self._bond_timer = self.create_timer(BOND_CHECK_PERIOD, self._check_bonds,
-                                             callback_group=self._command_group)
+                            callback_group=MutuallyExclusiveCallbackGroup())
+        self.create_service(Trigger, '~/is_active', self._on_is_active)
+        self._bond_timer = self.create_timer(BOND_CHECK_PERIOD, self._on_bond_timer)
         if self.autostart:
-            self._autostart_timer = self.create_timer(
-                0.0, self._autostart, callback_group=self._command_group)
+            self._autostart_timer = self.create_timer(0.0, self._autostart)
 
     # services
     def _autostart(self):
         self._autostart_timer.cancel()
-        self.run(lifecycle_plan.STARTUP)
+        self._commands.submit(lambda: self.run(lifecycle_plan.STARTUP))
 
-    def _on_manage(self, request, response):
+    async def _on_manage(self, request, response):
+        done = self._commands.submit(lambda: self.run(request.command), self.executor)
         try:
-            response.success = self.run(request.command)
+            response.success = bool(await done)
         except ValueError as exc:
             self.get_logger().error(str(exc))
             response.success = False
@@ -245,7 +292,19 @@ class LifecycleManager(Node):
         for bond in bonds.values():
             bond.destroy()
 
+    def _on_bond_timer(self):
+        if self._checking or not self.system_active:
+            return
+        self._checking = True
+        self._commands.submit(self._check_bonds)
+
     def _check_bonds(self):
+        try:
+            self._check_bonds_now()
+        finally:
+            self._checking = False
+
+    def _check_bonds_now(self):
         if not self.system_active or not self.bonds:
             return
         broken = [name for name, bond in self.bonds.items() if bond.broken]
@@ -260,20 +319,28 @@ class LifecycleManager(Node):
         if self.attempt_respawn:
             self._respawn_since = time.monotonic()
             self._respawn_timer = self.create_timer(
-                RESPAWN_CHECK_PERIOD, self._check_respawn, callback_group=self._command_group)
+                RESPAWN_CHECK_PERIOD,
+                lambda: self._commands.submit(self._check_respawn))
 
     def _check_respawn(self):
+        if self._respawn_timer is None:
+            return  # a check queued before the timer went
         if all(m.ready() for m in self.managed.values()):
-            self.destroy_timer(self._respawn_timer)
+            self._stop_respawn()
             self.run(lifecycle_plan.STARTUP)
         elif time.monotonic() - self._respawn_since > self.respawn_max:
-            self.destroy_timer(self._respawn_timer)
+            self._stop_respawn()
             self.get_logger().error(
                 f'Failed to bring up all requested nodes after {self.respawn_max:.2f} seconds. '
                 'Check that all nodes are functioning properly.')
 
+    def _stop_respawn(self):
+        timer, self._respawn_timer = self._respawn_timer, None
+        self.destroy_timer(timer)
+
     def destroy_node(self):
-        """Destroy the bonds, then the node."""
+        """Stop the command thread, destroy the bonds, then the node."""
+        self._commands.stop()
         self._destroy_bonds()
         super().destroy_node()
 
@@ -284,7 +351,7 @@ def main(args=None):
 
     :param args: command-line arguments for rclpy (default ``sys.argv``).
     """
-    shutdown.run(LifecycleManager, args, threads=LifecycleManager.executor_threads)
+    shutdown.run(LifecycleManager, args)
 
 
 if __name__ == '__main__':

@@ -110,6 +110,7 @@ def test_manager_waits_for_a_transition_and_counts_a_dropped_answer_by_get_state
     manager = lm.LifecycleManager.__new__(lm.LifecycleManager)
     rclpy.node.Node.__init__(manager, 'lifecycle_manager_t', context=make('unused').context)
     manager.node_names, manager.bonds = ['m'], {}
+    manager._commands = lm.CommandThread('lifecycle_manager_t_commands')
     change = _ChangeClient()
     get = type('GetClient', (), {'ready': True, 'service_is_ready': lambda self: self.ready})()
     manager.managed = {'m': type('Managed', (), {'change_state': change, 'get_state': get})()}
@@ -144,3 +145,24 @@ def test_manager_waits_for_a_transition_and_counts_a_dropped_answer_by_get_state
     assert not manager._change(step)
     assert len(change.removed) == 3
     manager.destroy_node()
+
+
+def test_command_thread_runs_calls_in_order_and_hands_back_results_and_errors():
+    from amr_description.nodes import lifecycle_manager as lm
+    commands = lm.CommandThread('t_commands')
+    ran = []
+    gate = threading.Event()
+    first = commands.submit(lambda: (gate.wait(5.0), ran.append(1), 'one')[-1])
+    second = commands.submit(lambda: ran.append(2) or 2)
+    failing = commands.submit(lambda: int('x'))
+    assert not first.done() and not second.done()  # the first call holds the thread
+    gate.set()
+    deadline = time.monotonic() + 5.0
+    while not failing.done() and time.monotonic() < deadline:
+        time.sleep(0.01)
+    assert (first.result(), second.result(), ran) == ('one', 2, [1, 2])
+    with pytest.raises(ValueError):
+        failing.result()
+    commands.stop()
+    commands._thread.join(5.0)
+    assert not commands._thread.is_alive()
