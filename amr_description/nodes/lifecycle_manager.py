@@ -87,11 +87,13 @@ class CommandThread:
     A call waits there for the managed nodes' answers, which the node's executor (another
     thread) takes meanwhile. :meth:`submit` returns an rclpy ``Future`` of the call's result
     (or of the exception it raised), completed through ``executor`` so that a coroutine
-    callback awaiting it is woken.
+    callback awaiting it is woken. An exception raised by a call is also one error line on
+    ``logger`` (none is awaited for the timers' calls).
     """
 
-    def __init__(self, name):
-        """Start the thread (named ``name``)."""
+    def __init__(self, name, logger):
+        """Start the thread (named ``name``); ``logger``: an rclpy logger for the errors."""
+        self._logger = logger
         self._queue = queue.SimpleQueue()
         self._thread = threading.Thread(target=self._loop, daemon=True, name=name)
         self._thread.start()
@@ -111,7 +113,8 @@ class CommandThread:
             future, call = item
             try:
                 future.set_result(call())
-            except Exception as exc:  # noqa: B902 - handed to whoever awaits the result
+            except Exception as exc:  # noqa: B902 - one line, and handed to the awaiting
+                self._logger.error(str(exc) or type(exc).__name__)
                 future.set_exception(exc)
 
     def stop(self):
@@ -138,7 +141,7 @@ class LifecycleManager(Node):
             self.declare_parameter('bond_respawn_max_duration', 10.0).value)
         self.attempt_respawn = bool(
             self.declare_parameter('attempt_respawn_reconnection', True).value)
-        self._commands = CommandThread(f'{self.get_name()}_commands')
+        self._commands = CommandThread(f'{self.get_name()}_commands', self.get_logger())
         self._checking = False  # a bond check is queued or running
         self.system_active = False
         self.bonds = {}  # touched only on the command thread
@@ -165,8 +168,7 @@ class LifecycleManager(Node):
         done = self._commands.submit(lambda: self.run(request.command), self.executor)
         try:
             response.success = bool(await done)
-        except ValueError as exc:
-            self.get_logger().error(str(exc))
+        except Exception:  # noqa: B902 - the command thread logged it
             response.success = False
         return response
 

@@ -110,7 +110,7 @@ def test_manager_waits_for_a_transition_and_counts_a_dropped_answer_by_get_state
     manager = lm.LifecycleManager.__new__(lm.LifecycleManager)
     rclpy.node.Node.__init__(manager, 'lifecycle_manager_t', context=make('unused').context)
     manager.node_names, manager.bonds = ['m'], {}
-    manager._commands = lm.CommandThread('lifecycle_manager_t_commands')
+    manager._commands = lm.CommandThread('lifecycle_manager_t_commands', manager.get_logger())
     change = _ChangeClient()
     get = type('GetClient', (), {'ready': True, 'service_is_ready': lambda self: self.ready})()
     manager.managed = {'m': type('Managed', (), {'change_state': change, 'get_state': get})()}
@@ -149,7 +149,9 @@ def test_manager_waits_for_a_transition_and_counts_a_dropped_answer_by_get_state
 
 def test_command_thread_runs_calls_in_order_and_hands_back_results_and_errors():
     from amr_description.nodes import lifecycle_manager as lm
-    commands = lm.CommandThread('t_commands')
+    errors = []
+    logger = type('Logger', (), {'error': lambda self, line: errors.append(line)})()
+    commands = lm.CommandThread('t_commands', logger)
     ran = []
     gate = threading.Event()
     first = commands.submit(lambda: (gate.wait(5.0), ran.append(1), 'one')[-1])
@@ -163,6 +165,7 @@ def test_command_thread_runs_calls_in_order_and_hands_back_results_and_errors():
     assert (first.result(), second.result(), ran) == ('one', 2, [1, 2])
     with pytest.raises(ValueError):
         failing.result()
+    assert errors == ["invalid literal for int() with base 10: 'x'"]  # one line, not awaited
     commands.stop()
     commands._thread.join(5.0)
     assert not commands._thread.is_alive()
