@@ -70,11 +70,10 @@ RESPAWN_CHECK_PERIOD = 1.0
 class _Managed:
     """The lifecycle service clients of one managed node."""
 
-    def __init__(self, node, name, group):
+    def __init__(self, node, name):
         self.name = name
-        self.change_state = node.create_client(ChangeState, f'{name}/change_state',
-                                               callback_group=group)
-        self.get_state = node.create_client(GetState, f'{name}/get_state', callback_group=group)
+        self.change_state = node.create_client(ChangeState, f'{name}/change_state')
+        self.get_state = node.create_client(GetState, f'{name}/get_state')
 
     def ready(self):
         return self.change_state.service_is_ready() and self.get_state.service_is_ready()
@@ -149,7 +148,7 @@ class LifecycleManager(Node):
             prepare_bonds(self, 'bond')  # matched with the nodes' long before a bond forms
         self._respawn_since = self._respawn_timer = None
         self.get_logger().info('Creating and initializing lifecycle service clients')
-        self.managed = {name: _Managed(self, name, None) for name in self.node_names}
+        self.managed = {name: _Managed(self, name) for name in self.node_names}
         # a group of its own: its callback stays in execution while it awaits the command, and
         # the clients' and bonds' callbacks (the default group) must run meanwhile
         self.create_service(ManageLifecycleNodes, '~/manage_nodes', self._on_manage,

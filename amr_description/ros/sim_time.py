@@ -37,6 +37,19 @@ def take_over_time_source(node):
     return source
 
 
+def set_source_time(source, nanoseconds):
+    """
+    Set the clocks of an rclpy ``TimeSource`` to sim time, as its ``clock_callback`` does.
+
+    :param source: the ``TimeSource`` (its own /clock subscription removed).
+    :param nanoseconds: the sim time (int, ns).
+    """
+    now = Time(nanoseconds=nanoseconds)
+    source._last_time_set = now
+    for clock in source._associated_clocks:
+        clock.set_ros_time_override(now)
+
+
 class SimTime:
     """
     The sim time of in-process nodes, set by the simulation thread without DDS.

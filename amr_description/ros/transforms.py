@@ -15,6 +15,11 @@ import math
 import threading
 import weakref
 
+from amr_description.ros.cdr import clock_nanoseconds
+from amr_description.ros.cdr import tf_message_entries
+from amr_description.ros.sim_time import set_source_time
+from amr_description.ros.sim_time import take_over_time_source
+from amr_description.ros.take_loop import TakeLoop
 from geometry_msgs.msg import TransformStamped
 import numpy as np
 from rclpy.qos import DurabilityPolicy
@@ -148,34 +153,51 @@ def stop_listener_threads():
 
 
 class _OwnThread:
-    """``/tf`` and ``/tf_static`` subscribed on a node, executor and thread of their own."""
+    """
+    ``/tf`` and ``/tf_static`` taken serialized on a node and :class:`TakeLoop` of their own.
 
-    def __init__(self, context, store):
-        from rclpy.executors import SingleThreadedExecutor
+    :param context: the rclpy context.
+    :param store: ``f(entries, static)`` with the transforms of each message (as
+        :func:`_entries`).
+    :param clock_source: an rclpy ``TimeSource`` whose ``/clock`` this thread takes too
+        (its own subscription already removed), or None.
+    """
+
+    def __init__(self, context, store, clock_source=None):
         from rclpy.node import Node as RclpyNode
+        from rclpy.parameter import Parameter
+        from rosgraph_msgs.msg import Clock
         name = f'transform_listener_impl_{id(self):x}'
         # a node-local __node remap wins over the process's ``-r __node:=<server>``, which
         # would otherwise give this node the server's name too (as tf2_ros avoids)
+        # use_sim_time false whatever the process's arguments say: the node's own /clock
+        # subscription would never be taken (nothing spins this node), yet DDS fills it
         self.node = RclpyNode(name, context=context, start_parameter_services=False,
-                              cli_args=['--ros-args', '-r', f'__node:={name}'])
-        self.executor = SingleThreadedExecutor(context=context)
-        self.executor.add_node(self.node)
-        self.subs = _subscribe(self.node, store, None)
-        self.thread = threading.Thread(target=self._spin, daemon=True)
-        self.thread.start()
-
-    def _spin(self):
-        from rclpy.executors import ExternalShutdownException
-        try:
-            self.executor.spin()
-        except (ExternalShutdownException, RuntimeError):  # the context or executor stopped
-            pass
+                              cli_args=['--ros-args', '-r', f'__node:={name}'],
+                              parameter_overrides=[Parameter('use_sim_time', value=False)])
+        self.loop = TakeLoop(self.node, name)
+        self.loop.subscribe(TFMessage, '/tf', 100, lambda data: store(_read_tf(data), False))
+        self.loop.subscribe(TFMessage, '/tf_static', STATIC_QOS,
+                            lambda data: store(_read_tf(data), True))
+        if clock_source is not None:
+            # rclpy's TimeSource subscription: depth 1, best effort
+            self.loop.subscribe(Clock, '/clock', QoSProfile(
+                depth=1, reliability=ReliabilityPolicy.BEST_EFFORT),
+                lambda data: set_source_time(clock_source, clock_nanoseconds(data)))
+        self.loop.start()
 
     def destroy(self):
-        self.executor.shutdown(timeout_sec=1.0)
+        self.loop.stop()
         self.node.destroy_node()
-        if self.thread is not threading.current_thread():
-            self.thread.join(timeout=2.0)
+
+
+def _read_tf(data):
+    """Return the transforms of a serialized TFMessage (rclpy reads what is not plain CDR)."""
+    try:
+        return tf_message_entries(data)
+    except ValueError:
+        from rclpy.serialization import deserialize_message
+        return _entries(deserialize_message(data, TFMessage))
 
 
 def _entries(msg):
@@ -189,10 +211,11 @@ def _entries(msg):
 
 
 def _subscribe(node, store, callback_group):
-    return [node.create_subscription(TFMessage, '/tf', lambda m: store(m, False), 100,
-                                     callback_group=callback_group),
-            node.create_subscription(TFMessage, '/tf_static', lambda m: store(m, True),
-                                     STATIC_QOS, callback_group=callback_group)]
+    return [node.create_subscription(TFMessage, '/tf', lambda m: store(_entries(m), False),
+                                     100, callback_group=callback_group),
+            node.create_subscription(TFMessage, '/tf_static',
+                                     lambda m: store(_entries(m), True), STATIC_QOS,
+                                     callback_group=callback_group)]
 
 
 class _Hub:
@@ -214,8 +237,8 @@ class _Hub:
         self.own = _OwnThread(context, self._store)
         _SPINNING.add(self)
 
-    def _store(self, msg, static):
-        entries = _entries(msg)  # read once, whatever the number of listeners
+    def _store(self, entries, static):
+        # each message is read once, whatever the number of listeners
         if not static:
             for listener in self.listeners:
                 listener._fill(entries, static)
@@ -264,12 +287,12 @@ class TransformListener:
     A transform the buffer refuses (``ValueError``: a NaN, a frame naming itself) is logged
     as one warning line (at most every 5 s) and dropped. With ``spin_thread``, as tf2_ros'
     ``TransformListener(..., spin_thread=True)``, the subscriptions belong to a node of their
-    own (``transform_listener_impl_<id>``) spun by a single-threaded executor in a daemon
-    thread: the hundreds of ``/tf`` messages a second then wake a wait set of two
-    subscriptions, not the node's whole set of services and timers (in the SLAM node that
-    wake-up, not the mapping, was the larger part of its CPU). After
-    :func:`share_listener_threads`, the process's ``spin_thread`` listeners share one such
-    node and thread.
+    own (``transform_listener_impl_<id>``) whose messages are taken serialized and read on a
+    thread of their own (:class:`amr_description.ros.take_loop.TakeLoop`, no executor): the
+    hundreds of ``/tf`` messages a second then wake neither the node's whole set of services
+    and timers (in the SLAM node that wake-up, not the mapping, was the larger part of its
+    CPU) nor an rclpy executor. After :func:`share_listener_threads`, the process's
+    ``spin_thread`` listeners share one such node and thread.
 
     :param node: the rclpy node that subscribes (or whose context the listener's node uses).
     :param buffer: an object with ``set_transform(parent, child, time, translation,
@@ -277,24 +300,29 @@ class TransformListener:
     :param callback_group: the subscriptions' callback group, or None (not with
         ``spin_thread``).
     :param spin_thread: subscribe on a node and thread of the listener's own.
+    :param take_clock: with ``spin_thread`` (not shared), also take ``node``'s ``/clock`` on
+        that thread when ``node`` subscribes it itself (``use_sim_time``): its clocks are set
+        as rclpy's ``TimeSource.clock_callback`` sets them, without a wake-up of the node's
+        executor 100 times a second. :meth:`destroy` gives the subscription back.
     """
 
-    def __init__(self, node, buffer, callback_group=None, spin_thread=False):
+    def __init__(self, node, buffer, callback_group=None, spin_thread=False,
+                 take_clock=False):
         """Subscribe both topics (on the listener's own node with ``spin_thread``)."""
         self.node = node
         self.buffer = buffer
-        self._own = self._hub = None
+        self._own = self._hub = self._clock_source = None
         self._subs = []
         if spin_thread and _sharing:
             self._hub = _Hub.join(self)
         elif spin_thread:
-            self._own = _OwnThread(node.context, self._store)
+            source = getattr(node, '_time_source', None)
+            if take_clock and getattr(source, '_clock_sub', None) is not None:
+                self._clock_source = take_over_time_source(node)
+            self._own = _OwnThread(node.context, self._fill, self._clock_source)
             _SPINNING.add(self)
         else:
-            self._subs = _subscribe(node, self._store, callback_group)
-
-    def _store(self, msg, static):
-        self._fill(_entries(msg), static)
+            self._subs = _subscribe(node, self._fill, callback_group)
 
     def _fill(self, entries, static):
         for parent, child, stamp, translation, rotation in entries:
@@ -314,6 +342,9 @@ class TransformListener:
             own, self._own = self._own, None
             own.destroy()
             _SPINNING.discard(self)
+            source, self._clock_source = self._clock_source, None
+            if source is not None and source.ros_time_is_active and self.node.context.ok():
+                source._subscribe_to_clock_topic()  # the node's own /clock subscription again
         else:
             for sub in self._subs:
                 self.node.destroy_subscription(sub)

@@ -1,0 +1,98 @@
+# Copyright 2026 The amr_description Authors
+# Licensed under the Apache License, Version 2.0
+"""
+Reading the few serialized messages that arrive hundreds of times a second, without rclpy.
+
+rclpy converts each message it takes into Python objects (ten for one ``TransformStamped``),
+and that conversion was a sixth of a TF listener's CPU. These readers take the serialized
+bytes (a subscription's ``raw=True``) and return plain values.
+
+The layout is plain CDR (OMG DDS-XTypes 1.3, 7.4.3, "XCDR1"), what rmw_fastrtps writes for
+ROS 2 types: a 4-byte encapsulation header (``00 00`` big endian or ``00 01`` little endian,
+then two option bytes), then the fields in order, each aligned to its own size (at most 8)
+counting from the end of the header; a string is a uint32 length counting its terminating
+NUL, then its bytes; a sequence is a uint32 count, then its elements. Any other
+encapsulation raises ``ValueError`` (the caller then lets rclpy deserialize the bytes).
+"""
+
+import struct
+
+_ENDIAN = {b'\x00\x00': '>', b'\x00\x01': '<'}
+
+
+class _Reader:
+    """A cursor over one CDR stream (see the module's docstring)."""
+
+    def __init__(self, data):
+        if len(data) < 4 or bytes(data[:2]) not in _ENDIAN:
+            raise ValueError(f'not a plain CDR stream (encapsulation {bytes(data[:2]).hex()})')
+        self.data = data
+        self.end = _ENDIAN[bytes(data[:2])]
+        self.pos = 4
+        self._u32 = struct.Struct(self.end + 'I')
+        self._time = struct.Struct(self.end + 'iI')
+        self._seven = struct.Struct(self.end + '7d')
+
+    def _align(self, size):
+        self.pos += (-(self.pos - 4)) % size
+
+    def _take(self, layout, size):
+        self._align(size)
+        if self.pos + layout.size > len(self.data):
+            raise ValueError(f'CDR stream ends at byte {len(self.data)}, inside a field at '
+                             f'byte {self.pos}')
+        values = layout.unpack_from(self.data, self.pos)
+        self.pos += layout.size
+        return values
+
+    def uint32(self):
+        return self._take(self._u32, 4)[0]
+
+    def time(self):
+        """Return a ``builtin_interfaces/Time`` as seconds (float)."""
+        sec, nanosec = self._take(self._time, 4)
+        return sec + nanosec * 1e-9
+
+    def string(self):
+        size = self.uint32()
+        if size == 0 or self.pos + size > len(self.data):
+            raise ValueError(f'CDR string of {size} bytes at byte {self.pos} does not fit '
+                             f'in {len(self.data)}')
+        text = bytes(self.data[self.pos:self.pos + size - 1]).decode('utf-8')
+        self.pos += size
+        return text
+
+    def seven_doubles(self):
+        return self._take(self._seven, 8)
+
+
+def tf_message_entries(data):
+    """
+    Return the transforms of a serialized ``tf2_msgs/TFMessage``.
+
+    :param data: the message's CDR bytes (bytes, bytearray or memoryview).
+    :returns: list of ``(parent, child, stamp, (x, y, z), (qx, qy, qz, qw))``: frame ids
+        (str), stamp in seconds (float), the child's origin in the parent frame (m) and the
+        rotation quaternion, as the message holds them (not checked or normalized).
+    :raises ValueError: when ``data`` is not plain CDR, or ends inside a field.
+    """
+    reader = _Reader(data)
+    entries = []
+    for _ in range(reader.uint32()):
+        stamp = reader.time()
+        parent = reader.string()
+        child = reader.string()
+        values = reader.seven_doubles()
+        entries.append((parent, child, stamp, values[:3], values[3:]))
+    return entries
+
+
+def clock_nanoseconds(data):
+    """
+    Return the time of a serialized ``rosgraph_msgs/Clock`` in nanoseconds (int).
+
+    :raises ValueError: when ``data`` is not plain CDR, or is too short.
+    """
+    reader = _Reader(data)
+    sec, nanosec = reader._take(reader._time, 4)
+    return sec * 1_000_000_000 + nanosec

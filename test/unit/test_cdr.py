@@ -1,0 +1,67 @@
+# Copyright 2026 The amr_description Authors
+# Licensed under the Apache License, Version 2.0
+"""The CDR readers give back what rclpy serialized, and refuse what they cannot read."""
+
+import struct
+
+from amr_description.ros.cdr import clock_nanoseconds
+from amr_description.ros.cdr import tf_message_entries
+from geometry_msgs.msg import TransformStamped
+import pytest
+from rclpy.serialization import serialize_message
+from rosgraph_msgs.msg import Clock
+from tf2_msgs.msg import TFMessage
+
+pytestmark = pytest.mark.unit
+
+
+def _transform(parent, child, sec, nanosec, xyz, xyzw):
+    t = TransformStamped()
+    t.header.frame_id, t.child_frame_id = parent, child
+    t.header.stamp.sec, t.header.stamp.nanosec = sec, nanosec
+    t.transform.translation.x, t.transform.translation.y, t.transform.translation.z = xyz
+    r = t.transform.rotation
+    r.x, r.y, r.z, r.w = xyzw
+    return t
+
+
+def test_transforms_read_back_with_every_padding():
+    # frame ids of 0-8 characters: every alignment of the next string and of the doubles
+    transforms = [_transform('p' * n, 'c' * (8 - n), n, 500_000_000 + n,
+                             (float(n), -2.5 * n, 0.125), (0.0, 0.0, 0.6, 0.8))
+                  for n in range(9)]
+    entries = tf_message_entries(serialize_message(TFMessage(transforms=transforms)))
+    assert len(entries) == 9
+    for n, (parent, child, stamp, xyz, xyzw) in enumerate(entries):
+        assert (parent, child) == ('p' * n, 'c' * (8 - n))
+        assert stamp == pytest.approx(n + 0.5 + n * 1e-9, abs=1e-12)
+        assert xyz == (n, -2.5 * n, 0.125) and xyzw == (0.0, 0.0, 0.6, 0.8)
+
+
+def test_an_empty_message_and_a_big_endian_stream():
+    assert tf_message_entries(serialize_message(TFMessage())) == []
+    # by hand, big endian: one transform 'a' -> 'bc' at 3 s, (1, 2, 3), (0, 0, 0, 1)
+    body = struct.pack('>IiII2s2xI3s', 1, 3, 0, 2, b'a\0', 3, b'bc\0')  # 27 bytes
+    data = b'\x00\x00\x00\x00' + body + bytes(5) + struct.pack('>7d', 1, 2, 3, 0, 0, 0, 1)
+    assert tf_message_entries(data) == [('a', 'bc', 3.0, (1.0, 2.0, 3.0),
+                                         (0.0, 0.0, 0.0, 1.0))]
+
+
+def test_the_clock():
+    msg = Clock()
+    msg.clock.sec, msg.clock.nanosec = 12, 345
+    assert clock_nanoseconds(serialize_message(msg)) == 12_000_000_345
+
+
+@pytest.mark.parametrize('data', [b'', b'\x00\x07\x00\x00' + bytes(8), b'\x00\x01\x00\x00\x01'])
+def test_what_cannot_be_read_is_a_value_error(data):
+    with pytest.raises(ValueError):
+        tf_message_entries(data)
+
+
+def test_a_truncated_message_is_a_value_error():
+    data = serialize_message(TFMessage(transforms=[_transform('map', 'odom', 1, 2, (0.0, 0.0, 0.0),
+                                                              (0.0, 0.0, 0.0, 1.0))]))
+    for end in (8, 20, len(data) - 1):
+        with pytest.raises(ValueError):
+            tf_message_entries(data[:end])
