@@ -128,8 +128,7 @@ class Amcl(ManagedNode):
         self._cloud_pub = self.create_publisher(ParticleCloud, 'particle_cloud',
                                                 qos_profile_sensor_data)
         self._tf_pub = self.create_publisher(TFMessage, '/tf', 100)
-        self._listener = TransformListener(self, self.tf_buffer, spin_thread=True,
-                                           take_clock=True)
+        self._listener = TransformListener(self, self.tf_buffer, spin_thread=True)
         self._active = [
             self._pose_pub, self._cloud_pub, self._tf_pub,
             self.create_subscription(OccupancyGrid, p['map_topic'], self._on_map, LATCHED),

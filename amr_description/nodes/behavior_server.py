@@ -98,8 +98,7 @@ class BehaviorServer(ManagedNode):
             else:
                 self.get_logger().warning(f"{bid}: plugin '{plugin}' is not available here; "
                                           'its action is not offered')
-        self._listener = TransformListener(self, self.tf_buffer, spin_thread=True,
-                                           take_clock=True)
+        self._listener = TransformListener(self, self.tf_buffer, spin_thread=True)
 
     def activate(self):
         """Create the action servers, the command publisher and the cycle timer."""

@@ -119,8 +119,7 @@ class BtNavigator(ManagedNode):
             'goal_pose': GoalClient(self, NavigateToPose, 'navigate_to_pose')}
         self.clear_clients = {k: self.create_client(ClearEntireCostmap, v)
                               for k, v in CLEAR.items()}
-        self._listener = TransformListener(self, self.tf_buffer, spin_thread=True,
-                                           take_clock=True)
+        self._listener = TransformListener(self, self.tf_buffer, spin_thread=True)
 
     def activate(self):
         """Offer the navigators' actions; listen to ``goal_pose`` and odometry."""

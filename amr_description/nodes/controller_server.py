@@ -164,8 +164,7 @@ class ControllerServer(ManagedNode):
                 self.get_logger().info(
                     f"{cid}: plugin '{c['plugin']}' runs as Regulated Pure Pursuit here, with "
                     f"desired_linear_vel {speed:g} and the goal checker's tolerances")
-        self._listener = TransformListener(self, self.tf_buffer, spin_thread=True,
-                                           take_clock=True)
+        self._listener = TransformListener(self, self.tf_buffer, spin_thread=True)
 
     def activate(self):
         """Start the costmap, the action server, the command publisher and the loop."""

@@ -90,8 +90,7 @@ class PlannerServer(ManagedNode):
                 self.get_logger().info(f'{pid}: use_astar: the search runs as Dijkstra here')
             else:
                 self.get_logger().info(f'Created global planner plugin {pid} of type {kind}')
-        self._listener = TransformListener(self, self.tf_buffer, spin_thread=True,
-                                           take_clock=True)
+        self._listener = TransformListener(self, self.tf_buffer, spin_thread=True)
 
     def activate(self):
         """Start the costmap, the action server and the plan publisher."""

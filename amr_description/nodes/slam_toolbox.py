@@ -149,8 +149,7 @@ class SlamToolbox(ManagedNode):
                                                LATCHED)
         self._pose_pub = self.create_publisher(PoseWithCovarianceStamped, 'pose', 10)
         self._tf_pub = self.create_publisher(TFMessage, '/tf', 100)
-        self._listener = TransformListener(self, self.tf_buffer, spin_thread=True,
-                                           take_clock=True)
+        self._listener = TransformListener(self, self.tf_buffer, spin_thread=True)
         scan_sub = self.create_subscription(LaserScan, p['scan_topic'], self._on_scan,
                                             qos_profile_sensor_data)
         self._active = [self._map_pub, self._meta_pub, self._pose_pub, self._tf_pub, scan_sub,

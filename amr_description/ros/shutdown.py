@@ -232,11 +232,17 @@ def spin(target, until=None, period=SPIN_PERIOD):
     :raises KeyboardInterrupt: on SIGINT/SIGTERM, raised here once ``spin_once`` returned
         (never from inside an rclpy call); an error raised by ``spin_once`` after the signal
         is part of stopping and ignored.
+
+    The executor's nodes on sim time have their ``/clock`` taken on a thread of its own
+    (:func:`amr_description.ros.sim_time.take_clock_on_thread`), not by the executor.
     """
+    from amr_description.ros.sim_time import take_clock_on_thread
     executor = target
     if not hasattr(target, 'spin_once'):
         executor = SingleThreadedExecutor(context=target.context)
         executor.add_node(target)
+    for node in getattr(executor, 'get_nodes', list)():
+        take_clock_on_thread(node)
     _spinning.set()
     try:
         while executor.context.ok() and not _interrupted.is_set() and \
@@ -259,23 +265,25 @@ def spin(target, until=None, period=SPIN_PERIOD):
 
 def shutdown(*nodes, executor=None):
     """
-    Stop TF listener threads, destroy ``nodes`` (None skipped), shut ``executor`` and rclpy down.
+    Stop TF listener and clock threads, destroy ``nodes`` (None skipped), shut down the rest.
 
     Call it after stopping the program's own threads. Errors of a context already shut down
     elsewhere are ignored.
 
     :param nodes: rclpy nodes to destroy, in order.
-    :param executor: optional executor to shut down after the nodes.
+    :param executor: optional executor to shut down after the nodes; rclpy is shut down last.
     """
     try:
         ignore_signals()
     except ValueError:  # not the main thread: signals are the main thread's business
         pass
+    from amr_description.ros.sim_time import stop_clock_threads
     from amr_description.ros.transforms import stop_listener_threads
-    try:
-        stop_listener_threads()
-    except Exception:  # noqa: B902 - best effort at exit
-        pass
+    for stop in (stop_listener_threads, stop_clock_threads):
+        try:
+            stop()
+        except Exception:  # noqa: B902 - best effort at exit
+            pass
     for node in nodes:
         if node is None:
             continue

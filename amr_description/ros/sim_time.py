@@ -6,13 +6,20 @@ Sim time of in-process nodes, set directly by a simulation thread instead of ove
 A node on sim time normally subscribes to /clock and sets its clocks in the callback. In the
 simulator (and in a container of composed nodes) one thread knows the time first, so the nodes'
 own /clock subscriptions are removed (:func:`take_over_time_source`) and the owner sets their
-clocks at every instant, as rclpy's ``TimeSource.clock_callback`` would.
+clocks at every instant, as rclpy's ``TimeSource.clock_callback`` would. A node spun on its
+own hears /clock on a thread of its own instead of its executor (:func:`take_clock_on_thread`).
 """
 
 import threading
+import weakref
 
+from amr_description.ros.cdr import clock_nanoseconds
+from amr_description.ros.take_loop import TakeLoop
 from rclpy.executors import SingleThreadedExecutor
+from rclpy.qos import QoSProfile
+from rclpy.qos import ReliabilityPolicy
 from rclpy.time import Time
+from rosgraph_msgs.msg import Clock
 
 
 def take_over_time_source(node):
@@ -48,6 +55,51 @@ def set_source_time(source, nanoseconds):
     source._last_time_set = now
     for clock in source._associated_clocks:
         clock.set_ros_time_override(now)
+
+
+_CLOCK_LOOPS = weakref.WeakKeyDictionary()  # node -> TakeLoop taking its /clock
+_CLOCK_LOOPS_LOCK = threading.Lock()
+
+
+def take_clock_on_thread(node):
+    """
+    Take ``node``'s ``/clock`` on a thread of its own instead of the node's executor.
+
+    rclpy's ``TimeSource`` subscribes ``/clock`` on the node (depth 1, best effort) and its
+    executor wakes for every message: 100 times a second of sim time, 0.3-0.4 ms of CPU each
+    (docs/navigation.md, "The TF listener's and the clock's thread"). Here the same
+    subscription, on the same node (so with the same remaps), is taken serialized by a
+    :class:`amr_description.ros.take_loop.TakeLoop` that sets the source's clocks as
+    ``TimeSource.clock_callback`` does. Only when the node subscribes ``/clock`` itself
+    (``use_sim_time`` true, the subscription not taken over already); once per node. The
+    thread lasts until :func:`stop_clock_threads` or the node's destruction.
+
+    :param node: an rclpy node (not yet spun, or on the executor's thread).
+    :returns: True when the clock was taken now.
+    """
+    source = getattr(node, '_time_source', None)
+    if getattr(source, '_clock_sub', None) is None:
+        return False
+    with _CLOCK_LOOPS_LOCK:
+        if node in _CLOCK_LOOPS:
+            return False
+        take_over_time_source(node)
+        loop = TakeLoop(node, f'{node.get_name()}_clock')
+        loop.subscribe(Clock, '/clock', QoSProfile(depth=1,
+                                                   reliability=ReliabilityPolicy.BEST_EFFORT),
+                       lambda data: set_source_time(source, clock_nanoseconds(data)))
+        _CLOCK_LOOPS[node] = loop
+    loop.start()
+    return True
+
+
+def stop_clock_threads():
+    """Stop every thread of :func:`take_clock_on_thread` (before the nodes are destroyed)."""
+    with _CLOCK_LOOPS_LOCK:
+        loops = list(_CLOCK_LOOPS.values())
+        _CLOCK_LOOPS.clear()
+    for loop in loops:
+        loop.stop()
 
 
 class SimTime:

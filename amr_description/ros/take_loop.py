@@ -12,8 +12,11 @@ each message, taken serialized (``raw``), to its handler; this is how rclpy's ow
 ``wait_for_message`` waits and takes, with rclpy's ``WaitSet`` and ``take_message``.
 """
 
+import contextlib
 import threading
 
+from rclpy.callback_groups import CallbackGroup
+from rclpy.exceptions import InvalidHandle
 from rclpy.guard_condition import GuardCondition
 from rclpy.impl.implementation_singleton import rclpy_implementation as _rclpy
 
@@ -21,14 +24,37 @@ WAIT_TIMEOUT_NS = 500_000_000
 """The loop checks its context at least this often (ns)."""
 
 
+class NotOnExecutors(CallbackGroup):
+    """
+    A callback group no rclpy executor runs: its entities stay out of executors' wait sets.
+
+    rclpy's executors wait only on the entities whose group's ``can_execute`` is true
+    (``Executor._wait_for_ready_callbacks``), so a :class:`TakeLoop` may take the messages
+    of a subscription in this group on a node that an executor spins.
+    """
+
+    def can_execute(self, entity):
+        """Return False: never run by an executor."""
+        return False
+
+    def beginning_execution(self, entity):
+        """Return False: never run by an executor."""
+        return False
+
+    def ending_execution(self, entity):
+        """Do nothing."""
+
+
 class TakeLoop:
     """
     Subscriptions on ``node`` whose messages go to their handlers on one daemon thread.
 
-    ``node`` must not be spun by an executor (its subscriptions would be taken twice). A
-    handler that raises has its exception logged (one warning line per topic every 5 s) and
-    the loop goes on. Add every subscription with :meth:`subscribe`, then :meth:`start`;
-    :meth:`stop` joins the thread before the subscriptions may be destroyed.
+    The subscriptions are in a :class:`NotOnExecutors` group, so the node may be spun by an
+    executor too. A handler that raises has its exception logged (one warning line per topic
+    every 5 s) and the loop goes on. Add every subscription with :meth:`subscribe`, then
+    :meth:`start`; :meth:`stop` joins the thread and destroys the subscriptions. If the node is
+    destroyed first, the loop ends at its next wake-up (rclpy defers destroying a handle in
+    use).
 
     :param node: the rclpy node owning the subscriptions.
     :param name: the thread's name.
@@ -39,6 +65,7 @@ class TakeLoop:
         self.node = node
         self._name = name
         self._subs = []
+        self._group = NotOnExecutors()
         self._guard = GuardCondition(None, None, context=node.context)
         self._stopping = False
         self._thread = None
@@ -49,7 +76,8 @@ class TakeLoop:
 
         :returns: the rclpy subscription.
         """
-        sub = self.node.create_subscription(msg_type, topic, lambda _: None, qos, raw=raw)
+        sub = self.node.create_subscription(msg_type, topic, lambda _: None, qos, raw=raw,
+                                            callback_group=self._group)
         self._subs.append((sub, handler))
         return sub
 
@@ -63,16 +91,21 @@ class TakeLoop:
         try:
             wait_set = _rclpy.WaitSet(len(self._subs), 1, 0, 0, 0, 0, context.handle)
             while not self._stopping and context.ok():
-                wait_set.clear_entities()
-                for sub, _ in self._subs:
-                    wait_set.add_subscription(sub.handle)
-                wait_set.add_guard_condition(self._guard.handle)
-                wait_set.wait(WAIT_TIMEOUT_NS)
-                ready = wait_set.get_ready_entities('subscription')
-                for sub, handler in self._subs:
-                    if sub.handle.pointer in ready:
-                        self._take_all(sub, handler)
-        except Exception as exc:  # noqa: B902 - the context or a handle went away: it ends
+                with contextlib.ExitStack() as in_use:  # no handle destroyed while used
+                    wait_set.clear_entities()
+                    for sub, _ in self._subs:
+                        in_use.enter_context(sub.handle)
+                        wait_set.add_subscription(sub.handle)
+                    in_use.enter_context(self._guard.handle)
+                    wait_set.add_guard_condition(self._guard.handle)
+                    wait_set.wait(WAIT_TIMEOUT_NS)
+                    ready = wait_set.get_ready_entities('subscription')
+                    for sub, handler in self._subs:
+                        if sub.handle.pointer in ready:
+                            self._take_all(sub, handler)
+        except InvalidHandle:  # the node or the context went away: the loop ends
+            pass
+        except Exception as exc:  # noqa: B902 - one line, not a thread's traceback
             if not self._stopping and context.ok():
                 self.node.get_logger().error(
                     f'{self._name} stopped: {type(exc).__name__}: {" ".join(str(exc).split())}')
@@ -99,6 +132,9 @@ class TakeLoop:
         if self._thread is not None and self._thread is not threading.current_thread():
             self._thread.join(timeout=timeout)
         for sub, _ in self._subs:
-            self.node.destroy_subscription(sub)
+            try:
+                self.node.destroy_subscription(sub)
+            except InvalidHandle:  # the node was destroyed first
+                pass
         self._subs = []
         self._guard.destroy()

@@ -15,10 +15,7 @@ import math
 import threading
 import weakref
 
-from amr_description.ros.cdr import clock_nanoseconds
 from amr_description.ros.cdr import tf_message_entries
-from amr_description.ros.sim_time import set_source_time
-from amr_description.ros.sim_time import take_over_time_source
 from amr_description.ros.take_loop import TakeLoop
 from geometry_msgs.msg import TransformStamped
 import numpy as np
@@ -159,14 +156,11 @@ class _OwnThread:
     :param context: the rclpy context.
     :param store: ``f(entries, static)`` with the transforms of each message (as
         :func:`_entries`).
-    :param clock_source: an rclpy ``TimeSource`` whose ``/clock`` this thread takes too
-        (its own subscription already removed), or None.
     """
 
-    def __init__(self, context, store, clock_source=None):
+    def __init__(self, context, store):
         from rclpy.node import Node as RclpyNode
         from rclpy.parameter import Parameter
-        from rosgraph_msgs.msg import Clock
         name = f'transform_listener_impl_{id(self):x}'
         # a node-local __node remap wins over the process's ``-r __node:=<server>``, which
         # would otherwise give this node the server's name too (as tf2_ros avoids)
@@ -179,11 +173,6 @@ class _OwnThread:
         self.loop.subscribe(TFMessage, '/tf', 100, lambda data: store(_read_tf(data), False))
         self.loop.subscribe(TFMessage, '/tf_static', STATIC_QOS,
                             lambda data: store(_read_tf(data), True))
-        if clock_source is not None:
-            # rclpy's TimeSource subscription: depth 1, best effort
-            self.loop.subscribe(Clock, '/clock', QoSProfile(
-                depth=1, reliability=ReliabilityPolicy.BEST_EFFORT),
-                lambda data: set_source_time(clock_source, clock_nanoseconds(data)))
         self.loop.start()
 
     def destroy(self):
@@ -300,26 +289,18 @@ class TransformListener:
     :param callback_group: the subscriptions' callback group, or None (not with
         ``spin_thread``).
     :param spin_thread: subscribe on a node and thread of the listener's own.
-    :param take_clock: with ``spin_thread`` (not shared), also take ``node``'s ``/clock`` on
-        that thread when ``node`` subscribes it itself (``use_sim_time``): its clocks are set
-        as rclpy's ``TimeSource.clock_callback`` sets them, without a wake-up of the node's
-        executor 100 times a second. :meth:`destroy` gives the subscription back.
     """
 
-    def __init__(self, node, buffer, callback_group=None, spin_thread=False,
-                 take_clock=False):
+    def __init__(self, node, buffer, callback_group=None, spin_thread=False):
         """Subscribe both topics (on the listener's own node with ``spin_thread``)."""
         self.node = node
         self.buffer = buffer
-        self._own = self._hub = self._clock_source = None
+        self._own = self._hub = None
         self._subs = []
         if spin_thread and _sharing:
             self._hub = _Hub.join(self)
         elif spin_thread:
-            source = getattr(node, '_time_source', None)
-            if take_clock and getattr(source, '_clock_sub', None) is not None:
-                self._clock_source = take_over_time_source(node)
-            self._own = _OwnThread(node.context, self._fill, self._clock_source)
+            self._own = _OwnThread(node.context, self._fill)
             _SPINNING.add(self)
         else:
             self._subs = _subscribe(node, self._fill, callback_group)
@@ -342,9 +323,6 @@ class TransformListener:
             own, self._own = self._own, None
             own.destroy()
             _SPINNING.discard(self)
-            source, self._clock_source = self._clock_source, None
-            if source is not None and source.ros_time_is_active and self.node.context.ok():
-                source._subscribe_to_clock_topic()  # the node's own /clock subscription again
         else:
             for sub in self._subs:
                 self.node.destroy_subscription(sub)

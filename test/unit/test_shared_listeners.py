@@ -114,31 +114,39 @@ def test_a_listener_joining_later_gets_the_static_transforms_heard_before(sharin
     assert x_of(late) == 0.5  # at once, from the hub
 
 
-def test_a_listener_of_its_own_takes_tf_and_the_nodes_clock_and_gives_the_clock_back(sharing):
+def test_a_listener_of_its_own_reads_tf_and_goes_on_after_garbage(sharing):
     nodes, listeners = sharing
-    from rclpy.parameter import Parameter
-    from rosgraph_msgs.msg import Clock
-    node, publisher_node = nodes[0], nodes[2]
-    node.set_parameters([Parameter('use_sim_time', Parameter.Type.BOOL, True)])
-    source = node._time_source
-    assert source._clock_sub is not None  # the node's own /clock subscription
     buf = TransformBuffer()
-    listeners.append(transforms.TransformListener(node, buf, spin_thread=True, take_clock=True))
-    assert source._clock_sub is None  # taken over by the listener's thread
-    clock_pub = publisher_node.create_publisher(Clock, '/clock', 1)
-    tf_pub = publisher_node.create_publisher(TFMessage, '/tf', 100)
-    assert _wait(lambda: clock_pub.get_subscription_count() == 1 and
-                 tf_pub.get_subscription_count() == 1)
-    msg = Clock()
-    msg.clock.sec, msg.clock.nanosec = 42, 5
-
-    def now():
-        return node.get_clock().now().nanoseconds
-
-    assert _wait(lambda: now() == 42_000_000_005 or clock_pub.publish(msg))
+    listeners.append(transforms.TransformListener(nodes[0], buf, spin_thread=True))
+    tf_pub = nodes[2].create_publisher(TFMessage, '/tf', 100)
+    assert _wait(lambda: tf_pub.get_subscription_count() == 1)
     tf_pub.publish(b'\x00\x01\x00\x00\x01\x00')  # garbage: a warning, the thread goes on
     tf_pub.publish(_transform(3, 1.5))
     assert _wait(lambda: buf.can_transform('odom', 'base_footprint', 3.0))
     assert float(buf.lookup('odom', 'base_footprint', 3.0)[0][0, 3]) == 1.5
-    listeners.pop().destroy()
-    assert source._clock_sub is not None  # given back to the node
+
+
+def test_a_nodes_clock_taken_on_a_thread_sets_its_clocks_without_an_executor(sharing):
+    nodes, _ = sharing
+    from amr_description.ros import sim_time
+    from rclpy.parameter import Parameter
+    from rosgraph_msgs.msg import Clock
+    node = nodes[0]
+    assert not sim_time.take_clock_on_thread(node)  # not on sim time: left alone
+    node.set_parameters([Parameter('use_sim_time', Parameter.Type.BOOL, True)])
+    assert node._time_source._clock_sub is not None  # rclpy's own subscription
+    try:
+        assert sim_time.take_clock_on_thread(node)
+        assert not sim_time.take_clock_on_thread(node)  # once per node
+        assert node._time_source._clock_sub is None
+        taken = [sub for sub in node.subscriptions if sub.topic_name == '/clock']
+        assert len(taken) == 1 and not taken[0].callback_group.can_execute(taken[0])
+        clock_pub = nodes[2].create_publisher(Clock, '/clock', 1)
+        assert _wait(lambda: clock_pub.get_subscription_count() == 1)
+        msg = Clock()
+        msg.clock.sec, msg.clock.nanosec = 42, 5
+        assert _wait(lambda: node.get_clock().now().nanoseconds == 42_000_000_005 or
+                     clock_pub.publish(msg))
+    finally:
+        sim_time.stop_clock_threads()
+    assert not [sub for sub in node.subscriptions if sub.topic_name == '/clock']
