@@ -154,6 +154,20 @@ class _Frame:
         return pose_matrix(p, slerp(q0, q1, fraction))
 
 
+def _latest_common(edges):
+    """Return the latest time every dynamic edge ``(child, _Frame)`` has (0.0: none dynamic)."""
+    dynamic = [frame.newest() for _, frame in edges if frame.static is None]
+    return min(dynamic) if dynamic else 0.0
+
+
+def _compose(edges, time):
+    """Return the transform up ``edges`` (child first) at ``time``: a new 4x4 array."""
+    T = np.eye(4)
+    for child, frame in edges:
+        T = frame.at(time, child) @ T
+    return T
+
+
 class TransformBuffer:
     """
     Transforms of ``/tf`` and ``/tf_static`` composed like tf2 (see the module docstring).
@@ -210,13 +224,15 @@ class TransformBuffer:
                              'rotation, or a zero quaternion')
         rotation = np.array([v / norm for v in rotation])
         frame = self._frames.get(child)
-        if frame is None or frame.parent != parent or (frame.static is not None) != static:
+        fresh = frame is None or frame.parent != parent or (frame.static is not None) != static
+        if fresh:
+            # filled before it is stored: a lookup on another thread never sees it empty
             frame = _Frame(parent)
-            self._frames[child] = frame
-            self._known = None
         if static:
             frame.static = (translation, rotation)
             frame.static_T = None
+            if fresh:
+                self._store_frame(child, frame)
             return
         time = float(time)
         samples = frame.samples
@@ -237,6 +253,12 @@ class TransformBuffer:
         horizon = samples[-1][0] - self.cache_time
         while len(samples) > 1 and samples[0][0] < horizon:
             samples.pop(0)
+        if fresh:
+            self._store_frame(child, frame)
+
+    def _store_frame(self, child, frame):
+        self._frames[child] = frame
+        self._known = None
 
     def frames(self):
         """Return every known frame id, parents included (a set)."""
@@ -302,12 +324,12 @@ class TransformBuffer:
             return 0.0
         return self._common_time(*self._path(target, source))
 
+    def _edges(self, chain):
+        """Return ``[(child, its _Frame)]`` along ``chain`` (one read of each frame)."""
+        return [(f, self._frames[f]) for f in chain[:-1]]
+
     def _common_time(self, up_source, up_target):
-        edges = [self._frames[f] for f in up_source[:-1] + up_target[:-1]]
-        dynamic = [e for e in edges if e.static is None]
-        if not dynamic:
-            return 0.0
-        return min(e.newest() for e in dynamic)
+        return _latest_common(self._edges(up_source) + self._edges(up_target))
 
     def lookup(self, target, source, time=0.0):
         """
@@ -331,23 +353,19 @@ class TransformBuffer:
                     'exist. ')
             return np.eye(4), float(time)
         up_source, up_target = self._path(target, source)
+        # the frames are read once: a listener thread replacing one (a new parent) between
+        # the common time and the composition cannot make them disagree
+        edges_source, edges_target = self._edges(up_source), self._edges(up_target)
         time = float(time)
         if time == 0.0:
-            time = self._common_time(up_source, up_target)
-        T_anc_source = self._compose(up_source, time)  # common ancestor <- source
-        T_anc_target = self._compose(up_target, time)
+            time = _latest_common(edges_source + edges_target)
+        T_anc_source = _compose(edges_source, time)  # common ancestor <- source
+        T_anc_target = _compose(edges_target, time)
         # the inverse of a rigid transform: [R^T | -R^T t]
         T_target_anc = np.eye(4)
         T_target_anc[:3, :3] = T_anc_target[:3, :3].T
         T_target_anc[:3, 3] = -T_anc_target[:3, :3].T @ T_anc_target[:3, 3]
         return T_target_anc @ T_anc_source, time
-
-    def _compose(self, chain, time):
-        """Return ``chain[-1] <- chain[0]`` (4x4) at ``time``; a new array, never a cached one."""
-        T = np.eye(4)
-        for frame in chain[:-1]:
-            T = self._frames[frame].at(time, frame) @ T
-        return T
 
     def can_transform(self, target, source, time=0.0):
         """Return True when :meth:`lookup` would succeed."""

@@ -243,3 +243,43 @@ def test_stamped_queue_waits_for_the_transform_at_each_stamp_in_arrival_order():
     buffer.set_transform('odom', 'base_link', 8.0, (2.0, 0.0, 0.0), IDENTITY)
     queue.add(7.5)  # 4.0 and then 5.0 left the full queue unused
     assert [s for s, _ in used[2:]] == [6.0, 7.0, 7.5]
+
+
+def test_a_frame_replaced_during_a_lookup_leaves_the_lookup_consistent(monkeypatch):
+    # another thread replacing a frame (a transform under a new parent, or static after
+    # dynamic) between the common time and the composition: the lookup keeps the frames it
+    # read, as one consistent snapshot, instead of composing a time the new frame lacks
+    from amr_description.core import tf_buffer
+    buffer = TransformBuffer()
+    buffer.set_transform('map', 'odom', 9.0, (1.0, 0.0, 0.0), IDENTITY)
+    buffer.set_transform('map', 'odom', 10.0, (1.0, 0.0, 0.0), IDENTITY)
+    buffer.set_transform('odom', 'base_link', 8.0, (0.0, 0.0, 0.0), IDENTITY)
+    buffer.set_transform('odom', 'base_link', 12.0, (4.0, 0.0, 0.0), IDENTITY)
+    latest = tf_buffer._latest_common
+
+    def latest_then_replace(edges):
+        time = latest(edges)
+        buffer.set_transform('odom', 'base_link', 5.0, (0.0, 0.0, 0.0), IDENTITY, static=True)
+        buffer.set_transform('odom', 'base_link', 4.0, (0.0, 0.0, 0.0), IDENTITY)
+        buffer.set_transform('odom', 'base_link', 4.5, (0.0, 0.0, 0.0), IDENTITY)
+        return time
+
+    monkeypatch.setattr(tf_buffer, '_latest_common', latest_then_replace)
+    T, time = buffer.lookup('map', 'base_link')
+    assert time == 10.0
+    assert T[0, 3] == pytest.approx(1.0 + 2.0)  # base_link at x 2 at t 10 (8 -> 12: 0 -> 4)
+
+
+def test_a_new_frame_is_stored_with_its_first_transform():
+    buffer = TransformBuffer()
+    seen = []
+
+    class Frames(dict):
+        def __setitem__(self, key, frame):
+            seen.append((frame.static, [s[0] for s in frame.samples]))
+            super().__setitem__(key, frame)
+
+    buffer._frames = Frames()
+    buffer.set_transform('odom', 'base_link', 2.0, (0.0, 0.0, 0.0), IDENTITY)
+    buffer.set_transform('base_link', 'wheel', 0.0, (0.0, 0.5, 0.0), IDENTITY, static=True)
+    assert seen[0] == (None, [2.0]) and seen[1][0] is not None and seen[1][1] == []
