@@ -275,6 +275,7 @@ def test_a_new_frame_is_stored_with_its_first_transform():
     seen = []
 
     class Frames(dict):
+
         def __setitem__(self, key, frame):
             seen.append((frame.static, [s[0] for s in frame.samples]))
             super().__setitem__(key, frame)
