@@ -105,13 +105,17 @@ class BehaviorServer(ManagedNode):
         self.get_logger().info('Activating')
         self._cmd = TwistPublisher(self, 'cmd_vel', self.p['enable_stamped_cmd_vel'],
                                    self.p['robot_base_frame'])
+        # cycles only while a behaviour runs, as upstream's loop inside its action's execution
+        self._timer = self.create_timer(1.0 / max(self.p['cycle_frequency'], 1e-3),
+                                        self._cycle)
+        self._timer.cancel()
         self._entities = [
             self._cmd.pub,
             self.create_subscription(CostmapMsg, self.p['local_costmap_topic'],
                                      self._on_costmap, LATCHED),
             self.create_subscription(PolygonStamped, self.p['local_footprint_topic'],
                                      self._on_footprint, 1),
-            self.create_timer(1.0 / max(self.p['cycle_frequency'], 1e-3), self._cycle)]
+            self._timer]
         for bid, plugin in self.plugins.items():
             kind = plugin.replace('/', '::').split('::')[-1]
             if kind in KINDS:
@@ -175,6 +179,7 @@ class BehaviorServer(ManagedNode):
         allowance = 0.0 if kind == 'Wait' else msg_to_time(goal.time_allowance)
         self.runs[bid] = {'start': start, 't0': self._now(), 'allowance': allowance,
                           'last_yaw': start[2], 'turned': 0.0}
+        self._timer.reset()
 
     def _now(self):
         return self.get_clock().now().nanoseconds * 1e-9
@@ -195,6 +200,9 @@ class BehaviorServer(ManagedNode):
         server.finish_current(outcome, result)
 
     def _cycle(self):
+        if not self.runs:
+            self._timer.cancel()
+            return
         for bid in list(self.runs):
             kind, server = self.servers[bid]
             if not server.active:

@@ -20,9 +20,10 @@ non-zero of the planner's and the controller's. ``goal_pose`` (geometry_msgs/Pos
 Parameters, with Nav2's defaults: ``global_frame`` (map), ``robot_base_frame`` (base_link),
 ``transform_tolerance`` (0.1), ``odom_topic`` (odom), ``navigators``
 ([navigate_to_pose, navigate_through_poses]) with ``<id>.plugin``, ``bt_loop_duration``
-(10 ms; ticks run at most at 20 Hz here), ``error_code_names``, ``default_nav_to_pose_bt_xml`` and
-``default_nav_through_poses_bt_xml`` (a tree other than the default, here or in a goal's
-``behavior_tree``, is said in one line and the default's semantics run). A server that stays
+(10 ms; ticks run at most at 20 Hz here, and only while a navigation runs),
+``error_code_names``, ``default_nav_to_pose_bt_xml`` and ``default_nav_through_poses_bt_xml``
+(a tree other than the default, here or in a goal's ``behavior_tree``, is said in one line and
+the default's semantics run). A server that stays
 undiscovered for :data:`SERVER_WAIT` s fails its step as an UNKNOWN error.
 Sources: ``nav2_bt_navigator/src/bt_navigator.cpp``, ``src/navigators/*.cpp``.
 """
@@ -38,6 +39,7 @@ from amr_description.ros import shutdown
 from amr_description.ros.goal_server import GoalClient
 from amr_description.ros.goal_server import SingleGoalServer
 from amr_description.ros.managed_node import ManagedNode
+from amr_description.ros.odometry_twist import TwistListener
 from amr_description.ros.transforms import planar_pose
 from amr_description.ros.transforms import set_yaw
 from amr_description.ros.transforms import transform_planar
@@ -52,10 +54,8 @@ from nav2_msgs.action import NavigateToPose
 from nav2_msgs.action import Spin
 from nav2_msgs.action import Wait
 from nav2_msgs.srv import ClearEntireCostmap
-from nav_msgs.msg import Odometry
 import numpy as np
 from rclpy.duration import Duration
-from rclpy.qos import qos_profile_sensor_data
 
 DEFAULT_TREES = ('navigate_to_pose_w_replanning_and_recovery.xml',
                  'navigate_through_poses_w_replanning_and_recovery.xml')
@@ -99,6 +99,7 @@ class BtNavigator(ManagedNode):
         self.goal_clients = {}
         self.nav = None
         self.speed = 0.0
+        self._odom = self._timer = None
 
     def configure(self):
         """Create the clients of the servers the tree uses; listen to TF."""
@@ -135,11 +136,13 @@ class BtNavigator(ManagedNode):
             self.servers[nid] = SingleGoalServer(
                 self, kinds[kind], nid, lambda h, n=nid, t=kinds[kind]: self._on_goal(n, t, h))
         period = max(float(self.p['bt_loop_duration']) / 1000.0, 0.05)
+        self._odom = TwistListener(self, self.p['odom_topic'], self._on_odom)
+        # ticks only while a navigation runs, as upstream's tree (_tick cancels it when idle)
+        self._timer = self.create_timer(period, self._tick)
+        self._timer.cancel()
         self._entities = [
             self.create_subscription(PoseStamped, 'goal_pose', self._on_goal_pose, 10),
-            self.create_subscription(Odometry, self.p['odom_topic'], self._on_odom,
-                                     qos_profile_sensor_data),
-            self.create_timer(period, self._tick)]
+            self._timer]
 
     def deactivate(self):
         """Abort a running navigation and withdraw the actions."""
@@ -151,6 +154,10 @@ class BtNavigator(ManagedNode):
         self.servers = {}
         self.destroy_entities(self._entities)
         self._entities = []
+        self._timer = None
+        if self._odom is not None:
+            self._odom.destroy()
+            self._odom = None
 
     def cleanup(self):
         """Destroy the clients; stop listening to TF."""
@@ -165,8 +172,9 @@ class BtNavigator(ManagedNode):
             self._listener = None
 
     # inputs
-    def _on_odom(self, msg):
-        v = msg.twist.twist.linear.x
+    def _on_odom(self, twist):
+        # on the odometry's thread: one assignment
+        v = twist[0]
         self.speed = v if math.isfinite(v) else 0.0
 
     def _on_goal_pose(self, msg):
@@ -233,6 +241,7 @@ class BtNavigator(ManagedNode):
                     'follow': 0, 'path': None, 'last_plan': -math.inf, 'plan_retry': False,
                     'follow_retry': False, 'state': 'run', 'rr': 0, 'rr_failed': 0,
                     'to_send': {}, 'clearing': 0}
+        self._timer.reset()
 
     def _stop_clients(self):
         for name, client in self.goal_clients.items():
@@ -265,6 +274,7 @@ class BtNavigator(ManagedNode):
     def _tick(self):
         nav = self.nav
         if nav is None:
+            self._timer.cancel()
             return
         if not nav['server'].active:
             self.nav = None

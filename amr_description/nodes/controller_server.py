@@ -45,15 +45,14 @@ from amr_description.nodes.costmap_2d import CostmapNode
 from amr_description.ros import shutdown
 from amr_description.ros.goal_server import SingleGoalServer
 from amr_description.ros.managed_node import ManagedNode
+from amr_description.ros.odometry_twist import TwistListener
 from amr_description.ros.transforms import planar_pose
 from amr_description.ros.transforms import TransformListener
 from amr_description.ros.transforms import yaw_of
 from amr_description.ros.twist_io import TwistPublisher
 from nav2_msgs.action import FollowPath
 from nav2_msgs.msg import SpeedLimit
-from nav_msgs.msg import Odometry
 import numpy as np
-from rclpy.qos import qos_profile_sensor_data
 
 RPP = 'RegulatedPurePursuitController'
 OTHER_SPEEDS = {'DWBLocalPlanner': 'max_vel_x', 'MPPIController': 'vx_max'}
@@ -114,6 +113,7 @@ class ControllerServer(ManagedNode):
         self._listener = self._server = self._cmd_pub = None
         self._entities = []
         self.speed = (0.0, 0.0)
+        self._odom = None
         self.speed_limit = None
         self.run = None
 
@@ -172,10 +172,9 @@ class ControllerServer(ManagedNode):
         self.costmap.start()
         self._cmd_pub = TwistPublisher(self, 'cmd_vel', self.stamped,
                                        self.costmap.p['robot_base_frame'])
+        self._odom = TwistListener(self, self.odom_topic, self._on_odom)
         self._entities = [
             self._cmd_pub.pub,
-            self.create_subscription(Odometry, self.odom_topic, self._on_odom,
-                                     qos_profile_sensor_data),
             self.create_subscription(SpeedLimit, self.speed_limit_topic, self._on_speed_limit,
                                      10),
             self.create_timer(1.0 / max(self.frequency, 1e-3), self._cycle)]
@@ -190,6 +189,9 @@ class ControllerServer(ManagedNode):
             self._server = None
         self.destroy_entities(self._entities)
         self._entities = []
+        if self._odom is not None:
+            self._odom.destroy()
+            self._odom = None
         self._cmd_pub = None
         self.costmap.stop()
 
@@ -201,10 +203,10 @@ class ControllerServer(ManagedNode):
             self._listener = None
 
     # inputs
-    def _on_odom(self, msg):
-        t = msg.twist.twist
-        v = t.linear.x if abs(t.linear.x) >= self.min_v else 0.0
-        w = t.angular.z if abs(t.angular.z) >= self.min_w else 0.0
+    def _on_odom(self, twist):
+        # on the odometry's thread: one assignment
+        v = twist[0] if abs(twist[0]) >= self.min_v else 0.0
+        w = twist[5] if abs(twist[5]) >= self.min_w else 0.0
         self.speed = (v, w) if math.isfinite(v) and math.isfinite(w) else (0.0, 0.0)
 
     def _on_speed_limit(self, msg):

@@ -90,7 +90,10 @@ class WaypointFollower(ManagedNode):
         self.client = GoalClient(self, NavigateToPose, 'navigate_to_pose')
         self.server = SingleGoalServer(self, FollowWaypoints, 'follow_waypoints',
                                        self._on_goal)
-        self._entities = [self.create_timer(1.0 / self.p['loop_rate'], self._tick)]
+        # runs only while a goal does, as upstream's loop inside its action's execution
+        self._timer = self.create_timer(1.0 / self.p['loop_rate'], self._tick)
+        self._timer.cancel()
+        self._entities = [self._timer]
 
     def deactivate(self):
         """Abort a running goal; stop offering the action."""
@@ -121,6 +124,7 @@ class WaypointFollower(ManagedNode):
             self.server.finish_current('abort', result)
             return
         self.poses = list(goal.poses)
+        self._timer.reset()
         self._send()
 
     def _send(self):
@@ -170,6 +174,7 @@ class WaypointFollower(ManagedNode):
 
     def _tick(self):
         if self.run is None:
+            self._timer.cancel()
             return
         if self.server.cancel_requested:
             self.get_logger().info('Cancelling action.')

@@ -28,6 +28,8 @@ Source: ``bondcpp/src/bond.cpp`` and ``bond/msg/Constants.msg`` of ros/bond_core
 import threading
 import uuid
 
+from amr_description.ros.cdr import bond_status
+from amr_description.ros.take_loop import TakeLoop
 from bond.msg import Constants
 from bond.msg import Status
 from rclpy.clock import Clock
@@ -46,6 +48,9 @@ RECENT = 1.0
 _ENDPOINTS = '_amr_bond_endpoints'
 """The node attribute holding its :class:`_Endpoint` per bond topic."""
 
+_HEARTS = '_amr_bond_hearts'
+"""The node attribute holding its :class:`_Heart` per heartbeat period."""
+
 _PROCESS_ENDPOINTS = {}
 """(context id, resolved topic) -> :class:`_Endpoint` once :func:`share_endpoints` was called."""
 
@@ -53,18 +58,36 @@ _sharing = []
 
 
 class _Endpoint:
-    """The publisher and subscription a node's bonds on one topic share."""
+    """
+    The publisher and subscription a node's bonds on one topic share.
+
+    The statuses are taken serialized on a :class:`~amr_description.ros.take_loop.TakeLoop`
+    of their own, not by the node's executor: a composed Nav2 hears about 165 statuses a
+    second (docs/navigation.md, "The bonds' and the odometry's threads"). The heartbeats stay
+    on the bonds' nodes' executors, as bondcpp's timers, so a node whose executor stops stops
+    beating.
+    """
 
     def __init__(self, node, topic):
         self.bonds = set()
-        self.last = {}  # id -> (steady seconds heard, the latest Status of that id)
+        self.last = {}  # id -> (steady seconds heard, the latest status of that id)
         self.lock = threading.Lock()
         self.clock = Clock(clock_type=ClockType.STEADY_TIME)
         self.publisher = node.create_publisher(Status, topic, QoSProfile(depth=5))
-        node.create_subscription(Status, topic, self._on_status, 100)
+        self._loop = TakeLoop(node, f'{node.get_name()}_bond')
+        self._loop.subscribe(Status, topic, 100, self._on_data)
+        self._loop.start()
 
     def now(self):
         return self.clock.now().nanoseconds * 1e-9
+
+    def _on_data(self, data):
+        try:
+            msg = bond_status(data)
+        except ValueError:  # not plain CDR: rclpy reads it
+            from rclpy.serialization import deserialize_message
+            msg = deserialize_message(data, Status)
+        self._on_status(msg)
 
     def _on_status(self, msg):
         with self.lock:
@@ -80,6 +103,24 @@ class _Endpoint:
             heard, msg = self.last.get(bond.id, (None, None))
         if msg is not None and msg.active and self.now() - heard <= RECENT:
             bond.on_status(msg)
+
+
+class _Heart:
+    """
+    One timer on a node beating all of that node's bonds of one period.
+
+    bondcpp makes a timer per bond; a lifecycle manager of seven servers then woke its
+    executor 70 times a second for them. The beats are the same (each bond publishes its
+    status every period), only in one wake-up.
+    """
+
+    def __init__(self, node, period):
+        self.bonds = []
+        self.timer = node.create_timer(period, self._beat)
+
+    def _beat(self):
+        for bond in list(self.bonds):
+            bond._tick()
 
 
 def share_endpoints():
@@ -140,11 +181,15 @@ class Bond:
             node.declare_parameter(DISABLE_PARAM, False)
         self._heartbeat_timeout_disabled = bool(node.get_parameter(DISABLE_PARAM).value)
         self._formed = threading.Event()
+        self._lock = threading.Lock()  # statuses come on the endpoint's thread
         self.broken = False
         self._sister_seen = None
         self._dead_left = 0
         self._endpoint = prepare_bonds(node, topic)
-        self._timer = node.create_timer(self.heartbeat_period, self._tick)
+        hearts = node.__dict__.setdefault(_HEARTS, {})
+        if self.heartbeat_period not in hearts:
+            hearts[self.heartbeat_period] = _Heart(node, self.heartbeat_period)
+        hearts[self.heartbeat_period].bonds.append(self)
         self._publish(True)
         self._endpoint.add(self)
 
@@ -176,25 +221,33 @@ class Bond:
         self._endpoint.publisher.publish(msg)
 
     def on_status(self, msg):
-        """Take a status heard on the bond topic (the shared subscription's callback)."""
-        if self.broken or msg.id != self.id or msg.instance_id == self.instance_id:
+        """
+        Take a status heard on the bond topic (the endpoint's thread calls it).
+
+        :param msg: a ``bond/msg/Status`` or :data:`amr_description.ros.cdr.BondStatus`.
+        """
+        if msg.id != self.id or msg.instance_id == self.instance_id:
             return
-        if not msg.active:
-            self._break()
-            return
-        self._sister_seen = self._now()
+        with self._lock:
+            if self.broken:
+                return
+            if not msg.active:
+                self._break()
+                return
+            self._sister_seen = self._now()
         self._formed.set()
 
     def _tick(self):
-        if self.broken:
-            if self._dead_left > 0:
-                self._dead_left -= 1
-                self._publish(False)
-            return
-        self._publish(True)
-        if self.formed and not self._heartbeat_timeout_disabled and \
-                self._now() - self._sister_seen > self.heartbeat_timeout:
-            self._break()
+        with self._lock:
+            if self.broken:
+                if self._dead_left > 0:
+                    self._dead_left -= 1
+                    self._publish(False)
+                return
+            self._publish(True)
+            if self.formed and not self._heartbeat_timeout_disabled and \
+                    self._now() - self._sister_seen > self.heartbeat_timeout:
+                self._break()
 
     def _break(self):
         if not self.broken:
@@ -203,9 +256,16 @@ class Bond:
 
     def destroy(self):
         """Break the bond if it is not, stop its heartbeat and stop hearing statuses."""
-        if not self.broken:
-            self.broken = True
-            self._publish(False)
-        self._node.destroy_timer(self._timer)
+        with self._lock:
+            if not self.broken:
+                self.broken = True
+                self._publish(False)
+        hearts = self._node.__dict__.get(_HEARTS, {})
+        heart = hearts.get(self.heartbeat_period)
+        if heart is not None and self in heart.bonds:
+            heart.bonds.remove(self)
+            if not heart.bonds:
+                del hearts[self.heartbeat_period]
+                self._node.destroy_timer(heart.timer)
         with self._endpoint.lock:
             self._endpoint.bonds.discard(self)

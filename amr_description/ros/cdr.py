@@ -15,9 +15,14 @@ NUL, then its bytes; a sequence is a uint32 count, then its elements. Any other
 encapsulation raises ``ValueError`` (the caller then lets rclpy deserialize the bytes).
 """
 
+import collections
 import struct
 
 _ENDIAN = {b'\x00\x00': '>', b'\x00\x01': '<'}
+
+BondStatus = collections.namedtuple(
+    'BondStatus', 'id instance_id active heartbeat_timeout heartbeat_period')
+"""The fields of a ``bond/msg/Status`` a bond uses (its header is skipped)."""
 
 
 class _Reader:
@@ -32,6 +37,9 @@ class _Reader:
         self._u32 = struct.Struct(self.end + 'I')
         self._time = struct.Struct(self.end + 'iI')
         self._seven = struct.Struct(self.end + '7d')
+        self._six = struct.Struct(self.end + '6d')
+        self._bool = struct.Struct(self.end + '?')
+        self._two_floats = struct.Struct(self.end + '2f')
 
     def _align(self, size):
         self.pos += (-(self.pos - 4)) % size
@@ -65,6 +73,10 @@ class _Reader:
     def seven_doubles(self):
         return self._take(self._seven, 8)
 
+    def skip_doubles(self, count):
+        self._align(8)
+        self.pos += 8 * count
+
 
 def tf_message_entries(data):
     """
@@ -96,3 +108,38 @@ def clock_nanoseconds(data):
     reader = _Reader(data)
     sec, nanosec = reader._take(reader._time, 4)
     return sec * 1_000_000_000 + nanosec
+
+
+def odometry_twist(data):
+    """
+    Return the twist of a serialized ``nav_msgs/Odometry``.
+
+    :param data: the message's CDR bytes.
+    :returns: ``(vx, vy, vz, wx, wy, wz)``: ``twist.twist``'s linear (m/s) and angular (rad/s)
+        velocity in the child frame, as the message holds them (not checked).
+    :raises ValueError: when ``data`` is not plain CDR, or ends inside a field.
+    """
+    reader = _Reader(data)
+    reader.time()  # header.stamp
+    reader.string()  # header.frame_id
+    reader.string()  # child_frame_id
+    reader.skip_doubles(7 + 36)  # pose.pose, pose.covariance
+    return reader._take(reader._six, 8)
+
+
+def bond_status(data):
+    """
+    Return the fields of a serialized ``bond/msg/Status`` that a bond uses.
+
+    :param data: the message's CDR bytes.
+    :returns: :data:`BondStatus` (``active`` a bool, the heartbeat times in seconds).
+    :raises ValueError: when ``data`` is not plain CDR, or ends inside a field.
+    """
+    reader = _Reader(data)
+    reader.time()  # header.stamp
+    reader.string()  # header.frame_id
+    bond_id = reader.string()
+    instance_id = reader.string()
+    active = reader._take(reader._bool, 1)[0]
+    timeout, period = reader._take(reader._two_floats, 4)
+    return BondStatus(bond_id, instance_id, active, timeout, period)

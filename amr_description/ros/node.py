@@ -5,9 +5,12 @@ The one Node base of every node of the package (nodes, controller manager, contr
 
 rcl parses ``-p real_time_factor:=0`` as an integer and rclpy (like rclcpp) then refuses it
 for a parameter whose default is a float, which users do not expect. :class:`Node` and
-:class:`LifecycleNode` accept such a whole number as that float; everything else is rclpy's.
+:class:`LifecycleNode` accept such a whole number as that float, and stop the node's
+:class:`~amr_description.ros.take_loop.TakeLoop` threads before destroying it; everything else
+is rclpy's.
 """
 
+from amr_description.ros.take_loop import stop_loops_of
 import rclpy.lifecycle
 import rclpy.node
 from rclpy.parameter import Parameter
@@ -34,6 +37,11 @@ class Node(rclpy.node.Node):
                 self._parameter_overrides[full] = Parameter(
                     full, Parameter.Type.DOUBLE, float(override.value))
         return super().declare_parameters(namespace, parameters, ignore_override)
+
+    def destroy_node(self):
+        """Stop the node's take loops, then destroy it as rclpy does."""
+        stop_loops_of(self)
+        return super().destroy_node()
 
 
 class LifecycleNode(rclpy.lifecycle.LifecycleNode, Node):

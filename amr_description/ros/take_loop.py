@@ -23,6 +23,9 @@ from rclpy.impl.implementation_singleton import rclpy_implementation as _rclpy
 WAIT_TIMEOUT_NS = 500_000_000
 """The loop checks its context at least this often (ns)."""
 
+_LOOPS = '_amr_take_loops'
+"""The node attribute listing its started take loops (:class:`TakeLoop`)."""
+
 
 class NotOnExecutors(CallbackGroup):
     """
@@ -52,9 +55,11 @@ class TakeLoop:
     The subscriptions are in a :class:`NotOnExecutors` group, so the node may be spun by an
     executor too. A handler that raises has its exception logged (one warning line per topic
     every 5 s) and the loop goes on. Add every subscription with :meth:`subscribe`, then
-    :meth:`start`; :meth:`stop` joins the thread and destroys the subscriptions. If the node is
-    destroyed first, the loop ends at its next wake-up (rclpy defers destroying a handle in
-    use) with one error line while the context is still up: it never ends unseen.
+    :meth:`start`; :meth:`stop` joins the thread and destroys the subscriptions, and
+    :func:`stop_loops_of` stops every loop of a node (our nodes' ``destroy_node`` does, see
+    :mod:`amr_description.ros.node`). If a node is destroyed without that, the loop ends at its
+    next wake-up (rclpy defers destroying a handle in use) with one error line while the
+    context is still up: it never ends unseen.
 
     :param node: the rclpy node owning the subscriptions.
     :param name: the thread's name.
@@ -83,11 +88,12 @@ class TakeLoop:
 
     def start(self):
         """Start the thread."""
+        self.node.__dict__.setdefault(_LOOPS, []).append(self)
         self._thread = threading.Thread(target=self._run, daemon=True, name=self._name)
         self._thread.start()
 
     def _run(self):
-        context = self.node.context
+        context, guard = self.node.context, self._guard
         try:
             wait_set = _rclpy.WaitSet(len(self._subs), 1, 0, 0, 0, 0, context.handle)
             while not self._stopping and context.ok():
@@ -96,8 +102,8 @@ class TakeLoop:
                     for sub, _ in self._subs:
                         in_use.enter_context(sub.handle)
                         wait_set.add_subscription(sub.handle)
-                    in_use.enter_context(self._guard.handle)
-                    wait_set.add_guard_condition(self._guard.handle)
+                    in_use.enter_context(guard.handle)
+                    wait_set.add_guard_condition(guard.handle)
                     wait_set.wait(WAIT_TIMEOUT_NS)
                     ready = wait_set.get_ready_entities('subscription')
                     for sub, handler in self._subs:
@@ -121,8 +127,13 @@ class TakeLoop:
                     throttle_duration_sec=5.0)
 
     def stop(self, timeout=2.0):
-        """Wake the thread, join it (up to ``timeout`` s) and destroy the subscriptions."""
+        """Wake the thread, join it (up to ``timeout`` s), destroy the subscriptions; once."""
+        if self._guard is None:
+            return
         self._stopping = True
+        loops = self.node.__dict__.get(_LOOPS, [])
+        if self in loops:
+            loops.remove(self)
         try:
             self._guard.trigger()
         except Exception:  # noqa: B902 - the context is already shut down
@@ -136,3 +147,10 @@ class TakeLoop:
                 pass
         self._subs = []
         self._guard.destroy()
+        self._guard = None
+
+
+def stop_loops_of(node):
+    """Stop every started :class:`TakeLoop` of ``node`` (before destroying the node)."""
+    for loop in list(node.__dict__.get(_LOOPS, ())):
+        loop.stop()

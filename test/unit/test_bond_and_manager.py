@@ -84,6 +84,30 @@ def test_composed_nodes_share_one_endpoint_per_topic_and_still_bond(ros, monkeyp
     bond.destroy()
 
 
+def test_a_nodes_bonds_share_one_heartbeat_timer_and_hear_without_its_executor(ros):
+    make, spin_until = ros
+    server, manager = make('server4'), make('manager4')
+    timers = len(list(manager.timers))
+    endpoint, other = prepare_bonds(manager, 'bond'), prepare_bonds(server, 'bond')
+    assert spin_until(lambda: endpoint.publisher.get_subscription_count() >= 2 and
+                      other.publisher.get_subscription_count() >= 2)
+    bonds = [Bond(manager, 'bond', f'server4_{i}', heartbeat_period=SLOW) for i in range(3)]
+    assert len(list(manager.timers)) == timers + 1  # bondcpp: one timer per bond
+    # statuses are taken on the endpoint's thread: nothing spins the nodes here
+    sister = Bond(server, 'bond', 'server4_1', heartbeat_period=SLOW)  # one status, now
+    deadline = time.monotonic() + 30.0
+    while not bonds[1].formed and time.monotonic() < deadline:
+        time.sleep(0.02)
+    assert bonds[1].formed and not bonds[0].formed
+    sister.destroy()  # says active: false once
+    while not bonds[1].broken and time.monotonic() < deadline:
+        time.sleep(0.02)
+    assert bonds[1].broken and not bonds[0].broken and not bonds[2].broken
+    for bond in bonds:
+        bond.destroy()
+    assert len(list(manager.timers)) == timers
+
+
 class _ChangeClient:
     """A change_state client whose answer never comes (dropped) or comes when told."""
 

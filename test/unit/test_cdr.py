@@ -4,9 +4,14 @@
 
 import struct
 
+from amr_description.ros.cdr import bond_status
+from amr_description.ros.cdr import BondStatus
 from amr_description.ros.cdr import clock_nanoseconds
+from amr_description.ros.cdr import odometry_twist
 from amr_description.ros.cdr import tf_message_entries
+from bond.msg import Status
 from geometry_msgs.msg import TransformStamped
+from nav_msgs.msg import Odometry
 import pytest
 from rclpy.serialization import serialize_message
 from rosgraph_msgs.msg import Clock
@@ -65,3 +70,30 @@ def test_a_truncated_message_is_a_value_error():
     for end in (8, 20, len(data) - 1):
         with pytest.raises(ValueError):
             tf_message_entries(data[:end])
+
+
+@pytest.mark.parametrize('frame', ['', 'o', 'odom', 'r12/odom_'])
+def test_the_twist_of_an_odometry(frame):
+    msg = Odometry()
+    msg.header.frame_id, msg.child_frame_id = frame, frame + 'base_footprint'
+    msg.pose.pose.position.x = 7.0
+    msg.pose.covariance[35] = 9.0
+    t = msg.twist.twist
+    t.linear.x, t.linear.y, t.linear.z = 0.5, -0.25, 0.125
+    t.angular.x, t.angular.y, t.angular.z = 1.0, 2.0, -0.75
+    assert odometry_twist(serialize_message(msg)) == (0.5, -0.25, 0.125, 1.0, 2.0, -0.75)
+    with pytest.raises(ValueError):
+        odometry_twist(serialize_message(msg)[:-300])
+
+
+@pytest.mark.parametrize('bond_id', ['', 'a', 'amcl', 'controller_server'])
+@pytest.mark.parametrize('active', [True, False])
+def test_a_bond_status(bond_id, active):
+    msg = Status(id=bond_id, instance_id='1b4e28ba-2fa1-11d2-883f-0016d3cca427' + bond_id,
+                 active=active, heartbeat_timeout=4.0, heartbeat_period=0.1)
+    msg.header.frame_id = bond_id[:3]
+    status = bond_status(serialize_message(msg))
+    assert status == BondStatus(bond_id, msg.instance_id, active, 4.0,
+                                pytest.approx(0.1, abs=1e-7))
+    with pytest.raises(ValueError):
+        bond_status(serialize_message(msg)[:-2])

@@ -150,3 +150,26 @@ def test_a_nodes_clock_taken_on_a_thread_sets_its_clocks_without_an_executor(sha
     finally:
         sim_time.stop_clock_threads()
     assert not [sub for sub in node.subscriptions if sub.topic_name == '/clock']
+
+
+def test_an_odometry_twist_on_a_thread_goes_on_after_garbage_and_stops_with_its_node(sharing):
+    nodes, _ = sharing
+    from amr_description.ros.node import Node
+    from amr_description.ros.odometry_twist import TwistListener
+    from nav_msgs.msg import Odometry
+    node = Node('odom_listener', context=nodes[0].context)
+    heard = []
+    try:
+        TwistListener(node, 'odom', heard.append)
+        pub = nodes[2].create_publisher(Odometry, 'odom', 10)
+        assert _wait(lambda: pub.get_subscription_count() == 1)
+        pub.publish(b'\x00\x01\x00\x00\x01\x00')  # garbage: a warning, the thread goes on
+        msg = Odometry()
+        msg.child_frame_id = 'base_footprint'
+        msg.twist.twist.linear.x, msg.twist.twist.angular.z = 0.4, -0.3
+        assert _wait(lambda: heard or pub.publish(msg))
+        assert heard[-1] == (0.4, 0.0, 0.0, 0.0, 0.0, -0.3)
+        assert [t.name for t in threading.enumerate()].count('odom_listener_odometry') == 1
+    finally:
+        node.destroy_node()  # the Node base stops and joins the node's take loops first
+    assert 'odom_listener_odometry' not in [t.name for t in threading.enumerate()]
