@@ -159,8 +159,24 @@ def matrix_to_quaternion(R):
 
 
 def quaternion_to_matrix(q):
-    """Return the 3x3 rotation of a quaternion (x, y, z, w) (normalized here)."""
-    return quaternions_to_matrices([q])[0]
+    """
+    Return the 3x3 rotation of one quaternion, as :func:`quaternions_to_matrices` does.
+
+    In scalar arithmetic: every TF lookup composes these, and the vectorized form costs
+    about 50 times as much for one quaternion (docs/navigation.md, "The bonds' and the
+    odometry's threads"); a unit test holds the two equal.
+
+    :param q: (x, y, z, w), normalized here; all zero (an unset orientation) is the identity.
+    :returns: numpy array, shape (3, 3).
+    """
+    x, y, z, w = map(float, q)
+    n = math.sqrt(x * x + y * y + z * z + w * w)
+    if n == 0.0:
+        return np.eye(3)
+    x, y, z, w = x / n, y / n, z / n, w / n
+    return np.array([[1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)],
+                     [2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)],
+                     [2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)]])
 
 
 def quaternions_to_matrices(quaternions):

@@ -90,3 +90,16 @@ def test_amr_wheel_frame_by_hand():
 def test_mimic_position():
     assert k.mimic_position(2.0, -0.5, 0.25) == -0.75
     assert k.mimic_position(1.5) == 1.5
+
+
+def test_one_quaternion_in_scalar_arithmetic_is_the_vectorized_rotation():
+    rng = np.random.default_rng(7)
+    quaternions = [*rng.normal(size=(200, 4)), (0.0, 0.0, 0.0, 0.0), (0, 0, 3, 4),
+                   np.array([0.0, 0.0, 0.6, 0.8])]
+    many = k.quaternions_to_matrices(quaternions)
+    for q, R in zip(quaternions, many):
+        np.testing.assert_array_equal(k.quaternion_to_matrix(q), R)
+    np.testing.assert_array_equal(k.quaternion_to_matrix((0, 0, 0, 0)), np.eye(3))
+    np.testing.assert_allclose(k.quaternion_to_matrix((0, 0, 3, 4)),
+                               [[0.28, -0.96, 0], [0.96, 0.28, 0], [0, 0, 1]], atol=1e-15)
+    assert np.isnan(k.quaternion_to_matrix((math.nan, 0, 0, 1))).all()
