@@ -29,6 +29,7 @@ import threading
 import uuid
 
 from amr_description.ros.cdr import bond_status
+from amr_description.ros.cdr import read
 from amr_description.ros.take_loop import TakeLoop
 from bond.msg import Constants
 from bond.msg import Status
@@ -82,12 +83,7 @@ class _Endpoint:
         return self.clock.now().nanoseconds * 1e-9
 
     def _on_data(self, data):
-        try:
-            msg = bond_status(data)
-        except ValueError:  # not plain CDR: rclpy reads it
-            from rclpy.serialization import deserialize_message
-            msg = deserialize_message(data, Status)
-        self._on_status(msg)
+        self._on_status(read(data, bond_status, Status))
 
     def _on_status(self, msg):
         with self.lock:

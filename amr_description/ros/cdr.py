@@ -12,7 +12,7 @@ ROS 2 types: a 4-byte encapsulation header (``00 00`` big endian or ``00 01`` li
 then two option bytes), then the fields in order, each aligned to its own size (at most 8)
 counting from the end of the header; a string is a uint32 length counting its terminating
 NUL, then its bytes; a sequence is a uint32 count, then its elements. Any other
-encapsulation raises ``ValueError`` (the caller then lets rclpy deserialize the bytes).
+encapsulation raises ``ValueError``; :func:`read` then lets rclpy deserialize the bytes.
 """
 
 import collections
@@ -143,3 +143,22 @@ def bond_status(data):
     active = reader._take(reader._bool, 1)[0]
     timeout, period = reader._take(reader._two_floats, 4)
     return BondStatus(bond_id, instance_id, active, timeout, period)
+
+
+def read(data, reader, msg_type, convert=None):
+    """
+    Return ``reader(data)``, or ``convert`` of rclpy's message when ``data`` is not plain CDR.
+
+    :param data: a message's serialized bytes (a raw subscription's or ``TakeLoop``'s).
+    :param reader: one of this module's readers, e.g. :func:`odometry_twist`.
+    :param msg_type: the message's class, for ``rclpy.serialization.deserialize_message``.
+    :param convert: turns that message into what ``reader`` returns (None: the message as
+        it is, whose fields ``reader``'s result names alike).
+    :raises ValueError: never from ``reader``; rclpy's errors for bytes it cannot read pass.
+    """
+    try:
+        return reader(data)
+    except ValueError:
+        from rclpy.serialization import deserialize_message
+        msg = deserialize_message(data, msg_type)
+        return msg if convert is None else convert(msg)

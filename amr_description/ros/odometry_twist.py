@@ -13,18 +13,19 @@ Nav2 (docs/navigation.md, "The bonds' and the odometry's threads"). A
 """
 
 from amr_description.ros.cdr import odometry_twist
+from amr_description.ros.cdr import read
 from amr_description.ros.take_loop import TakeLoop
 from nav_msgs.msg import Odometry
 from rclpy.qos import qos_profile_sensor_data
 
 
+def _twist_of(msg):
+    t = msg.twist.twist
+    return (t.linear.x, t.linear.y, t.linear.z, t.angular.x, t.angular.y, t.angular.z)
+
+
 def _twist(data):
-    try:
-        return odometry_twist(data)
-    except ValueError:  # not plain CDR: rclpy reads it
-        from rclpy.serialization import deserialize_message
-        t = deserialize_message(data, Odometry).twist.twist
-        return (t.linear.x, t.linear.y, t.linear.z, t.angular.x, t.angular.y, t.angular.z)
+    return read(data, odometry_twist, Odometry, _twist_of)
 
 
 class TwistListener:

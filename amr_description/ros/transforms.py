@@ -15,6 +15,7 @@ import math
 import threading
 import weakref
 
+from amr_description.ros.cdr import read
 from amr_description.ros.cdr import tf_message_entries
 from amr_description.ros.take_loop import TakeLoop
 from geometry_msgs.msg import TransformStamped
@@ -182,11 +183,7 @@ class _OwnThread:
 
 def _read_tf(data):
     """Return the transforms of a serialized TFMessage (rclpy reads what is not plain CDR)."""
-    try:
-        return tf_message_entries(data)
-    except ValueError:
-        from rclpy.serialization import deserialize_message
-        return _entries(deserialize_message(data, TFMessage))
+    return read(data, tf_message_entries, TFMessage, _entries)
 
 
 def _entries(msg):

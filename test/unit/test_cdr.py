@@ -8,6 +8,7 @@ from amr_description.ros.cdr import bond_status
 from amr_description.ros.cdr import BondStatus
 from amr_description.ros.cdr import clock_nanoseconds
 from amr_description.ros.cdr import odometry_twist
+from amr_description.ros.cdr import read
 from amr_description.ros.cdr import tf_message_entries
 from bond.msg import Status
 from geometry_msgs.msg import TransformStamped
@@ -97,3 +98,17 @@ def test_a_bond_status(bond_id, active):
                                 pytest.approx(0.1, abs=1e-7))
     with pytest.raises(ValueError):
         bond_status(serialize_message(msg)[:-2])
+
+
+def _refuse(data):
+    raise ValueError('not plain CDR')
+
+
+def test_read_falls_back_to_rclpy_only_for_what_the_reader_refuses():
+    msg = Clock()
+    msg.clock.sec, msg.clock.nanosec = 3, 4
+    data = serialize_message(msg)
+    seconds = (lambda m: m.clock.sec * 1_000_000_000 + m.clock.nanosec)
+    assert read(data, clock_nanoseconds, Clock, pytest.fail) == 3_000_000_004
+    assert read(data, _refuse, Clock, seconds) == 3_000_000_004
+    assert read(data, _refuse, Clock) == msg
