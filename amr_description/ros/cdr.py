@@ -18,6 +18,8 @@ encapsulation raises ``ValueError``; :func:`read` then lets rclpy deserialize th
 import collections
 import struct
 
+import numpy as np
+
 _ENDIAN = {b'\x00\x00': '>', b'\x00\x01': '<'}
 
 BondStatus = collections.namedtuple(
@@ -77,6 +79,18 @@ class _Reader:
         self._align(8)
         self.pos += 8 * count
 
+    def double_records(self, width):
+        """Return a sequence of records of ``width`` float64 as an (N, width) float array."""
+        count = self.uint32()
+        self._align(8)
+        end = self.pos + 8 * width * count
+        if end > len(self.data):
+            raise ValueError(f'CDR sequence of {count} records of {width} doubles at byte '
+                             f'{self.pos} does not fit in {len(self.data)}')
+        records = np.frombuffer(self.data, self.end + 'f8', width * count, self.pos)
+        self.pos = end
+        return records.reshape(count, width).astype(float)
+
 
 def tf_message_entries(data):
     """
@@ -127,6 +141,22 @@ def odometry_twist(data):
     return reader._take(reader._six, 8)
 
 
+def odometry_position(data):
+    """
+    Return the frame and position of a serialized ``nav_msgs/Odometry``.
+
+    :param data: the message's CDR bytes.
+    :returns: ``(frame_id, (x, y, z))``: ``header.frame_id`` and ``pose.pose.position`` (m),
+        as the message holds them (not checked).
+    :raises ValueError: when ``data`` is not plain CDR, or ends inside a field.
+    """
+    reader = _Reader(data)
+    reader.time()  # header.stamp
+    frame_id = reader.string()
+    reader.string()  # child_frame_id
+    return frame_id, reader.seven_doubles()[:3]
+
+
 def bond_status(data):
     """
     Return the fields of a serialized ``bond/msg/Status`` that a bond uses.
@@ -162,3 +192,26 @@ def read(data, reader, msg_type, convert=None):
         from rclpy.serialization import deserialize_message
         msg = deserialize_message(data, msg_type)
         return msg if convert is None else convert(msg)
+
+
+def stamped_poses(data, width):
+    """
+    Return the frame and the poses of a serialized PoseArray or ParticleCloud.
+
+    A ``geometry_msgs/PoseArray`` (``width`` 7) and a ``nav2_msgs/ParticleCloud`` (``width``
+    8: each pose followed by its weight) are a ``std_msgs/Header`` then a sequence of
+    fixed-size records of float64: a ``Pose`` (position x y z, orientation x y z w) and, in a
+    ``Particle``, its ``weight``.
+    Reading them here takes microseconds where rclpy builds thousands of Python objects
+    (23 ms for a cloud of 2,000 particles on this machine, docs/navigation.md).
+
+    :param data: the message's CDR bytes.
+    :param width: 7 or 8 (see above).
+    :returns: ``(frame_id, records)``: the header's frame (str) and an (N, width) float array,
+        as the message holds it (not checked or normalized).
+    :raises ValueError: when ``data`` is not plain CDR, or ends inside a field.
+    """
+    reader = _Reader(data)
+    reader.time()  # header.stamp
+    frame_id = reader.string()
+    return frame_id, reader.double_records(width)

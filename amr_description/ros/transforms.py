@@ -171,9 +171,10 @@ class _OwnThread:
                               cli_args=['--ros-args', '-r', f'__node:={name}'],
                               parameter_overrides=[Parameter('use_sim_time', value=False)])
         self.loop = TakeLoop(self.node, name)
-        self.loop.subscribe(TFMessage, '/tf', 100, lambda data: store(_read_tf(data), False))
+        self.loop.subscribe(TFMessage, '/tf', 100,
+                            lambda data: store(read_tf_message(data), False))
         self.loop.subscribe(TFMessage, '/tf_static', STATIC_QOS,
-                            lambda data: store(_read_tf(data), True))
+                            lambda data: store(read_tf_message(data), True))
         self.loop.start()
 
     def destroy(self):
@@ -181,8 +182,14 @@ class _OwnThread:
         self.node.destroy_node()
 
 
-def _read_tf(data):
-    """Return the transforms of a serialized TFMessage (rclpy reads what is not plain CDR)."""
+def read_tf_message(data):
+    """
+    Return the transforms of a serialized TFMessage (rclpy reads what is not plain CDR).
+
+    :returns: ``[(parent, child, stamp s, (x, y, z), (qx, qy, qz, qw))]``, as
+        :func:`amr_description.ros.cdr.tf_message_entries`.
+    :raises ValueError: a message that ends inside a field.
+    """
     return read(data, tf_message_entries, TFMessage, _entries)
 
 

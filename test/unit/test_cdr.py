@@ -7,6 +7,7 @@ import struct
 from amr_description.ros.cdr import bond_status
 from amr_description.ros.cdr import BondStatus
 from amr_description.ros.cdr import clock_nanoseconds
+from amr_description.ros.cdr import odometry_position
 from amr_description.ros.cdr import odometry_twist
 from amr_description.ros.cdr import read
 from amr_description.ros.cdr import tf_message_entries
@@ -83,6 +84,9 @@ def test_the_twist_of_an_odometry(frame):
     t.linear.x, t.linear.y, t.linear.z = 0.5, -0.25, 0.125
     t.angular.x, t.angular.y, t.angular.z = 1.0, 2.0, -0.75
     assert odometry_twist(serialize_message(msg)) == (0.5, -0.25, 0.125, 1.0, 2.0, -0.75)
+    assert odometry_position(serialize_message(msg)) == (frame, (7.0, 0.0, 0.0))
+    with pytest.raises(ValueError):
+        odometry_position(serialize_message(msg)[:20])
     with pytest.raises(ValueError):
         odometry_twist(serialize_message(msg)[:-300])
 

@@ -4,6 +4,7 @@
 
 from amr_description.web.displays.base import FrameManager
 from geometry_msgs.msg import TransformStamped
+from rclpy.serialization import serialize_message
 from rosgraph_msgs.msg import Clock
 from tf2_msgs.msg import TFMessage
 
@@ -45,7 +46,7 @@ def _tf(parent, child, t, x):
     transform.header.stamp.nanosec = int(round((t - int(t)) * 1e9))
     transform.transform.translation.x = x
     transform.transform.rotation.w = 1.0
-    return TFMessage(transforms=[transform])
+    return serialize_message(TFMessage(transforms=[transform]))  # taken serialized
 
 
 def test_a_jump_back_clears_dynamic_transforms_keeps_static_ones_and_redraws_from_new_tf():
@@ -66,3 +67,12 @@ def test_a_jump_back_clears_dynamic_transforms_keeps_static_ones_and_redraws_fro
                                  'transforms cleared']
     frames._on_clock(_clock(20.5))  # forward: nothing cleared
     assert frames.jumps == 1 and frames.buffer.can_transform('odom', 'base_link')
+
+
+def test_a_tf_message_that_cannot_be_read_is_one_warning_and_the_buffer_stays():
+    node = _Node()
+    frames = FrameManager(node)
+    frames._on_tf(_tf('odom', 'base_footprint', 1.0, 2.0))
+    frames._on_tf(_tf('odom', 'base_footprint', 2.0, 3.0)[:-20])  # ends inside a field
+    assert frames.buffer.lookup('odom', 'base_footprint')[0][0, 3] == 2.0
+    assert len(node.logger.lines) == 1 and node.logger.lines[0].startswith('/tf: cannot read')

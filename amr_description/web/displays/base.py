@@ -12,6 +12,7 @@ import time
 
 from amr_description.core.tf_buffer import TransformBuffer
 from amr_description.core.tf_buffer import TransformException
+from amr_description.ros.transforms import read_tf_message
 from amr_description.web.displays.discovery import split_topics
 from amr_description.web.displays.discovery import TopicFinder
 import numpy as np
@@ -25,11 +26,6 @@ RATE_WINDOW = 2.0
 
 POSE_TOLERANCE = 1e-5
 """Largest change of a pose matrix entry (m, or rotation entry) not sent to the page."""
-
-
-def stamp_seconds(header):
-    """Return the seconds of a ``std_msgs/Header`` stamp."""
-    return header.stamp.sec + header.stamp.nanosec * 1e-9
 
 
 def moved(last, T, tolerance):
@@ -89,27 +85,32 @@ class FrameManager:
         self.last_jump = None
         self.message_frames = set()
         static_qos = QoSProfile(depth=100, durability=DurabilityPolicy.TRANSIENT_LOCAL)
-        node.create_subscription(TFMessage, '/tf', self._on_tf, 100)
-        node.create_subscription(TFMessage, '/tf_static', self._on_tf_static, static_qos)
+        # taken serialized and read without rclpy's objects (ros/cdr.py): hundreds a second
+        node.create_subscription(TFMessage, '/tf', self._on_tf, 100, raw=True)
+        node.create_subscription(TFMessage, '/tf_static', self._on_tf_static, static_qos,
+                                 raw=True)
         node.create_subscription(ClockMsg, '/clock', self._on_clock, 10)
 
-    def _store(self, msg, static):
-        for t in msg.transforms:
-            tr, q = t.transform.translation, t.transform.rotation
+    def _store(self, data, static):
+        topic = '/tf_static' if static else '/tf'
+        try:
+            entries = read_tf_message(data)
+        except Exception as exc:  # noqa: B902 - rclpy raises its own types on bad bytes
+            self.node.get_logger().warning(f'{topic}: cannot read: {exc}',
+                                           throttle_duration_sec=5.0)
+            return
+        for parent, child, stamp, xyz, xyzw in entries:
             try:
-                self.buffer.set_transform(t.header.frame_id, t.child_frame_id,
-                                          stamp_seconds(t.header), (tr.x, tr.y, tr.z),
-                                          (q.x, q.y, q.z, q.w), static=static)
+                self.buffer.set_transform(parent, child, stamp, xyz, xyzw, static=static)
             except ValueError as exc:
-                self.node.get_logger().warning(f"{'/tf_static' if static else '/tf'}: {exc}",
-                                               throttle_duration_sec=5.0)
+                self.node.get_logger().warning(f'{topic}: {exc}', throttle_duration_sec=5.0)
 
-    def _on_tf(self, msg):
+    def _on_tf(self, data):
         self.rates['/tf'].tick(time.monotonic())
-        self._store(msg, False)
+        self._store(data, False)
 
-    def _on_tf_static(self, msg):
-        self._store(msg, True)
+    def _on_tf_static(self, data):
+        self._store(data, True)
 
     def _on_clock(self, msg):
         now = time.monotonic()

@@ -45,7 +45,7 @@ class ContactsDisplay(SensorTopicsDisplay):
     def rates(self):
         """Return ``[(topic, Rate)]`` of the topics heard so far (a bumper is optional)."""
         return [(topic, item.rate) for topic, item in self._topics.items()
-                if item.msg is not None]
+                if item.data is not None]
 
     def render(self, name, msg, T, node):
         """Draw the contact points in the fixed frame (module docstring)."""

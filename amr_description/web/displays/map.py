@@ -129,6 +129,7 @@ class MapDisplay(SensorTopicsDisplay):
     rviz_classes = {'rviz_default_plugins/Map': 'map_topics'}
     qos = BEST_AVAILABLE
     placed = True
+    serialized = False  # a map's frame is needed when it arrives (below); maps are rare
 
     def _on_message(self, topic, msg):
         # a map's frame is a fixed frame even before TF has it (map_server alone), as in RViz

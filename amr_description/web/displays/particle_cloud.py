@@ -12,10 +12,15 @@ ParticleCloud and PoseArray: a flat arrow per pose, as nav2_rviz_plugins and RVi
 
 A flat arrow is three lines in the pose's xy-plane: the shaft along x and two head lines from
 the tip back to (0.75, +-0.2) of the length (nav2_rviz_plugins' ``FlatWeightedArrowsArray``).
-Both subscribe with the sensor-data QoS (AMCL publishes best effort).
+Both subscribe with the sensor-data QoS (AMCL publishes best effort). Their newest message is
+read straight into arrays (:func:`amr_description.ros.cdr.stamped_poses`), without rclpy's
+Python object per pose.
 """
 
+import collections
+
 from amr_description.core.kinematics import quaternions_to_matrices
+from amr_description.ros import cdr
 from amr_description.web.displays.discovery import AUTO
 from amr_description.web.displays.sensor_topics import draw_segments
 from amr_description.web.displays.sensor_topics import SensorTopicsDisplay
@@ -35,16 +40,49 @@ THICKNESS = 2.0
 """Pixels, the lines' width."""
 
 
-def pose_arrays(poses):
+Poses = collections.namedtuple('Poses', 'header records')
+"""The frame of a PoseArray or ParticleCloud (``header.frame_id``) and its (N, 7 or 8) pose
+records (position x y z, orientation x y z w and, in a cloud, the weight)."""
+
+_Header = collections.namedtuple('_Header', 'frame_id')
+
+
+def read_poses(data, message_type):
     """
-    Return the positions (N, 3) and rotations (N, 3, 3) of ``geometry_msgs/Pose`` objects.
+    Return the :data:`Poses` of a serialized PoseArray or ParticleCloud.
+
+    :param data: the message's CDR bytes; what is not plain CDR is read by rclpy.
+    :param message_type: ``PoseArray`` or ``ParticleCloud``.
+    :raises ValueError: a message that ends inside a field (rclpy's errors for bytes it
+        cannot read pass).
+    """
+    width = 8 if message_type is ParticleCloud else 7
+
+    def of_message(msg):
+        poses = msg.particles if width == 8 else msg.poses
+        records = np.array([_record(p, width) for p in poses], float).reshape(-1, width)
+        return msg.header.frame_id, records
+
+    frame_id, records = cdr.read(data, lambda d: cdr.stamped_poses(d, width), message_type,
+                                 of_message)
+    return Poses(_Header(frame_id), records)
+
+
+def _record(item, width):
+    pose = item.pose if width == 8 else item
+    p, q = pose.position, pose.orientation
+    values = (p.x, p.y, p.z, q.x, q.y, q.z, q.w)
+    return values + (item.weight,) if width == 8 else values
+
+
+def record_arrays(records):
+    """
+    Return the positions (N, 3) and rotations (N, 3, 3) of (N, >= 7) pose records.
 
     :raises ValueError: on a value that is not finite.
     """
-    positions = np.array([(p.position.x, p.position.y, p.position.z) for p in poses],
-                         float).reshape(-1, 3)
-    quaternions = np.array([(p.orientation.x, p.orientation.y, p.orientation.z,
-                             p.orientation.w) for p in poses], float).reshape(-1, 4)
+    positions = np.array(records[:, 0:3], float)
+    quaternions = records[:, 3:7]
     if not (np.isfinite(positions).all() and np.isfinite(quaternions).all()):
         raise ValueError('a pose that is not finite (NaN or infinite values)')
     return positions, quaternions_to_matrices(quaternions)
@@ -90,9 +128,13 @@ class PoseArrayDisplay(SensorTopicsDisplay):
     topics_parameter = 'pose_array_topics'
     rviz_classes = {'rviz_default_plugins/PoseArray': 'pose_array_topics'}
 
+    def read(self, data):
+        """Return the :data:`Poses` of the serialized ``data``."""
+        return read_poses(data, PoseArray)
+
     def render(self, name, msg, T, node):
-        """Draw an arrow per pose."""
-        positions, rotations = pose_arrays(msg.poses)
+        """Draw an arrow per pose of ``msg`` (:data:`Poses`)."""
+        positions, rotations = record_arrays(msg.records)
         segments = flat_arrows(positions, rotations, np.full(len(positions), MAX_LENGTH))
         return draw_arrows(self.server, name, segments, T, node)
 
@@ -107,10 +149,14 @@ class ParticleCloudDisplay(SensorTopicsDisplay):
     topics_parameter = 'particle_cloud_topics'
     rviz_classes = {'nav2_rviz_plugins/ParticleCloud': 'particle_cloud_topics'}
 
+    def read(self, data):
+        """Return the :data:`Poses` of the serialized ``data`` (weights in column 7)."""
+        return read_poses(data, ParticleCloud)
+
     def render(self, name, msg, T, node):
-        """Draw an arrow per particle, its length and height from its weight."""
-        positions, rotations = pose_arrays([p.pose for p in msg.particles])
-        weights = np.array([p.weight for p in msg.particles], float)
+        """Draw an arrow per particle of ``msg`` (:data:`Poses`), sized by its weight."""
+        positions, rotations = record_arrays(msg.records)
+        weights = msg.records[:, 7]
         if not np.isfinite(weights).all():
             raise ValueError('a particle weight that is not finite')
         positions[:, 2] = weights * HEIGHT_SCALE

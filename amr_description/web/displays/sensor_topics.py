@@ -7,9 +7,14 @@ A :class:`SensorTopicsDisplay` subscribes its topics with the sensor-data QoS (b
 which also hears reliable publishers), counts each topic's rate for the status, and at most
 :data:`RATE` times a second draws the newest message of each topic placed with the newest
 transform of its ``header.frame_id`` into the fixed frame. A message whose frame is not in TF
-is left out and named in the status (``missing``); one that cannot be drawn is one throttled
-warning, and the viewer keeps running. A subclass sets ``message_type`` and
+is left out and named in the status (``missing``); one that cannot be read or drawn is one
+throttled warning, and the viewer keeps running. A subclass sets ``message_type`` and
 ``label`` and implements :meth:`~SensorTopicsDisplay.render`.
+
+The messages are taken serialized and only the newest one is read, when it is drawn: an
+IMU's 100 Hz or a path's 20 Hz cost the viewer one reading per redraw, not one per message
+(rclpy's reading of a 2,000-particle cloud takes 23 ms; docs/navigation.md, "The viewer's
+readings").
 """
 
 import threading
@@ -22,6 +27,7 @@ from rclpy.qos import DurabilityPolicy
 from rclpy.qos import qos_profile_sensor_data
 from rclpy.qos import QoSProfile
 from rclpy.qos import ReliabilityPolicy
+from rclpy.serialization import deserialize_message
 
 RATE = 10.0
 """Redraws per second at most."""
@@ -34,6 +40,8 @@ subscription (transient local from map_server; volatile or best effort from othe
 class _Topic:
 
     def __init__(self):
+        self.data = None  # the newest message as taken (serialized, or as rclpy read it)
+        self.read_from = None  # the data self.msg was read from
         self.msg = None
         self.drawn = None
         self.node = None
@@ -55,6 +63,8 @@ class SensorTopicsDisplay(Display):
     :cvar placed: True when a drawn message follows its frame between messages
         (:meth:`place` moves it; a map under ``map -> odom``), False when the next message
         redraws it.
+    :cvar serialized: True: messages are taken serialized and the newest is read by
+        :meth:`read` when drawn; False: rclpy reads each one as it arrives.
     """
 
     message_type = None
@@ -62,6 +72,7 @@ class SensorTopicsDisplay(Display):
     default_frame = ''
     qos = qos_profile_sensor_data
     placed = False
+    serialized = True
 
     def __init__(self, node, server, frames, topics):
         """Subscribe every named topic; with ``'*'``, every one found of ``message_type``."""
@@ -77,7 +88,7 @@ class SensorTopicsDisplay(Display):
         self._topics[topic] = _Topic()
         self.node.create_subscription(self.message_type, topic,
                                       lambda msg, topic=topic: self._on_message(topic, msg),
-                                      self.qos)
+                                      self.qos, raw=self.serialized)
 
     def build(self, gui):
         """Add the display's checkbox."""
@@ -91,7 +102,32 @@ class SensorTopicsDisplay(Display):
         item = self._topics[topic]
         item.rate.tick(time.monotonic())
         with self._lock:
-            item.msg = msg
+            item.data = msg
+
+    def read(self, data):
+        """
+        Return what :meth:`render` draws of the serialized message ``data``.
+
+        The message itself here (rclpy's reading); a subclass may read only what it draws. The
+        result has ``header.frame_id``.
+
+        :raises Exception: whatever rclpy or the reader raises on bytes it cannot read.
+        """
+        return deserialize_message(data, self.message_type)
+
+    def _newest(self, topic, item):
+        """Return the newest message of ``item`` as :meth:`render` takes it, or None."""
+        with self._lock:
+            data = item.data
+        if data is not item.read_from:
+            item.read_from = data
+            try:
+                item.msg = self.read(data) if self.serialized else data
+            except Exception as exc:  # noqa: B902 - rclpy raises its own types on bad bytes
+                item.msg = None
+                self.node.get_logger().warning(f'{self.label} {topic}: cannot read: {exc}',
+                                               throttle_duration_sec=5.0)
+        return item.msg
 
     def draw(self, context):
         """Draw the newest message of each topic, at most :data:`RATE` times a second."""
@@ -101,8 +137,7 @@ class SensorTopicsDisplay(Display):
         self._next = now + 1.0 / RATE
         show = self._show.value
         for topic, item in list(self._topics.items()):
-            with self._lock:
-                msg = item.msg
+            msg = self._newest(topic, item) if show else item.msg
             if item.node is not None and item.node.visible != show:
                 item.node.visible = show
             if msg is None or not show or (item.drawn is msg and not self.placed):

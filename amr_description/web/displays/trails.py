@@ -13,6 +13,8 @@ import threading
 import time
 
 from amr_description.core.tf_buffer import TransformException
+from amr_description.ros.cdr import odometry_position
+from amr_description.ros.cdr import read
 from amr_description.web.displays.base import Display
 from amr_description.web.displays.base import moved
 from amr_description.web.displays.base import Rate
@@ -32,6 +34,11 @@ RATE = 10.0
 """Trail redraws per second at most."""
 TOLERANCE = 1e-4
 """Largest move of a trail's frame in the fixed frame (pose entry) that is not redrawn."""
+
+
+def _position(msg):
+    p = msg.pose.pose.position
+    return msg.header.frame_id, (p.x, p.y, p.z)
 
 
 class _Trail:
@@ -94,8 +101,9 @@ class TrailsDisplay(Display):
             self._trails[topic] = _Trail(rgb, colour)
         if self.rated_topic is None or ('ground_truth' in self.rated_topic and not truth):
             self.rated_topic = topic
-        self.node.create_subscription(
-            Odometry, topic, lambda msg, topic=topic: self._on_odometry(topic, msg), 10)
+        self.node.create_subscription(  # serialized: only the frame and position are read
+            Odometry, topic, lambda data, topic=topic: self._on_odometry(topic, data), 10,
+            raw=True)
 
     def build(self, gui):
         """Add the ``Odometry trails`` checkbox, the legend and the Clear button."""
@@ -104,15 +112,19 @@ class TrailsDisplay(Display):
         clear = gui.add_button('Clear trails')
         clear.on_click(lambda _: self.clear())
 
-    def _on_odometry(self, topic, msg):
+    def _on_odometry(self, topic, data):
         if topic == self.rated_topic:
             self.rate.tick(time.monotonic())
-        p = msg.pose.pose.position
-        point = (p.x, p.y, p.z)
+        try:
+            frame, point = read(data, odometry_position, Odometry, _position)
+        except Exception as exc:  # noqa: B902 - rclpy raises its own types on bad bytes
+            self.node.get_logger().warning(f'{topic}: cannot read: {exc}',
+                                           throttle_duration_sec=5.0)
+            return
         if not all(math.isfinite(v) for v in point):
             return
         trail = self._trails[topic]
-        frame = msg.header.frame_id.lstrip('/')
+        frame = frame.lstrip('/')
         if frame != trail.frame:
             trail.frame = frame
             trail.points = []
