@@ -26,18 +26,29 @@ Reproduces the behaviour of upstream ``robot_state_publisher`` (ROS 2 Jazzy):
 - setting ``robot_description`` at runtime re-parses the model (an invalid one is rejected and
   the old one kept) and republishes the description and the static transforms.
 
+``/joint_states`` is taken serialized on a thread of its own
+(:class:`~amr_description.ros.take_loop.TakeLoop`) and only its stamp, names and positions are
+read (:func:`amr_description.ros.cdr.joint_state`): the joint_state_broadcaster sends it at the
+controller manager's 100 Hz, five times the default ``publish_frequency``, and on the node's
+executor each message cost a wake-up (docs/navigation.md, "The joint states' thread").
+
 Forward kinematics: :mod:`amr_description.core.kinematics`; URDF: yourdfpy through
 :mod:`amr_description.core.description.urdf_model`.
 """
 
 import sys
+import threading
 
 from amr_description.core.description.urdf_model import parse_urdf
 from amr_description.core.kinematics import joint_transform
 from amr_description.core.kinematics import matrix_to_translation_quaternion
 from amr_description.core.kinematics import MOVING_JOINT_TYPES
 from amr_description.ros import shutdown
+from amr_description.ros.cdr import joint_state
+from amr_description.ros.cdr import read
 from amr_description.ros.node import Node
+from amr_description.ros.take_loop import TakeLoop
+from builtin_interfaces.msg import Time
 from geometry_msgs.msg import TransformStamped
 from rcl_interfaces.msg import FloatingPointRange
 from rcl_interfaces.msg import ParameterDescriptor
@@ -78,6 +89,7 @@ class RobotStatePublisher(Node):
         self.declare_parameter('ignore_timestamp', False)
         self.declare_parameter('frame_prefix', '')
         self._model = None
+        self._lock = threading.Lock()  # the joint states' thread and parameter changes
         self._last_publish = {}  # joint name -> last published stamp (ns)
         self._last_callback_ns = 0
         self._description = self.get_parameter('robot_description').value
@@ -90,8 +102,10 @@ class RobotStatePublisher(Node):
         self.add_on_set_parameters_callback(self._validate_parameters)
         self.add_post_set_parameters_callback(self._apply_parameters)
         self._publish_model()
-        self.create_subscription(JointState, 'joint_states', self._on_joint_states,
-                                 qos_profile_sensor_data)
+        self._joint_states = TakeLoop(self, f'{self.get_name()}_joint_states')
+        self._joint_states.subscribe(JointState, 'joint_states', qos_profile_sensor_data,
+                                     self._on_joint_state_data)
+        self._joint_states.start()
 
     # -- model --------------------------------------------------------------------------------
 
@@ -121,10 +135,11 @@ class RobotStatePublisher(Node):
         """Re-read the model after ``robot_description`` changed."""
         for parameter in parameters:
             if parameter.name == 'robot_description':
-                self._description = parameter.value
-                self._model = parse_urdf(self._description, source='robot_description')
-                self._last_publish.clear()
-                self._publish_model()
+                with self._lock:
+                    self._description = parameter.value
+                    self._model = parse_urdf(self._description, source='robot_description')
+                    self._last_publish.clear()
+                    self._publish_model()
 
     # -- transforms ---------------------------------------------------------------------------
 
@@ -143,14 +158,26 @@ class RobotStatePublisher(Node):
         r.x, r.y, r.z, r.w = (float(v) for v in quat)
         return msg
 
-    def _on_joint_states(self, msg):
-        """Publish /tf for the moving joints named in ``msg`` (upstream rules, module doc)."""
-        if len(msg.name) != len(msg.position):
+    def _on_joint_state_data(self, data):
+        """Read a serialized ``/joint_states`` message and publish its transforms."""
+        stamp, names, positions = read(data, joint_state, JointState, _joint_values)
+        with self._lock:
+            self._on_joint_values(stamp, names, positions)
+
+    def _on_joint_values(self, stamp, names, positions):
+        """
+        Publish /tf for the moving joints of one message (upstream rules, module doc).
+
+        :param stamp: ``header.stamp`` as ``(sec, nanosec)``.
+        :param names: the joints' names.
+        :param positions: their positions (rad or m), as many as ``names`` or it is refused.
+        """
+        if len(names) != len(positions):
             self.get_logger().error(
                 f'Ignored an invalid JointState message on {self._joint_states_topic()}: '
-                f'{len(msg.name)} names but {len(msg.position)} positions')
+                f'{len(names)} names but {len(positions)} positions')
             return
-        stamp_ns = msg.header.stamp.sec * 1_000_000_000 + msg.header.stamp.nanosec
+        stamp_ns = stamp[0] * 1_000_000_000 + stamp[1]
         if stamp_ns < self._last_callback_ns:
             self.get_logger().warning('Moved backwards in time, re-publishing joint transforms!',
                                       throttle_duration_sec=BACKWARDS_WARNING_PERIOD)
@@ -160,29 +187,35 @@ class RobotStatePublisher(Node):
         ignore_timestamp = self.get_parameter('ignore_timestamp').value
         interval_ns = int(1e9 / frequency) if frequency > 0.0 else 0
         model = self._model
-        positions = {}
-        for name, position in zip(msg.name, msg.position):
+        moving = {}
+        for name, position in zip(names, positions):
             joint = model.joints.get(name)
             if joint is not None and joint.type in MOVING_JOINT_TYPES:
-                positions[name] = float(position)
-        if not positions:
+                moving[name] = float(position)
+        if not moving:
             return
-        last = min(self._last_publish.get(name, -1) for name in positions)
+        last = min(self._last_publish.get(name, -1) for name in moving)
         if not ignore_timestamp and last >= 0 and stamp_ns < last + interval_ns:
             return
-        resolved = model.resolve_mimic(positions)
+        resolved = model.resolve_mimic(moving)
+        stamp = Time(sec=stamp[0], nanosec=stamp[1])
         transforms = []
         for name, position in resolved.items():
             joint = model.joints[name]
             if joint.type in MOVING_JOINT_TYPES:
-                transforms.append(self._transform(joint, position, msg.header.stamp))
-        for name in positions:
+                transforms.append(self._transform(joint, position, stamp))
+        for name in moving:
             self._last_publish[name] = stamp_ns
         self._tf_pub.publish(TFMessage(transforms=transforms))
 
     def _joint_states_topic(self):
         """Return the resolved name of the joint states topic (for messages)."""
         return self.resolve_topic_name('joint_states')
+
+
+def _joint_values(msg):
+    """Return a JointState's ``((sec, nanosec), names, positions)``, as ``cdr.joint_state``."""
+    return (msg.header.stamp.sec, msg.header.stamp.nanosec), list(msg.name), tuple(msg.position)
 
 
 def main(args=None):

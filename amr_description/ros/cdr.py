@@ -58,9 +58,13 @@ class _Reader:
     def uint32(self):
         return self._take(self._u32, 4)[0]
 
+    def stamp(self):
+        """Return a ``builtin_interfaces/Time`` as ``(sec, nanosec)`` (ints)."""
+        return self._take(self._time, 4)
+
     def time(self):
         """Return a ``builtin_interfaces/Time`` as seconds (float)."""
-        sec, nanosec = self._take(self._time, 4)
+        sec, nanosec = self.stamp()
         return sec + nanosec * 1e-9
 
     def string(self):
@@ -78,6 +82,11 @@ class _Reader:
     def skip_doubles(self, count):
         self._align(8)
         self.pos += 8 * count
+
+    def doubles(self):
+        """Return a sequence of float64 as a tuple of floats."""
+        count = self.uint32()
+        return self._take(struct.Struct(f'{self.end}{count}d'), 8) if count else ()
 
     def double_records(self, width):
         """Return a sequence of records of ``width`` float64 as an (N, width) float array."""
@@ -119,8 +128,7 @@ def clock_nanoseconds(data):
 
     :raises ValueError: when ``data`` is not plain CDR, or is too short.
     """
-    reader = _Reader(data)
-    sec, nanosec = reader._take(reader._time, 4)
+    sec, nanosec = _Reader(data).stamp()
     return sec * 1_000_000_000 + nanosec
 
 
@@ -139,6 +147,23 @@ def odometry_twist(data):
     reader.string()  # child_frame_id
     reader.skip_doubles(7 + 36)  # pose.pose, pose.covariance
     return reader._take(reader._six, 8)
+
+
+def joint_state(data):
+    """
+    Return the stamp, names and positions of a serialized ``sensor_msgs/JointState``.
+
+    :param data: the message's CDR bytes.
+    :returns: ``((sec, nanosec), names, positions)``: ``header.stamp``, the ``name`` list
+        (str) and the ``position`` tuple (rad or m), as the message holds them (their lengths
+        are not compared; ``velocity`` and ``effort`` are not read).
+    :raises ValueError: when ``data`` is not plain CDR, or ends inside a field.
+    """
+    reader = _Reader(data)
+    stamp = reader.stamp()
+    reader.string()  # header.frame_id
+    names = [reader.string() for _ in range(reader.uint32())]
+    return stamp, names, reader.doubles()
 
 
 def odometry_position(data):

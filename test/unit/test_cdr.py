@@ -7,6 +7,7 @@ import struct
 from amr_description.ros.cdr import bond_status
 from amr_description.ros.cdr import BondStatus
 from amr_description.ros.cdr import clock_nanoseconds
+from amr_description.ros.cdr import joint_state
 from amr_description.ros.cdr import odometry_position
 from amr_description.ros.cdr import odometry_twist
 from amr_description.ros.cdr import read
@@ -17,6 +18,7 @@ from nav_msgs.msg import Odometry
 import pytest
 from rclpy.serialization import serialize_message
 from rosgraph_msgs.msg import Clock
+from sensor_msgs.msg import JointState
 from tf2_msgs.msg import TFMessage
 
 pytestmark = pytest.mark.unit
@@ -116,3 +118,18 @@ def test_read_falls_back_to_rclpy_only_for_what_the_reader_refuses():
     assert read(data, clock_nanoseconds, Clock, pytest.fail) == 3_000_000_004
     assert read(data, _refuse, Clock, seconds) == 3_000_000_004
     assert read(data, _refuse, Clock) == msg
+
+
+@pytest.mark.parametrize('frame', ['', 'b', 'base_link'])
+@pytest.mark.parametrize('names', [[], ['a'], ['left_wheel_joint', 'r', 'xyz']])
+def test_a_joint_state(frame, names):
+    msg = JointState(name=names, position=[0.5 * i - 1.0 for i in range(len(names))],
+                     velocity=[2.0] * len(names))
+    msg.header.frame_id = frame
+    msg.header.stamp.sec, msg.header.stamp.nanosec = 1_700_000_000, 999_999_999
+    assert joint_state(serialize_message(msg)) == (
+        (1_700_000_000, 999_999_999), names, tuple(msg.position))
+    msg.position = [1.0]  # lengths are the caller's to compare
+    assert joint_state(serialize_message(msg))[1:] == (names, (1.0,))
+    with pytest.raises(ValueError):
+        joint_state(serialize_message(msg)[:10 + len(frame)])
