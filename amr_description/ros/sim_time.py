@@ -51,10 +51,22 @@ def set_source_time(source, nanoseconds):
     :param source: the ``TimeSource`` (its own /clock subscription removed).
     :param nanoseconds: the sim time (int, ns).
     """
-    now = Time(nanoseconds=nanoseconds)
+    _set_clocks(source, Time(nanoseconds=nanoseconds), guarded=True)
+
+
+def _set_clocks(source, now, guarded):
+    """
+    Set the clocks of ``source`` to ``now`` (an rclpy ``Time``), as ``clock_callback`` does.
+
+    :param guarded: False skips ``Clock.set_ros_time_override``'s type check and handle guard,
+        for a caller whose lock keeps the clocks' nodes alive (:meth:`SimTime.set_time`).
+    """
     source._last_time_set = now
     for clock in source._associated_clocks:
-        clock.set_ros_time_override(now)
+        if guarded:
+            clock.set_ros_time_override(now)
+        else:
+            clock.handle.set_ros_time_override(now._time_handle)
 
 
 _CLOCK_LOOPS = weakref.WeakKeyDictionary()  # node -> TakeLoop taking its /clock
@@ -135,13 +147,9 @@ class SimTime:
     def set_time(self, t):
         """Set every adopted clock to sim time ``t`` (s), as ``TimeSource.clock_callback``."""
         now = Time(nanoseconds=int(round(t * 1e9)))
-        handle = now._time_handle
         with self._lock:  # a node is dropped (under this lock) before it is destroyed
             for source in self._snapshot:
-                source._last_time_set = now
-                for clock in source._associated_clocks:
-                    # Clock.set_ros_time_override without its type check and handle guard
-                    clock.handle.set_ros_time_override(handle)
+                _set_clocks(source, now, guarded=False)
 
 
 class SimTimeExecutor(SingleThreadedExecutor):
