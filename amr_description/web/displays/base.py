@@ -28,6 +28,23 @@ POSE_TOLERANCE = 1e-5
 """Largest change of a pose matrix entry (m, or rotation entry) not sent to the page."""
 
 
+def read_or_warn(node, what, reading):
+    """
+    Return ``reading()``, or None after one warning ``<what>: cannot read: <error>``.
+
+    The warning is throttled to one per 5 s; the viewer keeps running on bytes it cannot read.
+
+    :param node: the viewer node (its logger).
+    :param what: the topic (and display) named in the warning.
+    :param reading: a callable reading a serialized message (rclpy raises its own types).
+    """
+    try:
+        return reading()
+    except Exception as exc:  # noqa: B902 - rclpy raises its own types on bad bytes
+        node.get_logger().warning(f'{what}: cannot read: {exc}', throttle_duration_sec=5.0)
+        return None
+
+
 def moved(last, T, tolerance):
     """Return True when ``last`` is None or a 4x4 pose entry differs by more than tolerance."""
     return last is None or float(np.max(np.abs(last - T))) > tolerance
@@ -93,13 +110,8 @@ class FrameManager:
 
     def _store(self, data, static):
         topic = '/tf_static' if static else '/tf'
-        try:
-            entries = read_tf_message(data)
-        except Exception as exc:  # noqa: B902 - rclpy raises its own types on bad bytes
-            self.node.get_logger().warning(f'{topic}: cannot read: {exc}',
-                                           throttle_duration_sec=5.0)
-            return
-        for parent, child, stamp, xyz, xyzw in entries:
+        entries = read_or_warn(self.node, topic, lambda: read_tf_message(data))
+        for parent, child, stamp, xyz, xyzw in entries or ():
             try:
                 self.buffer.set_transform(parent, child, stamp, xyz, xyzw, static=static)
             except ValueError as exc:

@@ -22,6 +22,7 @@ import time
 
 from amr_description.web.displays.base import Display
 from amr_description.web.displays.base import Rate
+from amr_description.web.displays.base import read_or_warn
 import numpy as np
 from rclpy.qos import DurabilityPolicy
 from rclpy.qos import qos_profile_sensor_data
@@ -121,12 +122,8 @@ class SensorTopicsDisplay(Display):
             data = item.data
         if data is not item.read_from:
             item.read_from = data
-            try:
-                item.msg = self.read(data) if self.serialized else data
-            except Exception as exc:  # noqa: B902 - rclpy raises its own types on bad bytes
-                item.msg = None
-                self.node.get_logger().warning(f'{self.label} {topic}: cannot read: {exc}',
-                                               throttle_duration_sec=5.0)
+            item.msg = data if not self.serialized else read_or_warn(
+                self.node, f'{self.label} {topic}', lambda: self.read(data))
         return item.msg
 
     def draw(self, context):

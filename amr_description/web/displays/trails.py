@@ -18,6 +18,7 @@ from amr_description.ros.cdr import read
 from amr_description.web.displays.base import Display
 from amr_description.web.displays.base import moved
 from amr_description.web.displays.base import Rate
+from amr_description.web.displays.base import read_or_warn
 from amr_description.web.displays.discovery import AUTO
 from nav_msgs.msg import Odometry
 import numpy as np
@@ -115,12 +116,11 @@ class TrailsDisplay(Display):
     def _on_odometry(self, topic, data):
         if topic == self.rated_topic:
             self.rate.tick(time.monotonic())
-        try:
-            frame, point = read(data, odometry_position, Odometry, _position)
-        except Exception as exc:  # noqa: B902 - rclpy raises its own types on bad bytes
-            self.node.get_logger().warning(f'{topic}: cannot read: {exc}',
-                                           throttle_duration_sec=5.0)
+        read_back = read_or_warn(
+            self.node, topic, lambda: read(data, odometry_position, Odometry, _position))
+        if read_back is None:
             return
+        frame, point = read_back
         if not all(math.isfinite(v) for v in point):
             return
         trail = self._trails[topic]
