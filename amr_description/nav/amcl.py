@@ -6,10 +6,7 @@ Adaptive Monte Carlo localization as Nav2's ``amcl`` (Jazzy) does it, in numpy (
 Poses are planar ``(x, y, yaw)`` (m, m, rad): particles in the map frame, odometry in the odom
 frame, both of the base frame. The pieces, each after ``nav2_amcl``'s sources:
 
-- **map** (``src/map/map.c``, ``map_cspace.cpp``): 0 free, 100 occupied, anything else
-  unknown; the distance (m) from each cell to the nearest occupied one, capped at
-  ``laser_likelihood_max_dist`` (``scipy.ndimage.distance_transform_edt``); the origin's yaw
-  is ignored, as upstream does.
+- **map**: :class:`~amr_description.nav.laser_models.LikelihoodMap`.
 - **motion** (``src/motion_model/differential_motion_model.cpp``): the odometry step as rot1,
   trans, rot2; each particle moves by them with zero-mean noise of variance
   ``alpha1 rot^2 + alpha2 trans^2`` (rotations) and ``alpha3 trans^2 + alpha4 (rot1^2 +
@@ -21,10 +18,7 @@ frame, both of the base frame. The pieces, each after ``nav2_amcl``'s sources:
   with noise of standard deviations ``sqrt(alpha3 trans^2 + alpha4 rot^2)`` (translation),
   ``sqrt(alpha1 rot^2 + alpha2 trans^2)`` (rotation) and ``sqrt(alpha4 rot^2 + alpha5
   trans^2)`` (strafe, zero-mean); a base that slides sideways is covered by ``alpha5``.
-- **sensor** (``src/sensors/laser/likelihood_field_model.cpp``): ``max_beams`` evenly spaced
-  beams; a beam at or beyond range_max, or NaN, is skipped; for each other beam ``pz =
-  z_hit exp(-d^2 / (2 sigma_hit^2)) + z_rand / range_max`` and the particle's weight is
-  multiplied by ``1 + sum(pz^3)``.
+- **sensor**: ``laser_model_type``'s model, :mod:`~amr_description.nav.laser_models`.
 - **resampling** (``src/pf/pf.c``, ``pf_update_resample``): KLD sampling (Fox, "Adapting
   the sample size in particle filters through KLD-sampling", IJRR 2003): particles are drawn
   until their number reaches ``(k - 1) / (2 pf_err) (1 - 2 / (9 (k - 1)) + sqrt(2 / (9 (k - 1)))
@@ -40,6 +34,9 @@ from dataclasses import dataclass
 from dataclasses import fields
 import math
 
+from amr_description.nav.laser_models import LikelihoodMap
+from amr_description.nav.laser_models import select_beams
+from amr_description.nav.laser_models import weight_factors
 from amr_description.nav.pose_graph import between
 from amr_description.nav.pose_graph import compose
 from amr_description.nav.pose_graph import inverse
@@ -55,6 +52,10 @@ BIN = (0.5, 0.5, math.radians(10.0))
 DIFFERENTIAL = ('nav2_amcl::DifferentialMotionModel', 'differential')
 OMNI = ('nav2_amcl::OmniMotionModel', 'omnidirectional')
 """``robot_model_type`` values: Jazzy's plugin names and the older short names."""
+
+CONVERGED_DISTANCE = 0.5
+"""m, ``pf.c``'s ``dist_threshold``: the filter has converged when every particle is this close
+to the particles' mean in x and in y."""
 
 
 @dataclass
@@ -83,52 +84,19 @@ class AmclParameters:
     update_min_a: float = 0.2
     update_min_d: float = 0.25
     robot_model_type: str = 'nav2_amcl::DifferentialMotionModel'
+    laser_model_type: str = 'likelihood_field'
+    z_short: float = 0.05
+    z_max: float = 0.05
+    lambda_short: float = 0.1
+    do_beamskip: bool = False
+    beam_skip_distance: float = 0.5
+    beam_skip_threshold: float = 0.3
+    beam_skip_error_threshold: float = 0.9
 
     @classmethod
     def names(cls):
         """Return the parameter names, in declaration order."""
         return [f.name for f in fields(cls)]
-
-
-class LikelihoodMap:
-    """
-    The map as AMCL reads it: free cells and each cell's distance to an obstacle.
-
-    :param grid: :class:`~amr_description.nav.map_io.GridMap`.
-    :param max_dist: m, the distance cap (``laser_likelihood_max_dist``).
-    """
-
-    def __init__(self, grid, max_dist):
-        """Compute the distance field."""
-        self.resolution = float(grid.resolution)
-        self.origin = np.array(grid.origin[:2], dtype=float)
-        data = np.asarray(grid.data)
-        self.shape = data.shape  # (rows = y, columns = x)
-        self.max_dist = float(max_dist)
-        occupied = data == 100
-        self.free = np.argwhere(data == 0)  # (row, col)
-        if occupied.any():
-            d = ndimage.distance_transform_edt(~occupied) * self.resolution
-        else:
-            d = np.full(self.shape, np.inf)
-        self.distance = np.minimum(d, self.max_dist)
-
-    def lookup(self, points):
-        """Return the obstacle distance (m) at each point (..., 2); ``max_dist`` off the map."""
-        cells = np.floor((points - self.origin) / self.resolution).astype(np.int64)
-        col, row = cells[..., 0], cells[..., 1]
-        inside = (row >= 0) & (row < self.shape[0]) & (col >= 0) & (col < self.shape[1])
-        out = np.full(points.shape[:-1], self.max_dist)
-        out[inside] = self.distance[row[inside], col[inside]]
-        return out
-
-    def random_free_poses(self, count, rng):
-        """Return ``count`` poses uniformly over the free cells, any heading, (count, 3)."""
-        if len(self.free) == 0:
-            raise ValueError('the map has no free cell to place particles in')
-        pick = self.free[rng.integers(0, len(self.free), count)]
-        xy = self.origin + (pick[:, ::-1] + rng.random((count, 2))) * self.resolution
-        return np.column_stack([xy, rng.uniform(-math.pi, math.pi, count)])
 
 
 def kld_limits(bins, params):
@@ -172,6 +140,8 @@ class ParticleFilter:
     :param seed: seed of the filter's numpy ``Generator``.
     :ivar particles: (N, 3) poses in the map frame.
     :ivar weights: (N,) summing to 1.
+    :ivar converged: True after a resampling left every particle within
+        :data:`CONVERGED_DISTANCE` of the mean in x and y; False after an initialisation.
     """
 
     def __init__(self, params=None, seed=None):
@@ -181,6 +151,7 @@ class ParticleFilter:
         self.particles = np.zeros((0, 3))
         self.weights = np.zeros(0)
         self.w_slow = self.w_fast = 0.0
+        self.converged = False
 
     def initialize(self, mean, covariance):
         """
@@ -197,6 +168,7 @@ class ParticleFilter:
         self.particles[:, 2] = wrap(self.particles[:, 2])
         self.weights = np.full(n, 1.0 / n)
         self.w_slow = self.w_fast = 0.0
+        self.converged = False
 
     def initialize_uniform(self, likelihood_map):
         """Spread ``max_particles`` particles over the map's free space (``pf_init_model``)."""
@@ -204,6 +176,7 @@ class ParticleFilter:
         self.particles = likelihood_map.random_free_poses(n, self.rng)
         self.weights = np.full(n, 1.0 / n)
         self.w_slow = self.w_fast = 0.0
+        self.converged = False
 
     def move(self, old, new):
         """Apply the odometry step from ``old`` to ``new`` (odom frame) with sampled noise."""
@@ -247,25 +220,17 @@ class ParticleFilter:
 
     def weigh(self, likelihood_map, beams, range_max):
         """
-        Multiply the weights by the likelihood-field model of a scan; normalise.
+        Multiply the weights by the ``laser_model_type`` model of a scan; normalise.
 
-        :param beams: (M, 4) of the used beams: sensor x, y, yaw in the base frame, range (m).
+        :param beams: (M, 4) of the used beams (:meth:`Amcl.beams`): sensor x, y, yaw in the
+            base frame, range (m).
         :param range_max: m, the scan's (or ``laser_max_range``).
         :returns: the total weight before normalising (for the recovery averages).
         """
-        p = self.params
         if len(beams) == 0 or len(self.particles) == 0:
             return 0.0
-        c, s = np.cos(self.particles[:, 2]), np.sin(self.particles[:, 2])
-        # beam end points in the base frame, then in the map for every particle
-        ex = beams[:, 0] + beams[:, 3] * np.cos(beams[:, 2])
-        ey = beams[:, 1] + beams[:, 3] * np.sin(beams[:, 2])
-        mx = self.particles[:, 0:1] + c[:, None] * ex - s[:, None] * ey
-        my = self.particles[:, 1:2] + s[:, None] * ex + c[:, None] * ey
-        d = likelihood_map.lookup(np.stack([mx, my], axis=-1))
-        pz = p.z_hit * np.exp(-d * d / (2.0 * p.sigma_hit ** 2)) + p.z_rand / range_max
-        likelihood = 1.0 + np.sum(pz ** 3, axis=1)
-        w = self.weights * likelihood
+        w = self.weights * weight_factors(self.params, self.particles, likelihood_map, beams,
+                                          range_max, self.converged)
         total = float(w.sum())
         if total > 0.0:
             self.weights = w / total
@@ -273,6 +238,12 @@ class ParticleFilter:
         else:
             self.weights = np.full(len(w), 1.0 / len(w))
         return total
+
+    def _update_converged(self):
+        """Set :attr:`converged` as ``pf.c``'s ``pf_update_converged`` (unweighted mean)."""
+        xy = self.particles[:, :2]
+        self.converged = bool(len(xy)) and bool(
+            np.all(np.abs(xy - xy.mean(axis=0)) <= CONVERGED_DISTANCE))
 
     def _update_recovery(self, w_avg):
         p = self.params
@@ -316,6 +287,7 @@ class ParticleFilter:
         self.weights = np.full(count, 1.0 / count)
         if random_p > 0.0:
             self.w_slow = self.w_fast = 0.0
+        self._update_converged()
 
     def estimate(self):
         """
@@ -398,28 +370,9 @@ class Amcl:
         self._force = True
 
     def beams(self, ranges, angle_min, angle_increment, range_min, range_max, sensor_pose):
-        """
-        Return the likelihood-field model's beams, (M, 4) rows of x, y, yaw, range, and its limit.
-
-        ``laser_min_range`` / ``laser_max_range`` replace the scan's limits when above 0 (max)
-        or 0 (min); ``max_beams`` evenly spaced beams (step ``(n - 1) / (max_beams - 1)``);
-        NaN and readings at or beyond range_max are skipped; readings at or below range_min
-        become range_max (and are skipped).
-        """
-        p = self.params
-        ranges = np.asarray(ranges, dtype=float)
-        rmax = min(range_max, p.laser_max_range) if p.laser_max_range > 0 else range_max
-        rmin = max(range_min, p.laser_min_range) if p.laser_min_range > 0 else range_min
-        n = len(ranges)
-        step = max(1, (n - 1) // max(1, p.max_beams - 1)) if n > 1 else 1
-        idx = np.arange(0, n, step)
-        r = np.where(ranges[idx] <= rmin, rmax, ranges[idx])
-        keep = np.isfinite(r) & (r < rmax) & (r > 0.0)
-        idx, r = idx[keep], r[keep]
-        yaw = sensor_pose[2] + angle_min + angle_increment * idx
-        beams = np.column_stack([np.full(len(r), sensor_pose[0]), np.full(len(r), sensor_pose[1]),
-                                 yaw, r])
-        return beams, rmax
+        """Return the model's beams and range limit (:func:`.laser_models.select_beams`)."""
+        return select_beams(self.params, ranges, angle_min, angle_increment, range_min,
+                            range_max, sensor_pose)
 
     def process(self, odom_pose, beams, range_max):
         """

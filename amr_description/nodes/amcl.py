@@ -4,10 +4,11 @@
 ``amcl``: Nav2's adaptive Monte Carlo localization (Jazzy), a managed (lifecycle) node.
 
 Parameters: Nav2's (``nav2_amcl/src/amcl_node.cpp``) with its defaults; the filter's are
-:class:`~amr_description.nav.amcl.AmclParameters`, the node's :data:`NODE_PARAMETERS`. Only
-the ``likelihood_field`` laser model and the ``nav2_amcl::DifferentialMotionModel`` and
-``nav2_amcl::OmniMotionModel`` motion models are implemented: another value fails configure
-with one line. A parameter of the wrong type fails
+:class:`~amr_description.nav.amcl.AmclParameters`, the node's :data:`NODE_PARAMETERS`. The
+laser models ``likelihood_field``, ``beam`` and ``likelihood_field_prob`` (another value: one
+warning line, and ``likelihood_field`` runs, as upstream's ``createLaserObject``); the motion
+models ``nav2_amcl::DifferentialMotionModel`` and ``nav2_amcl::OmniMotionModel`` (another value
+fails configure with one line, as pluginlib does). A parameter of the wrong type fails
 configure with one line naming it.
 
 On activate: ``map_topic`` (``map``, transient local) in; ``scan_topic`` (``scan``, sensor data
@@ -15,7 +16,8 @@ QoS) in, placed with TF (``odom_frame_id`` -> ``base_frame_id`` at the scan's st
 ``base_frame_id`` -> the scan's frame; up to :data:`SCAN_QUEUE` scans wait for the odometry at
 their stamps, as in upstream's ``tf2_ros::MessageFilter``); ``initialpose``
 (PoseWithCovarianceStamped, reliable) in, refused with one warning unless in
-``global_frame_id`` and finite (its covariance's ``[0] [1] [6] [7] [35]`` are used);
+``global_frame_id`` and finite (its covariance's ``[0] [1] [6] [7] [35]`` are used; a pose
+stamped in the past is moved on by the odometry since its stamp);
 ``amcl_pose`` (transient local) and ``particle_cloud`` (nav2_msgs/ParticleCloud, best effort)
 out; TF ``global_frame_id`` -> ``odom_frame_id`` stamped scan stamp + ``transform_tolerance``
 (with ``tf_broadcast``); services ``reinitialize_global_localization``,
@@ -32,6 +34,9 @@ from amr_description.core.tf_buffer import TransformBuffer
 from amr_description.core.tf_buffer import TransformException
 from amr_description.nav import amcl
 from amr_description.nav.grid_message import grid_from_message
+from amr_description.nav.laser_models import LASER_MODELS
+from amr_description.nav.pose_graph import between
+from amr_description.nav.pose_graph import compose
 from amr_description.ros import shutdown
 from amr_description.ros.managed_node import ManagedNode
 from amr_description.ros.parameters import read_parameters
@@ -65,14 +70,11 @@ LATCHED = QoSProfile(depth=1, reliability=ReliabilityPolicy.RELIABLE,
 
 NODE_PARAMETERS = {
     'base_frame_id': 'base_footprint', 'global_frame_id': 'map', 'odom_frame_id': 'odom',
-    'laser_model_type': 'likelihood_field',
     'set_initial_pose': False, 'initial_pose.x': 0.0, 'initial_pose.y': 0.0,
     'initial_pose.z': 0.0, 'initial_pose.yaw': 0.0, 'always_reset_initial_pose': False,
     'save_pose_rate': 0.5, 'tf_broadcast': True, 'transform_tolerance': 1.0,
     'scan_topic': 'scan', 'map_topic': 'map', 'first_map_only': False,
-    'freespace_downsampling': False, 'lambda_short': 0.1, 'z_short': 0.05, 'z_max': 0.05,
-    'do_beamskip': False, 'beam_skip_distance': 0.5, 'beam_skip_threshold': 0.3,
-    'beam_skip_error_threshold': 0.9,
+    'freespace_downsampling': False,
 }
 """amcl's node parameters with Nav2's defaults (``nav2_amcl/src/amcl_node.cpp``)."""
 
@@ -102,9 +104,11 @@ class Amcl(ManagedNode):
         if unused:
             self.get_logger().info('Parameters not used by this implementation: '
                                    + ', '.join(unused))
-        if self.p['laser_model_type'] != 'likelihood_field':
-            raise ValueError(f"parameter 'laser_model_type': only likelihood_field is "
-                             f"implemented, got '{self.p['laser_model_type']}'")
+        if self.p['laser_model_type'] not in LASER_MODELS:
+            self.get_logger().warning(
+                f"parameter 'laser_model_type': '{self.p['laser_model_type']}' is none of "
+                f"{', '.join(LASER_MODELS)}; likelihood_field runs, as upstream's")
+            self.p['laser_model_type'] = 'likelihood_field'
         if self.p['robot_model_type'] not in amcl.DIFFERENTIAL + amcl.OMNI:
             raise ValueError(f"parameter 'robot_model_type': only {amcl.DIFFERENTIAL[0]} and "
                              f'{amcl.OMNI[0]} are implemented, got '
@@ -193,11 +197,33 @@ class Amcl(ManagedNode):
                                       'covariance; ignored')
             return
         cov = np.array([[c[0], c[1], 0.0], [c[6], c[7], 0.0], [0.0, 0.0, c[35]]])
-        mean = (pose.position.x, pose.position.y, yaw_of(pose.orientation))
+        mean = compose((pose.position.x, pose.position.y, yaw_of(pose.orientation)),
+                       self._odometry_since(msg.header.stamp))
         self.get_logger().info(f'Setting pose ({self.get_clock().now().nanoseconds * 1e-9:.6f})'
                                f': {mean[0]:.3f} {mean[1]:.3f} {mean[2]:.3f}')
         self.filter.set_initial_pose(mean, cov)
         self._sent_pose = False
+
+    def _odometry_since(self, stamp):
+        """
+        Return how the base moved (its own frame, planar) from ``stamp`` to the newest odometry.
+
+        amcl_node's ``handleInitialPose`` adds this to a pose stamped in the past, looked up
+        through ``odom_frame_id`` to the node's now, which tf2 reaches only when the odometry
+        is stamped ahead of it; here to the newest odometry instead. Without the odometry at
+        ``stamp``: no change, with upstream's warning once a transform has been sent.
+        """
+        p = self.p
+        try:
+            then, _ = self.tf_buffer.lookup(p['odom_frame_id'], p['base_frame_id'],
+                                            stamp_seconds(stamp))
+            latest, _ = self.tf_buffer.lookup(p['odom_frame_id'], p['base_frame_id'])
+        except TransformException as exc:
+            if self._last_tf is not None:
+                self.get_logger().warning(
+                    f'Failed to transform initial pose in time ({str(exc).strip()})')
+            return (0.0, 0.0, 0.0)
+        return between(planar_pose(then), planar_pose(latest))
 
     def _on_set_initial_pose(self, request, response):
         self._on_initial_pose(request.pose)

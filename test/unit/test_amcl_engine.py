@@ -5,6 +5,7 @@
 import math
 
 from amr_description.nav import amcl
+from amr_description.nav import laser_models
 from amr_description.nav.map_io import GridMap
 import numpy as np
 import pytest
@@ -142,9 +143,107 @@ def test_estimate_is_the_heaviest_cluster_across_the_seam():
     assert abs(math.remainder(pose[2] - math.pi, math.tau)) < 0.01
 
 
-def test_filter_converges_in_a_room_with_scans():
+def test_map_range_stops_at_the_first_cell_not_free():
+    data = _room().data.copy()
+    data[30, 60] = -1  # an unknown cell at x 2.0 .. 2.05, y 0.5 .. 0.55
+    field = amcl.LikelihoodMap(GridMap(data, 0.05, (-1.0, -1.0, 0.0)), 2.0)
+    # from cell (col 20, row 30), x 0.0 .. 0.05, y 0.5 .. 0.55: east to the unknown cell (40
+    # cells), west to the wall's cell (col 0: 20 cells), north to row 59 (29 cells);
+    # map_range.c's range is the distance between the two cells' centres
+    origin = np.array([0.025, 0.525])
+    ranges = field.cast(np.tile(origin, (3, 1)), [0.0, math.pi, math.pi / 2], 5.0)
+    assert ranges[:3] == pytest.approx([40 * 0.05, 20 * 0.05, 29 * 0.05])
+    assert field.cast(origin[None], [0.0], 1.0)[0] == 1.0  # nothing within 1 m: the limit
+    # off the map counts as not free; a diagonal ray at 45 deg from cell (1, 1) to (59, 59)
+    off = np.array([[0.025, 2.2]])  # above the map
+    assert field.cast(off, [0.0], 5.0)[0] == 0.0
+    diag = field.cast(np.array([[-0.925, -0.925]]), [math.pi / 4], 10.0)[0]
+    assert diag == pytest.approx(58 * 0.05 * math.sqrt(2.0), abs=0.05)
+
+
+def _factor(params, pose, field, beams, rmax, converged=False):
+    """Return one particle's weight factor at ``pose``."""
+    return laser_models.weight_factors(params, np.array([pose]), field, beams, rmax,
+                                       converged)[0]
+
+
+def test_beam_model_closed_form():
+    field = amcl.LikelihoodMap(_room(), 2.0)
+    p = amcl.AmclParameters(laser_model_type='beam')
+    rmax = 5.0
+    # the sensor 0.1 m ahead of the base (col 22), looking east: the map's range to the east
+    # wall's cell (col 79) is 57 cells
+    expected = 57 * 0.05
+    beams = np.array([[0.1, 0.0, 0.0, expected],        # a hit where the map says
+                      [0.1, 0.0, 0.0, expected - 0.5],  # short: an unexpected obstacle
+                      [0.1, 0.0, 0.0, rmax]])           # at range_max: no return
+    factor = _factor(p, (0.025, 0.525, 0.0), field, beams, rmax)
+
+    def gauss(z):
+        return p.z_hit * math.exp(-z * z / (2 * p.sigma_hit ** 2))
+    pz = [gauss(0.0) + p.z_rand / rmax,
+          gauss(-0.5) + p.z_rand / rmax
+          + p.z_short * p.lambda_short * math.exp(-p.lambda_short * (expected - 0.5)),
+          gauss(rmax - expected) + p.z_max]
+    assert factor == pytest.approx(1.0 + sum(v ** 3 for v in pz))
+
+
+def test_likelihood_field_prob_closed_form_and_beam_skipping():
+    field = amcl.LikelihoodMap(_room(), 2.0)
+    p = amcl.AmclParameters(laser_model_type='likelihood_field_prob')
+    pose = (0.025, 0.525, 0.0)
+    rmax = 5.0
+    # end points 1.0 m and 0.6 m short of the east wall's cell (col 79: x 2.95 .. 3.0)
+    beams = np.array([[0.0, 0.0, 0.0, 1.925], [0.0, 0.0, 0.0, 2.325]])
+    d = field.lookup(np.array([[1.95, 0.525], [2.35, 0.525]]))
+    pz = p.z_hit * np.exp(-d ** 2 / (2 * p.sigma_hit ** 2)) + p.z_rand / rmax
+    assert _factor(p, pose, field, beams, rmax) == pytest.approx(np.prod(pz))
+    # beam skipping, converged filter: beam 0 ends 1 m from any obstacle at every particle
+    # (beyond beam_skip_distance 0.5): skipped; beam 1 ends 0.6 m off, skipped at 0.7
+    p.do_beamskip, p.max_beams, p.beam_skip_distance = True, 2, 0.7
+    assert _factor(p, pose, field, beams, rmax, True) == pytest.approx(pz[1])
+    # both beams skipped: 2 of max_beams 2 >= 0.9 x 2, so every beam is used
+    p.beam_skip_distance = 0.3
+    assert _factor(p, pose, field, beams, rmax, True) == pytest.approx(np.prod(pz))
+    # not converged: no skipping
+    p.beam_skip_distance = 0.7
+    assert _factor(p, pose, field, beams, rmax, False) == pytest.approx(np.prod(pz))
+
+
+def test_converged_after_resampling_a_tight_cloud():
+    filt = amcl.ParticleFilter(amcl.AmclParameters(), seed=0)
+    filt.initialize((1.0, 1.0, 0.0), np.diag([0.01, 0.01, 0.01]))
+    assert not filt.converged  # pf_init_converged
+    filt.resample()
+    assert filt.converged  # 0.1 m spread: every particle within 0.5 m of the mean
+    # two equal clusters 1.2 m apart: the mean between them, every particle 0.6 m from it
+    filt.particles = np.array([[0.0, 0.0, 0.0]] * 500 + [[1.2, 0.0, 0.0]] * 500)
+    filt.weights = np.full(1000, 1e-3)
+    filt.resample()
+    assert not filt.converged
+
+
+def test_beams_of_the_other_models():
+    ranges = [1.0, 0.05, 2.0, np.nan, 10.0, 3.0, 4.0, 5.0, np.inf]
+    beam = amcl.Amcl(amcl.AmclParameters(max_beams=5, laser_model_type='beam'))
+    b, rmax = beam.beams(ranges, 0.0, 0.1, 0.1, 10.0, (0.0, 0.0, 0.0))
+    # step 2: readings 0, 2, 4, 6, 8 -> 1.0, 2.0, 10.0 (= range_max: kept), 4.0, inf (left out)
+    assert b[:, 3].tolist() == [1.0, 2.0, 10.0, 4.0]
+    prob = amcl.Amcl(amcl.AmclParameters(max_beams=4, laser_model_type='likelihood_field_prob'))
+    b, _ = prob.beams(ranges, 0.0, 0.1, 0.1, 10.0, (0.0, 0.0, 0.0))
+    # step ceil(9 / 4) = 3: readings 0, 3, 6 -> 1.0, NaN (left out), 4.0
+    assert b[:, 3].tolist() == [1.0, 4.0]
+    assert np.allclose(b[:, 2], [0.0, 0.6])
+
+
+@pytest.mark.parametrize('model', ['likelihood_field', 'beam', 'likelihood_field_prob',
+                                   'beamskip'])
+def test_filter_converges_in_a_room_with_scans(model):
     room = _room()
-    loc = amcl.Amcl(amcl.AmclParameters(update_min_d=0.05), seed=0)
+    params = amcl.AmclParameters(update_min_d=0.05, laser_model_type=model)
+    if model == 'beamskip':
+        params.laser_model_type, params.do_beamskip = 'likelihood_field_prob', True
+    loc = amcl.Amcl(params, seed=0)
     loc.set_map(room)
     truth = np.array([0.5, 0.3, 0.3])
     loc.set_initial_pose(truth + (0.2, -0.15, 0.1), np.diag([0.05, 0.05, 0.02]))

@@ -20,8 +20,8 @@ cost
     CPU seconds per filter update and per scan, the particle count at the end; Nav2's 2,000
     particles at 10 Hz must take <= 15 % of one core.
 
-Usage: ``python -m amr_description.tools.benchmark.amcl_accuracy [--seed 1]``; returns 1 when
-a target is missed.
+Usage: ``python -m amr_description.tools.benchmark.amcl_accuracy [--seed 1]
+[--laser-model-type beam]``; returns 1 when a target is missed.
 """
 
 import argparse
@@ -110,6 +110,7 @@ def main(argv=None):
     """Print the figures (Nav2's defaults, then config/nav2_params.yaml); 1 when missed."""
     from amr_description.nav.amcl import Amcl
     from amr_description.nav.amcl import AmclParameters
+    from amr_description.nav.laser_models import LASER_MODELS
     from amr_description.nav.pose_graph import compose
     from amr_description.tools.benchmark.slam_accuracy import odometry
     from amr_description.tools.benchmark.slam_accuracy import ROUTES
@@ -117,6 +118,8 @@ def main(argv=None):
     from amr_description.tools.benchmark.slam_accuracy import trajectory
     parser = argparse.ArgumentParser(prog='amcl_accuracy', description=__doc__.splitlines()[1])
     parser.add_argument('--seed', type=int, default=1, help='random seed of the filter (1)')
+    parser.add_argument('--laser-model-type', choices=LASER_MODELS, default=None,
+                        help="laser_model_type of both runs (default: each one's own)")
     opts = parser.parse_args(argv)
     truth, twists = trajectory(ROUTES['arena'])
     # odometry from the true motion, expressed from the first true pose
@@ -128,6 +131,9 @@ def main(argv=None):
     missed = False
     for label, params in (("Nav2's defaults", AmclParameters()),
                           ('config/nav2_params.yaml', shipped_parameters())):
+        if opts.laser_model_type:
+            params.laser_model_type = opts.laser_model_type
+            label += f', {opts.laser_model_type}'
         amcl = Amcl(params, seed=opts.seed)
         amcl.set_map(grid)
         amcl.set_initial_pose(off, RVIZ_COVARIANCE)
