@@ -21,6 +21,7 @@ import time
 from amr_description.nav import map_io
 import numpy as np
 import pytest
+from test_sim import Peer  # noqa: I100 - the simulator tests' DDS peer
 
 pytest.importorskip('nav2_msgs.msg')
 
@@ -78,29 +79,20 @@ def scan_ranges(pose, count=360):
     return out
 
 
-class RobotPeer:
+class RobotPeer(Peer):
     """The standing robot: ``/tf``, ``/scan``; ``/initialpose`` out; each amcl's pose in."""
 
     def __init__(self, domain_id):
-        import os
-        import rclpy
         from geometry_msgs.msg import PoseWithCovarianceStamped
         from geometry_msgs.msg import TransformStamped
-        from rclpy.context import Context
-        from rclpy.executors import SingleThreadedExecutor
         from rclpy.qos import DurabilityPolicy
         from rclpy.qos import qos_profile_sensor_data
         from rclpy.qos import QoSProfile
         from sensor_msgs.msg import LaserScan
         from std_srvs.srv import Empty
         from tf2_msgs.msg import TFMessage
-        os.environ.setdefault('ROS_AUTOMATIC_DISCOVERY_RANGE', 'LOCALHOST')
-        self.rclpy, self.Empty = rclpy, Empty
-        self.context = Context()
-        rclpy.init(context=self.context, domain_id=domain_id)
-        self.node = rclpy.create_node('amcl_test_robot', context=self.context)
-        self.executor = SingleThreadedExecutor(context=self.context)
-        self.executor.add_node(self.node)
+        super().__init__(domain_id)
+        self.Empty = Empty
         latched = QoSProfile(depth=1, durability=DurabilityPolicy.TRANSIENT_LOCAL)
         self.tf = self.node.create_publisher(TFMessage, '/tf', 100)
         static = self.node.create_publisher(TFMessage, '/tf_static', latched)
@@ -111,7 +103,6 @@ class RobotPeer:
         laser.transform.rotation.w = 1.0
         static.publish(TFMessage(transforms=[laser]))
         self.poses = {name: [] for name in MODELS}
-        self.clients = {}
         for name in MODELS:
             self.node.create_subscription(PoseWithCovarianceStamped, f'/{name}/amcl_pose',
                                           self.poses[name].append, latched)
@@ -172,20 +163,9 @@ class RobotPeer:
         self.tf.publish(TFMessage(transforms=[t]))
         return stamp
 
-    def spin_until(self, predicate, timeout):
-        deadline = time.monotonic() + timeout
-        while time.monotonic() < deadline:
-            if predicate():
-                return True
-            self.executor.spin_once(timeout_sec=0.02)
-        return predicate()
-
     def nomotion_update(self, name):
         """Ask one amcl for an update without motion; wait for its answer."""
-        client = self.clients[name]
-        assert client.wait_for_service(timeout_sec=60.0), f'{name}: no nomotion service'
-        future = client.call_async(self.Empty.Request())
-        assert self.spin_until(future.done, 60.0), f'{name}: no answer'
+        self.call(name, self.Empty.Request())
 
     def error(self, name):
         """Return the newest ``amcl_pose``'s distance (m) and turn (rad) from the truth."""
@@ -193,11 +173,6 @@ class RobotPeer:
         yaw = 2 * math.atan2(p.orientation.z, p.orientation.w)
         return (math.hypot(p.position.x - TRUTH[0], p.position.y - TRUTH[1]),
                 abs(math.remainder(yaw - TRUTH[2], math.tau)))
-
-    def close(self):
-        self.executor.shutdown()
-        self.node.destroy_node()
-        self.rclpy.try_shutdown(context=self.context)
 
 
 def test_beam_and_likelihood_field_prob_localize(procs, exe, ros_env, tmp_path):
