@@ -104,35 +104,39 @@ class LikelihoodMap:
         :param max_range: m.
         :returns: (R,) ranges (m).
         """
-        if self._clearance is None:  # cells to the nearest cell not free, off the map included
+        if self._clearance is None:
+            # cells to the nearest cell not free, 0 on those, with a border of them round the map
             padded = np.pad(self._is_free, 1, constant_values=False)
-            self._clearance = ndimage.distance_transform_edt(padded)[1:-1, 1:-1]
+            self._clearance = ndimage.distance_transform_edt(padded).ravel()
+        rows, cols = self.shape[0] + 2, self.shape[1] + 2
         origins = np.asarray(origins, dtype=float).reshape(-1, 2)
         angles = np.asarray(angles, dtype=float).reshape(-1)
-        direction = np.column_stack([np.cos(angles), np.sin(angles)])
-        start, _ = self._cells(origins)
         out = np.full(len(origins), float(max_range))
+        # in cells of the padded grid: a ray's point is g + t d, its cell floor(g + t d)
+        g = (origins - self.origin) / self.resolution + 1.0
+        start = np.floor(g)
+        d = np.column_stack([np.cos(angles), np.sin(angles)])
+        ahead = (d >= 0.0).astype(float)  # the next boundary: cell + 1 ahead, cell behind
+        with np.errstate(divide='ignore'):
+            inverse = np.where(d != 0.0, 1.0 / d, 1e30)
+        limit = max_range / self.resolution
         todo = np.arange(len(origins))
         t = np.zeros(len(origins))
-        res = self.resolution
         while len(todo):
-            points = origins[todo] + t[todo, None] * direction[todo]
-            cells, inside = self._cells(points)
-            free = np.zeros(len(todo), dtype=bool)
-            free[inside] = self._is_free[cells[inside, 1], cells[inside, 0]]
-            hit = ~free
-            out[todo[hit]] = np.hypot(*(cells[hit] - start[todo[hit]]).T) * res
-            clearance = np.zeros(len(todo))
-            clearance[free] = self._clearance[cells[free, 1], cells[free, 0]]
-            # to the next cell boundary along the ray
-            edge = self.origin + (cells + (direction[todo] > 0)) * res
-            d = direction[todo]
-            to_edge = np.divide(edge - points, d, out=np.full(d.shape, np.inf), where=d != 0.0)
-            advance = to_edge.min(axis=1) + 1e-6 * res
-            # a point in its cell is within res / sqrt(2) of the centre: the nearest cell not
-            # free is at least (clearance - sqrt(2)) cells away
-            t[todo] += np.maximum(advance, (clearance - math.sqrt(2.0)) * res)
-            todo = todo[free & (t[todo] <= max_range)]
+            point = g + t[:, None] * d
+            cell = np.floor(point)
+            col = np.clip(cell[:, 0], 0, cols - 1).astype(np.int64)
+            row = np.clip(cell[:, 1], 0, rows - 1).astype(np.int64)
+            clearance = self._clearance[row * cols + col]
+            hit = clearance == 0.0
+            out[todo[hit]] = np.hypot(*(cell[hit] - start[hit]).T) * self.resolution
+            # to the next cell boundary; or, far from any cell not free, by the clearance (a
+            # point in its cell is within sqrt(2) / 2 of the centre, and so is the other's)
+            advance = ((cell + ahead - point) * inverse).min(axis=1) + 1e-6
+            t = t + np.maximum(advance, clearance - math.sqrt(2.0))
+            keep = ~hit & (t <= limit)
+            todo, g, start, d, ahead, inverse, t = (
+                todo[keep], g[keep], start[keep], d[keep], ahead[keep], inverse[keep], t[keep])
         return out
 
     def random_free_poses(self, count, rng):
