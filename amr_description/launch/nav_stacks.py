@@ -33,6 +33,15 @@ SLAM_ARGUMENTS = [
 ]
 """slam_toolbox's ``online_async_launch.py`` arguments, its names, defaults and descriptions."""
 
+SLAM_LOCALIZATION_ARGUMENTS = [
+    SLAM_ARGUMENTS[0],
+    DeclareLaunchArgument('slam_params_file', '',
+                          'Full path to the ROS2 parameters file to use for the slam_toolbox '
+                          "node (default: the package's config/mapper_params_localization.yaml)"),
+    *SLAM_ARGUMENTS[2:],
+]
+"""slam_toolbox's ``localization_launch.py`` arguments (those of ``online_async_launch.py``)."""
+
 
 MAP_ARGUMENT = DeclareLaunchArgument('map', '', 'Full path to map yaml file to load')
 USE_SIM_TIME_ARGUMENT = DeclareLaunchArgument('use_sim_time', 'false',
@@ -197,14 +206,35 @@ def online_async(args):
     :returns: list of actions.
     :raises LaunchError: on a bad argument value or a missing params file.
     """
-    args = with_defaults(SLAM_ARGUMENTS, args)
+    return _slam_toolbox(with_defaults(SLAM_ARGUMENTS, args), 'async_slam_toolbox_node',
+                         'mapper_params_online_async.yaml')
+
+
+def slam_toolbox_localization(args):
+    """
+    Describe ``slam_toolbox_localization`` (slam_toolbox's ``localization_launch.py``).
+
+    As :func:`online_async` with ``localization_slam_toolbox_node`` and
+    ``config/mapper_params_localization.yaml``; named so beside nav2_bringup's
+    ``localization_launch.py`` (``localization``).
+
+    :param args: dict of launch-argument values (see ``SLAM_LOCALIZATION_ARGUMENTS``).
+    :returns: list of actions.
+    :raises LaunchError: on a bad argument value or a missing params file.
+    """
+    return _slam_toolbox(with_defaults(SLAM_LOCALIZATION_ARGUMENTS, args),
+                         'localization_slam_toolbox_node', 'mapper_params_localization.yaml')
+
+
+def _slam_toolbox(args, executable, config):
+    """Return the actions of a slam_toolbox node named ``slam_toolbox`` and its autostart."""
     use_sim_time = parse_bool(args['use_sim_time'], 'use_sim_time')
     autostart = parse_bool(args['autostart'], 'autostart')
     managed = parse_bool(args['use_lifecycle_manager'], 'use_lifecycle_manager')
-    params = args['slam_params_file'] or share_file('config', 'mapper_params_online_async.yaml')
+    params = args['slam_params_file'] or share_file('config', config)
     if not os.path.isfile(os.path.expanduser(params)):
         raise LaunchError(f"launch argument 'slam_params_file': no such file '{params}'")
-    actions = [Node(PACKAGE, 'async_slam_toolbox_node', name='slam_toolbox', namespace='',
+    actions = [Node(PACKAGE, executable, name='slam_toolbox', namespace='',
                     output='screen',
                     parameters=[os.path.expanduser(params),
                                 {'use_lifecycle_manager': managed,
@@ -434,6 +464,10 @@ def robot_navigation(namespace, args, pose):
 
 
 NAV2_STACKS = {
+    'slam_toolbox_localization': (
+        slam_toolbox_localization, SLAM_LOCALIZATION_ARGUMENTS,
+        "slam_toolbox's localization_launch.py: localization on a serialized pose graph "
+        '(map_file_name)'),
     'localization': (localization, LOCALIZATION_ARGUMENTS,
                      "nav2_bringup's map_server + amcl + lifecycle_manager_localization"),
     'navigation_launch': (navigation, NAVIGATION_ARGUMENTS,

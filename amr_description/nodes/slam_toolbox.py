@@ -127,7 +127,7 @@ class SlamToolbox(ManagedNode):
         if values['mode'] not in ('mapping', 'localization'):
             raise ValueError(f"parameter 'mode': expected mapping or localization, got "
                              f"'{values['mode']}'")
-        self.mapper = slam.Mapper(self.params)
+        self.mapper = self._new_mapper()
         if values['map_file_name']:
             self._load(values['map_file_name'], values['map_start_pose']
                        if not values['map_start_at_dock'] else None)
@@ -139,6 +139,10 @@ class SlamToolbox(ManagedNode):
         self._paused = False
         self._map_msg = None
         self._map_version = -1
+
+    def _new_mapper(self):
+        """Return an empty mapper (the localization node's: a Localizer)."""
+        return slam.Mapper(self.params)
 
     def activate(self):
         """Create the publishers, subscriptions, timers and services."""
@@ -347,7 +351,7 @@ class SlamToolbox(ManagedNode):
         return response
 
     def _on_reset(self, request, response):
-        self.mapper = slam.Mapper(self.params)
+        self.mapper = self._new_mapper()
         self._map_version = -1
         self._last_stamp = None
         self._paused = bool(request.pause_new_measurements)
