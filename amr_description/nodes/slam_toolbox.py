@@ -312,10 +312,15 @@ class SlamToolbox(ManagedNode):
         pose = mapper.graph.poses[0] if start_pose is None else np.asarray(start_pose, float)
         if len(pose) != 3:
             raise ValueError(f'map_start_pose: expected [x, y, theta], got {list(pose)}')
+        what = self._start(mapper, pose)
+        self.get_logger().info(f'Loaded pose graph {stem}: {len(mapper.graph)} nodes, '
+                               f'{what} ({pose[0]:g}, {pose[1]:g}, {pose[2]:g})')
+
+    def _start(self, mapper, pose):
+        """Continue the loaded ``mapper`` at map ``pose``; return what the log line says."""
         mapper.restart_at(pose)
         self.mapper = mapper
-        self.get_logger().info(f'Loaded pose graph {stem}: {len(mapper.graph)} nodes, '
-                               f'starting at ({pose[0]:g}, {pose[1]:g}, {pose[2]:g})')
+        return 'starting at'
 
     def _on_deserialize(self, request, response):
         kind = srv.DeserializePoseGraph.Request

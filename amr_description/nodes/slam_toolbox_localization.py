@@ -18,13 +18,11 @@ Source: slam_toolbox 2.8.3 ``src/slam_toolbox_localization.cpp``.
 
 import math
 
-from amr_description.nav import slam
 from amr_description.nav.slam_localization import Localizer
 from amr_description.nodes.slam_toolbox import SlamToolbox
 from amr_description.ros import shutdown
 from amr_description.ros.transforms import yaw_of
 from geometry_msgs.msg import PoseWithCovarianceStamped
-import numpy as np
 from slam_toolbox import srv
 
 
@@ -41,18 +39,16 @@ class LocalizationSlamToolbox(SlamToolbox):
             PoseWithCovarianceStamped, '/initialpose', self._on_initial_pose, 1))
 
     def _load(self, stem, start_pose):
-        loc = Localizer.from_mapper(slam.load_graph(stem, self.params))
         if start_pose is None:
             self.get_logger().error('LocalizationSlamToolbox: Starting localization at first '
                                     'node (dock) is correctly not supported.')
-            start_pose = loc.graph.poses[0]
-        pose = np.asarray(start_pose, dtype=float)
-        if len(pose) != 3:
-            raise ValueError(f'map_start_pose: expected [x, y, theta], got {list(pose)}')
+        super()._load(stem, start_pose)
+
+    def _start(self, mapper, pose):
+        loc = Localizer.from_mapper(mapper)
         loc.localize_at(pose)
         self.mapper = loc
-        self.get_logger().info(f'Loaded pose graph {stem}: {len(loc.graph)} nodes, localizing '
-                               f'near ({pose[0]:g}, {pose[1]:g}, {pose[2]:g})')
+        return 'localizing near'
 
     def _on_initial_pose(self, msg):
         p = msg.pose.pose
