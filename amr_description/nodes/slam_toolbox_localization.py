@@ -32,6 +32,15 @@ class LocalizationSlamToolbox(SlamToolbox):
     def _new_mapper(self):
         return Localizer(self.params)
 
+    def configure(self):
+        """Configure as the mapper node; say so when there is no graph to localize on."""
+        super().configure()
+        if not self.p['map_file_name']:
+            self.get_logger().warning(
+                "No pose graph to localize on: set 'map_file_name' (a graph saved with "
+                'slam_toolbox/serialize_map) or call slam_toolbox/deserialize_map with '
+                'LOCALIZE_AT_POSE')
+
     def activate(self):
         """Create the mapper node's topics and services, and ``/initialpose``."""
         super().activate()
