@@ -210,8 +210,9 @@ class Amcl(ManagedNode):
 
         amcl_node's ``handleInitialPose`` adds this to a pose stamped in the past, looked up
         through ``odom_frame_id`` to the node's now, which tf2 reaches only when the odometry
-        is stamped ahead of it; here to the newest odometry instead. Without the odometry at
-        ``stamp``: no change, with upstream's warning once a transform has been sent.
+        is stamped ahead of it; here to the newest odometry instead. A pose stamped after the
+        newest odometry (RViz's, the viewer's) is current: no change. Without the odometry at
+        an older ``stamp``: no change, with upstream's warning once a transform has been sent.
         """
         p = self.p
         try:
@@ -219,7 +220,7 @@ class Amcl(ManagedNode):
                                             stamp_seconds(stamp))
             latest, _ = self.tf_buffer.lookup(p['odom_frame_id'], p['base_frame_id'])
         except TransformException as exc:
-            if self._last_tf is not None:
+            if self._last_tf is not None and not not_yet(exc):
                 self.get_logger().warning(
                     f'Failed to transform initial pose in time ({str(exc).strip()})')
             return (0.0, 0.0, 0.0)
