@@ -9,7 +9,14 @@ laser models ``likelihood_field``, ``beam`` and ``likelihood_field_prob`` (anoth
 warning line, and ``likelihood_field`` runs, as upstream's ``createLaserObject``); the motion
 models ``nav2_amcl::DifferentialMotionModel`` and ``nav2_amcl::OmniMotionModel`` (another value
 fails configure with one line, as pluginlib does). A parameter of the wrong type fails
-configure with one line naming it.
+configure with one line naming it; out-of-range values are mended with upstream's warnings
+(``initParameters``: a negative ``laser_likelihood_max_dist``, ``max_particles`` or
+``min_particles``, ``min_particles`` above ``max_particles``, ``resample_interval`` below 1).
+
+Kept from one configure to the next, as upstream: the last pose set or published (the filter
+resumes there unless ``always_reset_initial_pose``); with ``set_initial_pose``, cleanup writes
+it into ``initial_pose.*``. ``initialpose`` is heard from configure on; a pose heard while
+inactive is used on activate.
 
 On activate: ``map_topic`` (``map``, transient local) in; ``scan_topic`` (``scan``, sensor data
 QoS) in, placed with TF (``odom_frame_id`` -> ``base_frame_id`` at the scan's stamp,
@@ -55,6 +62,7 @@ from nav2_msgs.msg import ParticleCloud
 from nav2_msgs.srv import SetInitialPose
 from nav_msgs.msg import OccupancyGrid
 import numpy as np
+from rclpy.parameter import Parameter
 from rclpy.qos import DurabilityPolicy
 from rclpy.qos import qos_profile_sensor_data
 from rclpy.qos import qos_profile_system_default
@@ -91,8 +99,11 @@ class Amcl(ManagedNode):
         super().__init__('amcl', automatically_declare_parameters_from_overrides=True,
                          **kwargs)
         self._active = []
+        self._configured = []  # what configure creates: /initialpose is heard while inactive
         self._listener = None
         self.p = {}
+        self._known = None  # (pose, 3x3 covariance) last set or published: kept over cleanup
+        self._inactive_pose = None  # an /initialpose heard while inactive, used on activate
 
     def configure(self):
         """Read and check the parameters; build the filter."""
@@ -113,16 +124,46 @@ class Amcl(ManagedNode):
             raise ValueError(f"parameter 'robot_model_type': only {amcl.DIFFERENTIAL[0]} and "
                              f'{amcl.OMNI[0]} are implemented, got '
                              f"'{self.p['robot_model_type']}'")
+        self._semantic_checks()
         params = amcl.AmclParameters(**{n: self.p[n] for n in amcl.AmclParameters.names()})
-        if params.min_particles > params.max_particles or params.min_particles < 1:
-            raise ValueError(f"parameters 'min_particles' ({params.min_particles}) and "
-                             f"'max_particles' ({params.max_particles}): expected 1 <= min "
-                             '<= max')
+        if params.max_particles < 1:
+            raise ValueError(f"parameter 'max_particles': expected >= 1, got "
+                             f'{params.max_particles}')
         self.filter = amcl.Amcl(params)
         self.tf_buffer = TransformBuffer()
         self._pending = StampedQueue(SCAN_QUEUE, self._process)
         self._last_tf = None
         self._sent_pose = False
+        if self.p['always_reset_initial_pose']:
+            self._known = None
+        elif self._known is not None:  # as upstream's initOdometry: resume at the last pose
+            self.filter.set_initial_pose(*self._known)
+        self._configured = [self.create_subscription(
+            PoseWithCovarianceStamped, 'initialpose', self._on_initial_pose,
+            qos_profile_system_default)]
+
+    def _semantic_checks(self):
+        """Mend out-of-range values with upstream's warnings (``initParameters``)."""
+        p, warn = self.p, self.get_logger().warning
+        fixes = [
+            ('laser_likelihood_max_dist', p['laser_likelihood_max_dist'] < 0, 2.0,
+             'negative', 'default value 2.0'),
+            ('max_particles', p['max_particles'] < 0, 2000, 'negative', 'default value 2000'),
+            ('min_particles', p['min_particles'] < 0, 500, 'negative', 'default value 500'),
+        ]
+        for name, bad, value, what, to in fixes:
+            if bad:
+                warn(f"You've set {name} to be {what}, this isn't allowed so it will be set to "
+                     f'{to}.')
+                p[name] = value
+        if p['min_particles'] > p['max_particles']:
+            warn("You've set min_particles to be greater than max particles, this isn't allowed "
+                 'so max_particles will be set to min_particles.')
+            p['max_particles'] = p['min_particles']
+        if p['resample_interval'] <= 0:
+            warn("You've set resample_interval to be zero or negative, this isn't allowed so it "
+                 'will be set to default value to 1.')
+            p['resample_interval'] = 1
 
     def activate(self):
         """Create the subscriptions, publishers, services and the reminder timer."""
@@ -138,8 +179,6 @@ class Amcl(ManagedNode):
             self.create_subscription(OccupancyGrid, p['map_topic'], self._on_map, LATCHED),
             self.create_subscription(LaserScan, p['scan_topic'], self._on_scan,
                                      qos_profile_sensor_data),
-            self.create_subscription(PoseWithCovarianceStamped, 'initialpose',
-                                     self._on_initial_pose, qos_profile_system_default),
             self.create_service(Empty, 'reinitialize_global_localization', self._on_global),
             self.create_service(Empty, 'request_nomotion_update', self._on_nomotion),
             self.create_service(SetInitialPose, 'set_initial_pose', self._on_set_initial_pose),
@@ -148,6 +187,9 @@ class Amcl(ManagedNode):
             self.filter.set_initial_pose(
                 (p['initial_pose.x'], p['initial_pose.y'], p['initial_pose.yaw']),
                 np.zeros((3, 3)))
+        elif self._inactive_pose is not None:
+            self._use_initial_pose(self._inactive_pose)
+        self._inactive_pose = None
 
     def deactivate(self):
         """Destroy what :meth:`activate` created."""
@@ -159,8 +201,16 @@ class Amcl(ManagedNode):
             self._listener = None
 
     def cleanup(self):
-        """Forget the filter."""
+        """Stop hearing ``initialpose``; with ``set_initial_pose``, keep the last pose in it."""
         self.get_logger().info('Cleaning up')
+        self.destroy_entities(self._configured)
+        self._configured = []
+        if self.p.get('set_initial_pose') and self._known is not None:
+            pose = self._known[0]  # as upstream's on_cleanup: the next activate starts there
+            self.set_parameters([Parameter('initial_pose.x', value=float(pose[0])),
+                                 Parameter('initial_pose.y', value=float(pose[1])),
+                                 Parameter('initial_pose.z', value=0.0),
+                                 Parameter('initial_pose.yaw', value=float(pose[2]))])
 
     # --- inputs -----------------------------------------------------------------------------
     def _remind(self):
@@ -182,6 +232,10 @@ class Amcl(ManagedNode):
         self.filter.set_map(grid)
 
     def _on_initial_pose(self, msg):
+        if not msg.header.frame_id:
+            self.get_logger().warning('Received initial pose with empty frame_id. You should '
+                                      'always supply a frame_id.')
+            return
         frame = msg.header.frame_id.lstrip('/')
         if frame != self.p['global_frame_id']:
             self.get_logger().warning(
@@ -196,12 +250,24 @@ class Amcl(ManagedNode):
             self.get_logger().warning('initialpose: NaN or infinite value in the pose or its '
                                       'covariance; ignored')
             return
+        if not self.is_active():
+            self._inactive_pose = msg
+            self.get_logger().warning('Received initial pose request, but AMCL is not yet in '
+                                      'the active state')
+            return
+        self._use_initial_pose(msg)
+
+    def _use_initial_pose(self, msg):
+        """Start the filter at a checked ``initialpose`` message."""
+        pose = msg.pose.pose
+        c = msg.pose.covariance
         cov = np.array([[c[0], c[1], 0.0], [c[6], c[7], 0.0], [0.0, 0.0, c[35]]])
         mean = compose((pose.position.x, pose.position.y, yaw_of(pose.orientation)),
                        self._odometry_since(msg.header.stamp))
         self.get_logger().info(f'Setting pose ({self.get_clock().now().nanoseconds * 1e-9:.6f})'
                                f': {mean[0]:.3f} {mean[1]:.3f} {mean[2]:.3f}')
         self.filter.set_initial_pose(mean, cov)
+        self._known = (np.asarray(mean, dtype=float), np.diag([c[0], c[7], c[35]]))
         self._sent_pose = False
 
     def _odometry_since(self, stamp):
@@ -303,6 +369,7 @@ class Amcl(ManagedNode):
         c[35] = cov[2, 2]
         msg.pose.covariance = [float(v) for v in c]
         self._pose_pub.publish(msg)
+        self._known = (np.array(pose, dtype=float), np.diag([cov[0, 0], cov[1, 1], cov[2, 2]]))
 
     def _publish_cloud(self, stamp):
         header = Header(stamp=stamp, frame_id=self.p['global_frame_id'])

@@ -12,7 +12,8 @@ twelve ``request_nomotion_update`` calls bring each ``amcl_pose`` to within 10 c
 the pose (a base that does not move gives the particles no motion noise: the filter settles on
 one of its first particles, 1-6 cm off in ten runs). A third amcl with an unknown model says
 so in one line and runs the likelihood field. A pose stamped in the past is moved on by the
-odometry since its stamp.
+odometry since its stamp; one heard while inactive is used on activate; the last pose is kept
+over cleanup and configure.
 """
 
 import math
@@ -229,6 +230,35 @@ def test_beam_and_likelihood_field_prob_localize(procs, exe, ros_env, tmp_path):
                           spread=False)
             peer.spin_until(moved_on, 1.0)
         assert moved_on(), {n: peer.error(n) for n in MODELS}
+        # through the lifecycle as upstream: a pose heard while inactive is used on activate,
+        # and the last pose is kept from one configure to the next
+        from conftest import run_until
+
+        def transition(name):
+            result = run_until([exe('ros2'), 'lifecycle', 'set', '/odd/amcl', name], ros_env,
+                               lambda r: 'Transitioning successful' in r.stdout)
+            assert 'Transitioning successful' in result.stdout, result.stdout + result.stderr
+
+        def odd_at(x, y):
+            seen = len(peer.poses['odd'])
+            return lambda: (len(peer.poses['odd']) > seen and math.hypot(
+                peer.poses['odd'][-1].pose.pose.position.x - x,
+                peer.poses['odd'][-1].pose.pose.position.y - y) < 0.01)
+        transition('deactivate')
+        aside = (TRUTH[0] + 0.3, TRUTH[1])
+        assert peer.spin_until(lambda: peer.set_pose(*aside, TRUTH[2], spread=False) or
+                               'but AMCL is not yet in the active state' in nodes['odd'].output,
+                               60.0), nodes['odd'].output[-2000:]
+        arrived = odd_at(*aside)
+        transition('activate')
+        assert peer.spin_until(arrived, 60.0), nodes['odd'].output[-2000:]
+        for name in ('deactivate', 'cleanup', 'configure'):
+            transition(name)
+        reminders = nodes['odd'].output.count('Please set the initial pose')
+        resumed = odd_at(*aside)
+        transition('activate')
+        assert peer.spin_until(resumed, 60.0), nodes['odd'].output[-2000:]
+        assert nodes['odd'].output.count('Please set the initial pose') == reminders
         for proc in nodes.values():
             assert proc.popen.poll() is None  # still running
     finally:
