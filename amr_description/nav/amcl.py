@@ -92,6 +92,7 @@ class AmclParameters:
     beam_skip_distance: float = 0.5
     beam_skip_threshold: float = 0.3
     beam_skip_error_threshold: float = 0.9
+    freespace_downsampling: bool = False
 
     @classmethod
     def names(cls):
@@ -344,7 +345,8 @@ class Amcl:
 
     def set_map(self, grid):
         """Use ``grid`` (:class:`~amr_description.nav.map_io.GridMap`) from now on."""
-        self.map = LikelihoodMap(grid, self.params.laser_likelihood_max_dist)
+        self.map = LikelihoodMap(grid, self.params.laser_likelihood_max_dist,
+                                 self.params.freespace_downsampling)
 
     def set_initial_pose(self, pose, covariance):
         """Start the filter round ``pose`` (map frame) with a 3x3 ``covariance``."""

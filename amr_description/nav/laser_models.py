@@ -49,9 +49,11 @@ class LikelihoodMap:
 
     :param grid: :class:`~amr_description.nav.map_io.GridMap`.
     :param max_dist: m, the distance cap (``laser_likelihood_max_dist``).
+    :param downsample: ``freespace_downsampling``: global localization draws from every
+        other free cell in x and y (``createFreeSpaceVector``).
     """
 
-    def __init__(self, grid, max_dist):
+    def __init__(self, grid, max_dist, downsample=False):
         """Compute the distance field."""
         self.resolution = float(grid.resolution)
         self.origin = np.array(grid.origin[:2], dtype=float)
@@ -60,6 +62,8 @@ class LikelihoodMap:
         self.max_dist = float(max_dist)
         occupied = data == 100
         self.free = np.argwhere(data == 0)  # (row, col)
+        if downsample:
+            self.free = self.free[(self.free[:, 0] % 2 == 0) & (self.free[:, 1] % 2 == 0)]
         if occupied.any():
             d = ndimage.distance_transform_edt(~occupied) * self.resolution
         else:

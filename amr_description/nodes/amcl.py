@@ -82,7 +82,6 @@ NODE_PARAMETERS = {
     'initial_pose.z': 0.0, 'initial_pose.yaw': 0.0, 'always_reset_initial_pose': False,
     'save_pose_rate': 0.5, 'tf_broadcast': True, 'transform_tolerance': 1.0,
     'scan_topic': 'scan', 'map_topic': 'map', 'first_map_only': False,
-    'freespace_downsampling': False,
 }
 """amcl's node parameters with Nav2's defaults (``nav2_amcl/src/amcl_node.cpp``)."""
 

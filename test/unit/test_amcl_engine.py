@@ -83,6 +83,13 @@ def test_distance_field_and_free_space():
     assert np.all(field.lookup(poses[:, :2]) > 0.0)
 
 
+def test_freespace_downsampling_draws_from_every_other_free_cell():
+    field = amcl.LikelihoodMap(_room(), 2.0, downsample=True)
+    assert len(field.free) == 29 * 39  # rows 2..58 and columns 2..78, even ones only
+    assert np.all(field.free % 2 == 0)
+    assert len(amcl.LikelihoodMap(_room(), 2.0).free) == 58 * 78
+
+
 def test_beams_follow_nav2_rules():
     filt = amcl.Amcl(amcl.AmclParameters(max_beams=5, laser_max_range=-1.0))
     ranges = [1.0, 0.05, 2.0, np.nan, 10.0, 3.0, 4.0, 5.0, 6.0]
