@@ -335,6 +335,7 @@ class Amcl:
         self.params = params or AmclParameters()
         self.filter = ParticleFilter(self.params, seed)
         self.map = None
+        self._grid = None
         self.initialized = False
         self._odom = None  # odometry pose at the last filter update
         self._force = False
@@ -345,8 +346,30 @@ class Amcl:
 
     def set_map(self, grid):
         """Use ``grid`` (:class:`~amr_description.nav.map_io.GridMap`) from now on."""
+        self._grid = grid
         self.map = LikelihoodMap(grid, self.params.laser_likelihood_max_dist,
                                  self.params.freespace_downsampling)
+
+    def update_parameters(self, values):
+        """
+        Take new parameter values at run time (upstream's ``dynamicParametersCallback``).
+
+        Every field of :class:`AmclParameters` in ``values`` is used from the next scan on;
+        the distance field is rebuilt when ``laser_likelihood_max_dist`` or
+        ``freespace_downsampling`` changed. The particles are kept (upstream re-initialises
+        its filter round the last pose of configure for a particle-count change); new
+        particle limits apply at the next resampling.
+
+        :param values: ``{name: value}``; other names are ignored.
+        """
+        names = set(AmclParameters.names())
+        rebuild = any(values.get(n, getattr(self.params, n)) != getattr(self.params, n)
+                      for n in ('laser_likelihood_max_dist', 'freespace_downsampling'))
+        for name, value in values.items():
+            if name in names:
+                setattr(self.params, name, value)
+        if rebuild and self.map is not None:
+            self.set_map(self._grid)
 
     def set_initial_pose(self, pose, covariance):
         """Start the filter round ``pose`` (map frame) with a 3x3 ``covariance``."""

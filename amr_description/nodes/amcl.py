@@ -16,7 +16,8 @@ configure with one line naming it; out-of-range values are mended with upstream'
 Kept from one configure to the next, as upstream: the last pose set or published (the filter
 resumes there unless ``always_reset_initial_pose``); with ``set_initial_pose``, cleanup writes
 it into ``initial_pose.*``. ``initialpose`` is heard from configure on; a pose heard while
-inactive is used on activate.
+inactive is used on activate. While active, ``ros2 param set`` values are taken at once, as
+upstream's dynamic parameters (:meth:`Amcl._on_set_parameters`).
 
 On activate: ``map_topic`` (``map``, transient local) in; ``scan_topic`` (``scan``, sensor data
 QoS) in, placed with TF (``odom_frame_id`` -> ``base_frame_id`` at the scan's stamp,
@@ -46,6 +47,7 @@ from amr_description.nav.pose_graph import between
 from amr_description.nav.pose_graph import compose
 from amr_description.ros import shutdown
 from amr_description.ros.managed_node import ManagedNode
+from amr_description.ros.parameters import checked_value
 from amr_description.ros.parameters import read_parameters
 from amr_description.ros.parameters import unused_parameters
 from amr_description.ros.stamps import time_to_msg
@@ -62,6 +64,7 @@ from nav2_msgs.msg import ParticleCloud
 from nav2_msgs.srv import SetInitialPose
 from nav_msgs.msg import OccupancyGrid
 import numpy as np
+from rcl_interfaces.msg import SetParametersResult
 from rclpy.parameter import Parameter
 from rclpy.qos import DurabilityPolicy
 from rclpy.qos import qos_profile_sensor_data
@@ -99,6 +102,8 @@ class Amcl(ManagedNode):
                          **kwargs)
         self._active = []
         self._configured = []  # what configure creates: /initialpose is heard while inactive
+        self._inputs = {}  # scan_topic and map_topic while active
+        self._parameters_handler = None
         self._listener = None
         self.p = {}
         self._known = None  # (pose, 3x3 covariance) last set or published: kept over cleanup
@@ -114,15 +119,7 @@ class Amcl(ManagedNode):
         if unused:
             self.get_logger().info('Parameters not used by this implementation: '
                                    + ', '.join(unused))
-        if self.p['laser_model_type'] not in LASER_MODELS:
-            self.get_logger().warning(
-                f"parameter 'laser_model_type': '{self.p['laser_model_type']}' is none of "
-                f"{', '.join(LASER_MODELS)}; likelihood_field runs, as upstream's")
-            self.p['laser_model_type'] = 'likelihood_field'
-        if self.p['robot_model_type'] not in amcl.DIFFERENTIAL + amcl.OMNI:
-            raise ValueError(f"parameter 'robot_model_type': only {amcl.DIFFERENTIAL[0]} and "
-                             f'{amcl.OMNI[0]} are implemented, got '
-                             f"'{self.p['robot_model_type']}'")
+        self._check_models(self.p)
         self._semantic_checks()
         params = amcl.AmclParameters(**{n: self.p[n] for n in amcl.AmclParameters.names()})
         if params.max_particles < 1:
@@ -140,6 +137,61 @@ class Amcl(ManagedNode):
         self._configured = [self.create_subscription(
             PoseWithCovarianceStamped, 'initialpose', self._on_initial_pose,
             qos_profile_system_default)]
+
+    def _check_models(self, p):
+        """Fall back to the likelihood field as upstream; refuse an unknown motion model."""
+        if p['laser_model_type'] not in LASER_MODELS:
+            self.get_logger().warning(
+                f"parameter 'laser_model_type': '{p['laser_model_type']}' is none of "
+                f"{', '.join(LASER_MODELS)}; likelihood_field runs, as upstream's")
+            p['laser_model_type'] = 'likelihood_field'
+        if p['robot_model_type'] not in amcl.DIFFERENTIAL + amcl.OMNI:
+            raise ValueError(f"parameter 'robot_model_type': only {amcl.DIFFERENTIAL[0]} and "
+                             f'{amcl.OMNI[0]} are implemented, got '
+                             f"'{p['robot_model_type']}'")
+
+    def _on_set_parameters(self, parameters):
+        """
+        Take ``ros2 param set`` values while active (upstream's ``dynamicParametersCallback``).
+
+        A value of the wrong type, an unknown motion model or ``min_particles`` above
+        ``max_particles`` is refused with its reason and nothing changes; the filter takes the
+        others from the next scan (:meth:`~amr_description.nav.amcl.Amcl.update_parameters`),
+        and a new ``scan_topic`` or ``map_topic`` is subscribed to.
+        """
+        defaults = {**NODE_PARAMETERS, **{n: getattr(amcl.AmclParameters(), n)
+                                          for n in amcl.AmclParameters.names()}}
+        values = dict(self.p)
+        try:
+            for parameter in parameters:
+                if parameter.name in defaults:
+                    values[parameter.name] = checked_value(parameter.name, parameter.value,
+                                                           defaults[parameter.name])
+            self._check_models(values)
+        except ValueError as exc:
+            return SetParametersResult(successful=False, reason=str(exc))
+        if values['min_particles'] > values['max_particles']:
+            reason = ("You've set min_particles to be greater than max particles, this isn't "
+                      'allowed.')
+            self.get_logger().error(reason)
+            return SetParametersResult(successful=False, reason=reason)
+        topics = {n for n in ('scan_topic', 'map_topic') if values[n] != self.p[n]}
+        self.p = values
+        self.filter.update_parameters(values)
+        for name in topics:
+            self.destroy_entities([self._inputs[name]])
+            self._subscribe(name)
+        return SetParametersResult(successful=True)
+
+    def _subscribe(self, name):
+        """Subscribe to ``scan_topic`` or ``map_topic`` (kept in :attr:`_inputs`)."""
+        if name == 'scan_topic':
+            sub = self.create_subscription(LaserScan, self.p['scan_topic'], self._on_scan,
+                                           qos_profile_sensor_data)
+        else:
+            sub = self.create_subscription(OccupancyGrid, self.p['map_topic'], self._on_map,
+                                           LATCHED)
+        self._inputs[name] = sub
 
     def _semantic_checks(self):
         """Mend out-of-range values with upstream's warnings (``initParameters``)."""
@@ -173,11 +225,11 @@ class Amcl(ManagedNode):
                                                 qos_profile_sensor_data)
         self._tf_pub = self.create_publisher(TFMessage, '/tf', 100)
         self._listener = TransformListener(self, self.tf_buffer, spin_thread=True)
+        self._inputs = {}
+        self._subscribe('map_topic')
+        self._subscribe('scan_topic')
         self._active = [
             self._pose_pub, self._cloud_pub, self._tf_pub,
-            self.create_subscription(OccupancyGrid, p['map_topic'], self._on_map, LATCHED),
-            self.create_subscription(LaserScan, p['scan_topic'], self._on_scan,
-                                     qos_profile_sensor_data),
             self.create_service(Empty, 'reinitialize_global_localization', self._on_global),
             self.create_service(Empty, 'request_nomotion_update', self._on_nomotion),
             self.create_service(SetInitialPose, 'set_initial_pose', self._on_set_initial_pose),
@@ -189,12 +241,17 @@ class Amcl(ManagedNode):
         elif self._inactive_pose is not None:
             self._use_initial_pose(self._inactive_pose)
         self._inactive_pose = None
+        self._parameters_handler = self.add_on_set_parameters_callback(self._on_set_parameters)
 
     def deactivate(self):
         """Destroy what :meth:`activate` created."""
         self.get_logger().info('Deactivating')
-        self.destroy_entities(self._active)
+        if self._parameters_handler is not None:
+            self.remove_on_set_parameters_callback(self._parameters_handler)
+            self._parameters_handler = None
+        self.destroy_entities(self._active + list(self._inputs.values()))
         self._active = []
+        self._inputs = {}
         if self._listener is not None:
             self._listener.destroy()
             self._listener = None

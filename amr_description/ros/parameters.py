@@ -34,6 +34,16 @@ def _check(name, value, default):
     return value
 
 
+def checked_value(name, value, default):
+    """
+    Return ``value`` of parameter ``name`` checked against its default's type.
+
+    :raises ValueError: one line naming the parameter, what was expected and what was found
+        (for a parameter set at run time, e.g. ``ros2 param set``).
+    """
+    return _check(name, value, default)
+
+
 def read_parameters(node, defaults):
     """
     Return ``{name: value}`` for every name of ``defaults``, declaring missing ones.

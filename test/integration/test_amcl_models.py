@@ -13,7 +13,8 @@ the pose (a base that does not move gives the particles no motion noise: the fil
 one of its first particles, 1-6 cm off in ten runs). A third amcl with an unknown model says
 so in one line and runs the likelihood field. A pose stamped in the past is moved on by the
 odometry since its stamp; one heard while inactive is used on activate; the last pose is kept
-over cleanup and configure.
+over cleanup and configure. ``ros2 param set`` changes the model of a running amcl and refuses
+a bad value with its reason.
 """
 
 import math
@@ -259,6 +260,23 @@ def test_beam_and_likelihood_field_prob_localize(procs, exe, ros_env, tmp_path):
         transition('activate')
         assert peer.spin_until(resumed, 60.0), nodes['odd'].output[-2000:]
         assert nodes['odd'].output.count('Please set the initial pose') == reminders
+        # parameters set at run time, as upstream's dynamic parameters
+        import subprocess
+
+        def param_set(name, value):
+            return subprocess.run([exe('ros2'), 'param', 'set', '/beam/amcl', name, value],
+                                  env=ros_env, capture_output=True, text=True, timeout=120)
+        refused = param_set('min_particles', '3000')  # ros2param says why on stderr
+        assert "Setting parameter failed: You've set min_particles to be greater than max " \
+            'particles' in refused.stderr, refused.stdout + refused.stderr
+        refused = param_set('z_hit', 'fine')
+        assert 'Setting parameter failed: Wrong parameter type' in refused.stderr, \
+            refused.stdout + refused.stderr  # rclpy's own check, as rclcpp's
+        taken = param_set('laser_model_type', 'likelihood_field_prob')
+        assert 'Set parameter successful' in taken.stdout, taken.stdout + taken.stderr
+        seen = len(peer.poses['beam'])
+        peer.nomotion_update('beam')
+        assert peer.spin_until(lambda: len(peer.poses['beam']) > seen, 30.0)
         for proc in nodes.values():
             assert proc.popen.poll() is None  # still running
     finally:

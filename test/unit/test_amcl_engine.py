@@ -83,6 +83,17 @@ def test_distance_field_and_free_space():
     assert np.all(field.lookup(poses[:, :2]) > 0.0)
 
 
+def test_parameters_taken_at_run_time():
+    loc = amcl.Amcl(amcl.AmclParameters(), seed=0)
+    loc.set_map(_room())
+    field = loc.map
+    loc.update_parameters({'z_hit': 0.9, 'laser_model_type': 'beam', 'scan_topic': 'x'})
+    assert (loc.params.z_hit, loc.filter.params.laser_model_type) == (0.9, 'beam')
+    assert loc.map is field  # the distance field did not change
+    loc.update_parameters({'laser_likelihood_max_dist': 0.5})
+    assert loc.map is not field and loc.map.distance.max() == 0.5
+
+
 def test_freespace_downsampling_draws_from_every_other_free_cell():
     field = amcl.LikelihoodMap(_room(), 2.0, downsample=True)
     assert len(field.free) == 29 * 39  # rows 2..58 and columns 2..78, even ones only
