@@ -1,6 +1,7 @@
 # Copyright 2026 The amr_description Authors
 # Licensed under the Apache License, Version 2.0
-"""nav2_msgs as built at set-up: Jazzy's interface list, and the route server's field lists.
+"""
+nav2_msgs as built at set-up: Jazzy's interface list, and the route server's field lists.
 
 Upstream: navigation2's jazzy branch (1.3.12), ``nav2_msgs/CMakeLists.txt`` and the files it
 names; docs/architecture.md ("Interface packages").
