@@ -313,6 +313,7 @@ class SlamToolbox(ManagedNode):
         if len(pose) != 3:
             raise ValueError(f'map_start_pose: expected [x, y, theta], got {list(pose)}')
         what = self._start(mapper, pose)
+        self._map_version = -1  # the next map update publishes the loaded graph's map
         self.get_logger().info(f'Loaded pose graph {stem}: {len(mapper.graph)} nodes, '
                                f'{what} ({pose[0]:g}, {pose[1]:g}, {pose[2]:g})')
 

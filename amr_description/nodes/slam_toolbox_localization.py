@@ -85,7 +85,6 @@ class LocalizationSlamToolbox(SlamToolbox):
         p = request.initial_pose
         try:
             self._load(request.filename, (p.x, p.y, p.theta))
-            self._map_version = -1
         except ValueError as exc:
             self.get_logger().error(f'deserialize_map: {exc}')
         return response
