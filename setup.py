@@ -73,6 +73,7 @@ setup(
             'map_saver_server = amr_description.nodes.map_saver:server_main',
             'map_saver_cli = amr_description.nodes.map_saver:cli_main',
             'async_slam_toolbox_node = amr_description.nodes.slam_toolbox:main',
+            'sync_slam_toolbox_node = amr_description.nodes.sync_slam_toolbox:main',
             'localization_slam_toolbox_node = '
             'amr_description.nodes.slam_toolbox_localization:main',
             'amcl = amr_description.nodes.amcl:main',

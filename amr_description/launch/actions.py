@@ -435,3 +435,18 @@ class OnProcessExit:
         self.target_action = target_action
         self.on_exit = list(on_exit) if isinstance(on_exit, (list, tuple)) else [on_exit]
         self.only_on_success = only_on_success
+
+
+def share_file(folder, name, package='amr_description'):
+    """
+    Return the path of ``folder/name`` in ``package``'s share directory (ament index).
+
+    :raises LaunchError: when the package is not installed.
+    """
+    from ament_index_python.packages import get_package_share_directory
+    from ament_index_python.packages import PackageNotFoundError
+    try:
+        share = get_package_share_directory(package)
+    except (PackageNotFoundError, ValueError, LookupError):
+        raise LaunchError(f"package '{package}' not found") from None
+    return os.path.join(share, folder, name)

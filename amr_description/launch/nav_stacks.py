@@ -1,11 +1,11 @@
 # Copyright 2026 The amr_description Authors
 # Licensed under the Apache License, Version 2.0
 """
-The mapping and localization stacks: slam_toolbox's and nav2_bringup's launch files.
+The localization and navigation stacks: nav2_bringup's launch files.
 
 Registered in :data:`amr_description.launch.registry.STACKS` with their declared arguments
-(upstream's names and defaults); the ``slam`` stack (``sim`` + ``online_async``) is in
-:mod:`.stacks`, which imports this module.
+(upstream's names and defaults), with slam_toolbox's of :mod:`.slam_stacks`; the ``slam``
+stack (``sim`` + ``online_async``) is in :mod:`.world_stacks`, which imports this module.
 """
 
 import os
@@ -16,32 +16,14 @@ from amr_description.launch.actions import DeclareLaunchArgument
 from amr_description.launch.actions import LaunchError
 from amr_description.launch.actions import Node
 from amr_description.launch.actions import parse_bool
+from amr_description.launch.actions import share_file
 from amr_description.launch.actions import with_defaults
+from amr_description.launch.slam_stacks import online_sync
+from amr_description.launch.slam_stacks import SLAM_LOCALIZATION_ARGUMENTS
+from amr_description.launch.slam_stacks import SLAM_SYNC_ARGUMENTS
+from amr_description.launch.slam_stacks import slam_toolbox_localization
 
 PACKAGE = 'amr_description'
-
-SLAM_ARGUMENTS = [
-    DeclareLaunchArgument('use_sim_time', 'true', 'Use simulation/Gazebo clock'),
-    DeclareLaunchArgument('slam_params_file', '',
-                          'Full path to the ROS2 parameters file to use for the slam_toolbox '
-                          "node (default: the package's config/mapper_params_online_async.yaml)"),
-    DeclareLaunchArgument('autostart', 'true',
-                          'Automatically startup the slamtoolbox. Ignored when '
-                          'use_lifecycle_manager is true.'),
-    DeclareLaunchArgument('use_lifecycle_manager', 'false',
-                          'Enable bond connection during node activation'),
-]
-"""slam_toolbox's ``online_async_launch.py`` arguments, its names, defaults and descriptions."""
-
-SLAM_LOCALIZATION_ARGUMENTS = [
-    SLAM_ARGUMENTS[0],
-    DeclareLaunchArgument('slam_params_file', '',
-                          'Full path to the ROS2 parameters file to use for the slam_toolbox '
-                          "node (default: the package's config/mapper_params_localization.yaml)"),
-    *SLAM_ARGUMENTS[2:],
-]
-"""slam_toolbox's ``localization_launch.py`` arguments (those of ``online_async_launch.py``)."""
-
 
 MAP_ARGUMENT = DeclareLaunchArgument('map', '', 'Full path to map yaml file to load')
 USE_SIM_TIME_ARGUMENT = DeclareLaunchArgument('use_sim_time', 'false',
@@ -177,74 +159,6 @@ def localization(args):
     return _start(_localization_specs(args), args)
 
 
-def share_file(folder, name):
-    """
-    Return the path of ``folder/name`` in the package's share directory.
-
-    :raises LaunchError: when the package is not installed.
-    """
-    from ament_index_python.packages import get_package_share_directory
-    from ament_index_python.packages import PackageNotFoundError
-    try:
-        share = get_package_share_directory(PACKAGE)
-    except (PackageNotFoundError, ValueError, LookupError):
-        raise LaunchError(f"package '{PACKAGE}' not found") from None
-    return os.path.join(share, folder, name)
-
-
-def online_async(args):
-    """
-    Describe the ``online_async`` stack (slam_toolbox's ``online_async_launch.py``).
-
-    ``async_slam_toolbox_node`` named ``slam_toolbox`` with ``slam_params_file`` (default
-    ``config/mapper_params_online_async.yaml``), ``use_sim_time`` and
-    ``use_lifecycle_manager``; with ``autostart`` and no lifecycle manager it is configured
-    then activated (``lifecycle_autostart``, launch_ros' lifecycle events), as upstream's
-    launch file does.
-
-    :param args: dict of launch-argument values (see ``SLAM_ARGUMENTS``).
-    :returns: list of actions.
-    :raises LaunchError: on a bad argument value or a missing params file.
-    """
-    return _slam_toolbox(with_defaults(SLAM_ARGUMENTS, args), 'async_slam_toolbox_node',
-                         'mapper_params_online_async.yaml')
-
-
-def slam_toolbox_localization(args):
-    """
-    Describe ``slam_toolbox_localization`` (slam_toolbox's ``localization_launch.py``).
-
-    As :func:`online_async` with ``localization_slam_toolbox_node`` and
-    ``config/mapper_params_localization.yaml``; named so beside nav2_bringup's
-    ``localization_launch.py`` (``localization``).
-
-    :param args: dict of launch-argument values (see ``SLAM_LOCALIZATION_ARGUMENTS``).
-    :returns: list of actions.
-    :raises LaunchError: on a bad argument value or a missing params file.
-    """
-    return _slam_toolbox(with_defaults(SLAM_LOCALIZATION_ARGUMENTS, args),
-                         'localization_slam_toolbox_node', 'mapper_params_localization.yaml')
-
-
-def _slam_toolbox(args, executable, config):
-    """Return the actions of a slam_toolbox node named ``slam_toolbox`` and its autostart."""
-    use_sim_time = parse_bool(args['use_sim_time'], 'use_sim_time')
-    autostart = parse_bool(args['autostart'], 'autostart')
-    managed = parse_bool(args['use_lifecycle_manager'], 'use_lifecycle_manager')
-    params = args['slam_params_file'] or share_file('config', config)
-    if not os.path.isfile(os.path.expanduser(params)):
-        raise LaunchError(f"launch argument 'slam_params_file': no such file '{params}'")
-    actions = [Node(PACKAGE, executable, name='slam_toolbox', namespace='',
-                    output='screen',
-                    parameters=[os.path.expanduser(params),
-                                {'use_lifecycle_manager': managed,
-                                 'use_sim_time': use_sim_time}])]
-    if autostart and not managed:
-        actions.append(Node(PACKAGE, 'lifecycle_autostart', output='screen',
-                            arguments=['/slam_toolbox', 'configure', 'activate']))
-    return actions
-
-
 NAMESPACE_ARGUMENT = DeclareLaunchArgument('namespace', '', 'Top-level namespace')
 LOG_LEVEL_ARGUMENT = DeclareLaunchArgument('log_level', 'info', 'log level')
 
@@ -323,8 +237,9 @@ def bringup(args):
     Describe the ``bringup`` stack (nav2_bringup's ``bringup_launch.py``).
 
     ``slam`` false: :func:`localization` (map_server with ``map`` + amcl) when
-    ``use_localization``; true: slam_toolbox (:func:`online_async`, managed by no lifecycle
-    manager, as ``slam_launch.py`` runs it with autostart). Then :func:`navigation`.
+    ``use_localization``; true: slam_toolbox's synchronous mapper (:func:`online_sync`,
+    managed by no lifecycle manager, as ``slam_launch.py`` runs ``online_sync_launch.py`` with
+    autostart). Then :func:`navigation`.
     ``namespace`` applies when ``use_namespace`` is true. With ``use_composition`` (the
     default, as upstream's) localization and the navigation servers load into one
     ``component_container_isolated`` named ``nav2_container``; SLAM runs in its own process
@@ -343,8 +258,8 @@ def bringup(args):
     namespace = args['namespace'].strip('/') if use_ns else ''
     actions, specs = [], []
     if slam:
-        actions += online_async({'use_sim_time': args['use_sim_time'],
-                                 'autostart': args['autostart']})
+        actions += online_sync({'use_sim_time': args['use_sim_time'],
+                                'autostart': args['autostart']})
     elif parse_bool(args['use_localization'], 'use_localization'):
         specs += _localization_specs({**shared, 'map': args['map']})
     specs += _navigation_specs({**shared, 'namespace': namespace})
@@ -464,6 +379,9 @@ def robot_navigation(namespace, args, pose):
 
 
 NAV2_STACKS = {
+    'online_sync': (online_sync, SLAM_SYNC_ARGUMENTS,
+                    "slam_toolbox's online synchronous mapper (no scan the mapper would keep "
+                    'is dropped), configured and activated'),
     'slam_toolbox_localization': (
         slam_toolbox_localization, SLAM_LOCALIZATION_ARGUMENTS,
         "slam_toolbox's localization_launch.py: localization on a serialized pose graph "

@@ -14,8 +14,8 @@ from amr_description.launch.actions import Arguments
 from amr_description.launch.actions import LaunchError
 from amr_description.launch.actions import parse_launch_arguments
 from amr_description.launch.nav_stacks import NAV2_STACKS
-from amr_description.launch.nav_stacks import online_async
-from amr_description.launch.nav_stacks import SLAM_ARGUMENTS
+from amr_description.launch.slam_stacks import online_async
+from amr_description.launch.slam_stacks import SLAM_ARGUMENTS
 from amr_description.launch.stacks import display
 from amr_description.launch.stacks import DISPLAY_ARGUMENTS
 from amr_description.launch.stacks import PACKAGE

@@ -20,10 +20,10 @@ from amr_description.launch.actions import with_defaults
 from amr_description.launch.nav_stacks import bringup
 from amr_description.launch.nav_stacks import BRINGUP_ARGUMENTS
 from amr_description.launch.nav_stacks import described_nodes
-from amr_description.launch.nav_stacks import online_async
 from amr_description.launch.nav_stacks import package_home
 from amr_description.launch.nav_stacks import robot_navigation
-from amr_description.launch.nav_stacks import SLAM_ARGUMENTS
+from amr_description.launch.slam_stacks import online_async
+from amr_description.launch.slam_stacks import SLAM_ARGUMENTS
 from amr_description.launch.stacks import fleet
 from amr_description.launch.stacks import FLEET_ARGUMENTS
 from amr_description.launch.stacks import fleet_grid

@@ -170,6 +170,20 @@ def scan_rays(scan, max_laser_range):
     return np.array(scan.sensor_pose[:2], dtype=float), ends, hits[valid]
 
 
+def moved_enough(previous, odom_pose, params):
+    """
+    Return True when the robot moved enough since ``previous`` for a new keyframe.
+
+    :param previous: ``(x, y, yaw)`` odometry pose of the last kept scan (m, rad).
+    :param odom_pose: ``(x, y, yaw)`` odometry pose of the new scan.
+    :param params: :class:`SlamParameters` (``minimum_travel_distance`` m,
+        ``minimum_travel_heading`` rad).
+    """
+    d = between(previous, odom_pose)
+    return (math.hypot(d[0], d[1]) >= params.minimum_travel_distance
+            or abs(d[2]) >= params.minimum_travel_heading)
+
+
 class Mapper:
     """
     The SLAM back end: keyframes, the pose graph and the map (see the module docstring).
@@ -211,10 +225,7 @@ class Mapper:
         """Return True when a scan taken at ``odom_pose`` would become a keyframe."""
         if not self._session:
             return True
-        d = between(self.keyframes[self._session[-1]].odom, odom_pose)
-        p = self.params
-        return (math.hypot(d[0], d[1]) >= p.minimum_travel_distance
-                or abs(d[2]) >= p.minimum_travel_heading)
+        return moved_enough(self.keyframes[self._session[-1]].odom, odom_pose, self.params)
 
     def process(self, odom_pose, scan, stamp=0.0):
         """

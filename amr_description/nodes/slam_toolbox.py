@@ -44,6 +44,7 @@ import math
 import os
 import shutil
 import subprocess
+import threading
 
 from amr_description.core.tf_buffer import TransformBuffer
 from amr_description.core.tf_buffer import TransformException
@@ -104,6 +105,7 @@ class SlamToolbox(ManagedNode):
         self.tf_buffer = None
         self._listener = None
         self.p = {}
+        self._lock = threading.RLock()  # the mapper, for the sync node's processing thread
 
     def wants_bond(self):
         """Bond with a lifecycle manager only with ``use_lifecycle_manager`` (slam_toolbox)."""
@@ -224,13 +226,19 @@ class SlamToolbox(ManagedNode):
             return True
         scan = slam.Scan(np.asarray(msg.ranges, dtype=float), msg.angle_min,
                          msg.angle_increment, msg.range_min, msg.range_max, planar_pose(laser))
-        added = self.mapper.process(planar_pose(odom), scan, stamp)
-        pose = self.mapper.pose(planar_pose(odom))
         self._last_stamp = msg.header.stamp
+        self._use(planar_pose(odom), scan, msg.header.stamp)
+        return True
+
+    def _use(self, odom, scan, header_stamp):
+        """Give the mapper a scan at odometry pose ``odom``; publish ``pose`` if it kept it."""
+        stamp = stamp_seconds(header_stamp)
+        with self._lock:
+            added = self.mapper.process(odom, scan, stamp)
+            pose = self.mapper.pose(odom)
         if added:
             self._last_processed = stamp
-            self._publish_pose(msg.header.stamp, pose)
-        return True
+            self._publish_pose(header_stamp, pose)
 
     def _publish_pose(self, stamp, pose):
         msg = PoseWithCovarianceStamped()
@@ -245,9 +253,10 @@ class SlamToolbox(ManagedNode):
         self._pose_pub.publish(msg)
 
     def _publish_tf(self):
-        if self._last_stamp is None or self.mapper is None:
-            return
-        map_to_odom = self.mapper.map_to_odom()
+        with self._lock:
+            if self._last_stamp is None or self.mapper is None:
+                return
+            map_to_odom = self.mapper.map_to_odom()
         t = stamp_seconds(self._last_stamp) + self.p['transform_timeout']
         self._tf_pub.publish(TFMessage(transforms=[planar_transform(
             self.p['map_frame'], self.p['odom_frame'], time_to_msg(t), map_to_odom)]))
@@ -255,15 +264,16 @@ class SlamToolbox(ManagedNode):
     # --- the map ----------------------------------------------------------------------------
     def _current_map(self):
         """Return the OccupancyGrid of the graph now (rebuilt when keyframes changed)."""
-        if self.mapper is None or not self.mapper.keyframes:
-            return None
-        version = (len(self.mapper.keyframes), self.mapper.loop_closures)
-        if version != self._map_version:
-            grid = self.mapper.occupancy()
-            stamp = self._last_stamp or self.get_clock().now().to_msg()
-            self._map_msg = occupancy_grid(grid, self.p['map_frame'], stamp)
-            self._map_version = version
-        return self._map_msg
+        with self._lock:
+            if self.mapper is None or not self.mapper.keyframes:
+                return None
+            version = (len(self.mapper.keyframes), self.mapper.loop_closures)
+            if version != self._map_version:
+                grid = self.mapper.occupancy()
+                stamp = self._last_stamp or self.get_clock().now().to_msg()
+                self._map_msg = occupancy_grid(grid, self.p['map_frame'], stamp)
+                self._map_version = version
+            return self._map_msg
 
     def _publish_map(self):
         msg = self._current_map()
@@ -300,7 +310,8 @@ class SlamToolbox(ManagedNode):
 
     def _on_serialize(self, request, response):
         try:
-            slam.save_graph(self.mapper, request.filename)
+            with self._lock:
+                slam.save_graph(self.mapper, request.filename)
             response.result = srv.SerializePoseGraph.Response.RESULT_SUCCESS
         except OSError as exc:
             self.get_logger().error(f'serialize_map: {exc}')
@@ -312,8 +323,9 @@ class SlamToolbox(ManagedNode):
         pose = mapper.graph.poses[0] if start_pose is None else np.asarray(start_pose, float)
         if len(pose) != 3:
             raise ValueError(f'map_start_pose: expected [x, y, theta], got {list(pose)}')
-        what = self._start(mapper, pose)
-        self._map_version = -1  # the next map update publishes the loaded graph's map
+        with self._lock:
+            what = self._start(mapper, pose)
+            self._map_version = -1  # the next map update publishes the loaded graph's map
         self.get_logger().info(f'Loaded pose graph {stem}: {len(mapper.graph)} nodes, '
                                f'{what} ({pose[0]:g}, {pose[1]:g}, {pose[2]:g})')
 
@@ -357,8 +369,9 @@ class SlamToolbox(ManagedNode):
         return response
 
     def _on_reset(self, request, response):
-        self.mapper = self._new_mapper()
-        self._map_version = -1
+        with self._lock:
+            self.mapper = self._new_mapper()
+            self._map_version = -1
         self._last_stamp = None
         self._paused = bool(request.pause_new_measurements)
         response.result = srv.Reset.Response.RESULT_SUCCESS

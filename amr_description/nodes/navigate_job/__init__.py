@@ -9,7 +9,7 @@ user does after the tutorials, through the same interfaces
 (nav2_simple_commander's ``BasicNavigator`` in this process):
 
 1. **Mapping.** The ``navigation`` stack with ``slam:=True`` (simulator, slam_toolbox's
-   ``online_async``, the navigation servers, viewer) in ``--world`` (warehouse.sdf); the robot
+   ``online_sync``, the navigation servers, viewer) in ``--world`` (warehouse.sdf); the robot
    follows the world's waypoint route (:data:`.main.ROUTES`, ``follow_waypoints``) through
    every aisle while the map grows; ``map_saver_cli`` saves it to ``out/map.yaml``.
 2. **Navigation.** The stack restarted with ``map:=out/map.yaml`` (map_server + AMCL, the
