@@ -67,6 +67,17 @@ def _truth_at(odom, stamp):
     return p.position.x, p.position.y, _yaw(p.orientation)
 
 
+def _errors(peer, poses):
+    """Return each pose's distance (m) and turn (rad) from the ground truth at its stamp."""
+    out = []
+    for msg in poses:
+        x, y, yaw = _truth_at(peer.odom, msg.header.stamp.sec + msg.header.stamp.nanosec * 1e-9)
+        p = msg.pose.pose
+        out.append((math.hypot(p.position.x - x, p.position.y - y),
+                    abs(math.remainder(_yaw(p.orientation) - yaw, math.tau))))
+    return np.array(out)
+
+
 def _occupied_near_walls(grid_msg):
     from amr_description.core.gazebo.sdf_world import load_world
     from amr_description.core.scan_map import surface_distance
@@ -102,14 +113,8 @@ def test_slam_stack_maps_the_arena(procs, exe, ros_env, tmp_path):
         assert 'Creating bond' not in stack.output  # no lifecycle manager: no bond
 
         # /pose (map frame; map == world here, the robot started at the origin) vs truth
-        errors = []
-        for msg in peer.poses[2:]:
-            stamp = msg.header.stamp.sec + msg.header.stamp.nanosec * 1e-9
-            x, y, yaw = _truth_at(peer.odom, stamp)
-            p = msg.pose.pose
-            assert msg.header.frame_id == 'map'
-            errors.append((math.hypot(p.position.x - x, p.position.y - y),
-                           abs(math.remainder(_yaw(p.orientation) - yaw, math.tau))))
+        assert all(msg.header.frame_id == 'map' for msg in peer.poses)
+        errors = _errors(peer, peer.poses[2:])
         worst = np.max(errors, axis=0)
         print(f'/pose vs ground truth over {len(errors)} poses: worst {100 * worst[0]:.1f} cm, '
               f'{math.degrees(worst[1]):.2f} deg')

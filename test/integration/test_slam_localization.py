@@ -18,7 +18,7 @@ import subprocess
 
 import numpy as np
 import pytest
-from test_slam import _truth_at  # noqa: I100 - the SLAM test's peer and helpers
+from test_slam import _errors  # noqa: I100 - the SLAM test's peer and helpers
 from test_slam import _yaw
 from test_slam import SlamPeer
 
@@ -42,17 +42,6 @@ def _saved_graph(folder):
     stem = str(folder / 'arena')
     slam.save_graph(mapper, stem)
     return stem
-
-
-def _errors(peer, poses):
-    """Return each pose's distance (m) and turn (rad) from the ground truth at its stamp."""
-    out = []
-    for msg in poses:
-        x, y, yaw = _truth_at(peer.odom, msg.header.stamp.sec + msg.header.stamp.nanosec * 1e-9)
-        p = msg.pose.pose
-        out.append((math.hypot(p.position.x - x, p.position.y - y),
-                    abs(math.remainder(_yaw(p.orientation) - yaw, math.tau))))
-    return np.array(out)
 
 
 def test_localization_on_a_saved_graph(procs, exe, ros_env, tmp_path):

@@ -17,9 +17,8 @@ import subprocess
 
 import numpy as np
 import pytest
-from test_slam import _occupied_near_walls  # noqa: I100 - the SLAM test's peer and helpers
-from test_slam import _truth_at
-from test_slam import _yaw
+from test_slam import _errors  # noqa: I100 - the SLAM test's peer and helpers
+from test_slam import _occupied_near_walls
 from test_slam import SlamPeer
 
 pytest.importorskip('slam_toolbox.srv')
@@ -46,12 +45,7 @@ def test_sync_mapper_maps_the_arena(procs, exe, ros_env):
 
         stamps = [m.header.stamp.sec + m.header.stamp.nanosec * 1e-9 for m in peer.poses]
         assert all(b > a for a, b in zip(stamps, stamps[1:])), stamps
-        errors = []
-        for msg, stamp in zip(peer.poses, stamps):
-            x, y, yaw = _truth_at(peer.odom, stamp)
-            p = msg.pose.pose
-            errors.append((math.hypot(p.position.x - x, p.position.y - y),
-                           abs(math.remainder(_yaw(p.orientation) - yaw, math.tau))))
+        errors = _errors(peer, peer.poses)
         worst = np.max(errors, axis=0)
         print(f'/pose vs ground truth over {len(errors)} poses: worst {100 * worst[0]:.1f} cm, '
               f'{math.degrees(worst[1]):.2f} deg')
