@@ -15,7 +15,9 @@ wrong type fails configure with one line naming it.
   (``[x, y, yaw]``) or its first node.
 - activate: ``/scan`` (``scan_topic``, sensor-data QoS) in; ``map_name`` (``/map``) and
   ``<map_name>_metadata`` (reliable, transient local) every ``map_update_interval`` s;
-  ``pose`` (PoseWithCovarianceStamped, depth 10) per processed scan; TF ``map_frame`` ->
+  ``pose`` (PoseWithCovarianceStamped, depth 10) per processed scan;
+  ``slam_toolbox/graph_visualization`` (the pose graph's markers, depth 1, with each map
+  update: :mod:`amr_description.nav.graph_markers`); TF ``map_frame`` ->
   ``odom_frame`` every ``transform_publish_period`` s (0: never) stamped with the last scan's
   stamp + ``transform_timeout``, nothing before the first scan; the services
   ``slam_toolbox/save_map`` (runs ``ros2 run nav2_map_server map_saver_cli -f NAME --ros-args
@@ -49,6 +51,7 @@ import threading
 from amr_description.core.tf_buffer import TransformBuffer
 from amr_description.core.tf_buffer import TransformException
 from amr_description.nav import slam
+from amr_description.nav.graph_markers import graph_markers
 from amr_description.nav.grid_message import occupancy_grid
 from amr_description.ros import shutdown
 from amr_description.ros.managed_node import ManagedNode
@@ -74,6 +77,7 @@ from rclpy.qos import ReliabilityPolicy
 from sensor_msgs.msg import LaserScan
 from slam_toolbox import srv
 from tf2_msgs.msg import TFMessage
+from visualization_msgs.msg import MarkerArray
 
 LATCHED = QoSProfile(depth=1, reliability=ReliabilityPolicy.RELIABLE,
                      durability=DurabilityPolicy.TRANSIENT_LOCAL)
@@ -158,8 +162,11 @@ class SlamToolbox(ManagedNode):
         self._listener = TransformListener(self, self.tf_buffer, spin_thread=True)
         scan_sub = self.create_subscription(LaserScan, p['scan_topic'], self._on_scan,
                                             qos_profile_sensor_data)
+        self._graph_pub = self.create_publisher(MarkerArray, 'slam_toolbox/graph_visualization',
+                                                1)
         self._active = [self._map_pub, self._meta_pub, self._pose_pub, self._tf_pub, scan_sub,
-                        self.create_timer(p['map_update_interval'], self._publish_map)]
+                        self._graph_pub,
+                        self.create_timer(p['map_update_interval'], self._on_map_timer)]
         if p['transform_publish_period'] > 0.0:
             self._active.append(self.create_timer(p['transform_publish_period'],
                                                   self._publish_tf))
@@ -274,6 +281,15 @@ class SlamToolbox(ManagedNode):
                 self._map_msg = occupancy_grid(grid, self.p['map_frame'], stamp)
                 self._map_version = version
             return self._map_msg
+
+    def _on_map_timer(self):
+        self._publish_map()
+        with self._lock:
+            if self.mapper is None or not len(self.mapper.graph):
+                return
+            markers = graph_markers(self.mapper.graph.poses, self.mapper.graph.edges,
+                                    self.p['map_frame'], self.get_clock().now().to_msg())
+        self._graph_pub.publish(markers)
 
     def _publish_map(self):
         msg = self._current_map()

@@ -8,7 +8,8 @@ One stack (simulator, controllers, ``async_slam_toolbox_node`` configured and ac
 truth, ``/map`` (transient local) holds the arena's walls and pillars where they are, TF has
 ``map -> odom``; ``slam_toolbox/save_map`` writes Nav2's map files (through ``ros2 run
 nav2_map_server map_saver_cli``), ``serialize_map`` the pose graph; a scan whose ranges do not
-match its angles is dropped with one line and the node stays active. A params file with a
+match its angles is dropped with one line and the node stays active;
+``slam_toolbox/graph_visualization`` draws the pose graph. A params file with a
 wrong type fails configure with one line naming the parameter.
 """
 
@@ -34,6 +35,7 @@ class SlamPeer(Peer):
         from rclpy.qos import QoSProfile
         from sensor_msgs.msg import LaserScan
         from tf2_msgs.msg import TFMessage
+        from visualization_msgs.msg import MarkerArray
         super().__init__(domain_id)
         self.TwistStamped, self.LaserScan = TwistStamped, LaserScan
         self.cmd = self.node.create_publisher(TwistStamped, '/diff_drive_controller/cmd_vel',
@@ -44,6 +46,9 @@ class SlamPeer(Peer):
         latched = QoSProfile(depth=1, durability=DurabilityPolicy.TRANSIENT_LOCAL)
         self.node.create_subscription(OccupancyGrid, '/map', self.maps.append, latched)
         self.node.create_subscription(TFMessage, '/tf', self._on_tf, 100)
+        self.graphs = []
+        self.node.create_subscription(MarkerArray, '/slam_toolbox/graph_visualization',
+                                      self.graphs.append, 1)
 
     def _on_tf(self, msg):
         self.map_tf += [t for t in msg.transforms
@@ -126,6 +131,20 @@ def test_slam_stack_maps_the_arena(procs, exe, ros_env, tmp_path):
         count, near = _occupied_near_walls(peer.maps[-1])
         print(f'/map: {count} occupied cells, {100 * near:.1f} % within 1.5 cells of a surface')
         assert count > 200 and near >= 0.95
+
+        # the pose graph's markers, drawn after the last /pose (the robot stands): a sphere per
+        # node, the last at the last /pose, the edges
+        def _s(stamp):
+            return stamp.sec + stamp.nanosec * 1e-9
+        assert peer.spin_until(lambda: peer.graphs and _s(peer.graphs[-1].markers[0].header.stamp)
+                               > _s(peer.poses[-1].header.stamp), 60.0)
+        markers = peer.graphs[-1].markers
+        spheres = [m for m in markers if m.ns == 'slam_toolbox']
+        edges = [m for m in markers if m.ns == 'slam_toolbox_edges']
+        assert markers[0].action == 3 and len(spheres) >= len(peer.poses) - 1, markers
+        assert len(edges) == 2 and len(edges[0].points) >= 2 * (len(spheres) - 1)
+        last, pose = spheres[-1].pose.position, peer.poses[-1].pose.pose.position
+        assert math.hypot(last.x - pose.x, last.y - pose.y) < 0.05, (last, pose)
 
         # save_map: Nav2's map files through map_saver_cli; serialize_map: the pose graph
         stem = os.path.join(str(tmp_path), 'arena')
