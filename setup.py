@@ -220,6 +220,7 @@ setup(
             'pose_tool = amr_description.web.displays.pose_tool:PoseToolDisplay',
             'path = amr_description.web.displays.path:PathDisplay',
             'polygon = amr_description.web.displays.path:PolygonDisplay',
+            'marker_array = amr_description.web.displays.markers:MarkerArrayDisplay',
             'nav_panel = amr_description.web.displays.nav_panel:NavigationPanelDisplay',
             'point_cloud = amr_description.web.displays.point_cloud:PointCloudDisplay',
             'imu = amr_description.web.displays.imu:ImuDisplay',

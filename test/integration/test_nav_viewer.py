@@ -14,7 +14,8 @@ the robot's ground-truth position (the tool's ground point is the pixel's), AMCL
 and the particles and the covariance ellipse are drawn. Then ``navigation_launch.py``: the
 Navigation 2 panel shows both lifecycle managers active and a goal's feedback, the footprint
 is drawn, the panel's Cancel cancels the goal, and a plan of known shape on ``/plan`` is
-drawn in the plan's red.
+drawn in the plan's red, and a pose graph of known shape on slam_toolbox's
+``graph_visualization`` (the config's MarkerArray display) in its markers' magenta.
 """
 
 import math
@@ -97,6 +98,12 @@ def _red(view):
     return int(np.count_nonzero((r > 190) & (g < 70) & (b < 70)))
 
 
+def _magenta(view):
+    """Return how many pixels are the test's markers' magenta (255, 0, 255)."""
+    r, g, b = view[..., 0], view[..., 1], view[..., 2]
+    return int(np.count_nonzero((r > 190) & (g < 70) & (b > 190)))
+
+
 def _green(view):
     """Return how many pixels are the footprint's green (25, 255, 0), blended with the floor."""
     r, g, b = view[..., 0], view[..., 1], view[..., 2]
@@ -131,8 +138,11 @@ def _shown_minus_hidden(page, label, measure):
 
 
 def test_map_particles_and_the_pose_estimate_tool(procs, exe, ros_env, tmp_path):
+    from geometry_msgs.msg import Point
     from geometry_msgs.msg import PoseStamped
     from nav_msgs.msg import Path
+    from visualization_msgs.msg import Marker
+    from visualization_msgs.msg import MarkerArray
     from test_slam import _yaw
     port = free_port()
     map_yaml = _arena_map(tmp_path)
@@ -280,6 +290,33 @@ def test_map_particles_and_the_pose_estimate_tool(procs, exe, ros_env, tmp_path)
             page.pixels(str(tmp_path / 'path.png'))
             print(f'pixels drawn: path {drawn}, footprint {outline}')
             assert drawn >= 100 and outline >= 15, (drawn, outline)
+            # the MarkerArray display (the config's slam_toolbox/graph_visualization): a graph
+            # of known shape, magenta spheres joined by a line strip, 0.4 m inside the path
+            graph = peer.node.create_publisher(MarkerArray, '/slam_toolbox/graph_visualization',
+                                               1)
+            corners = ((-0.4, -1.4), (2.4, -1.4), (2.4, 1.9), (-0.4, 1.9), (-0.4, -1.4))
+            markers = [Marker(action=Marker.DELETEALL)]
+            for ident, (x, y) in enumerate(corners[:-1]):
+                node = Marker(ns='slam_toolbox', id=ident, type=Marker.SPHERE)
+                node.pose.position.x, node.pose.position.y = x, y
+                markers.append(node)
+            strip = Marker(ns='slam_toolbox_edges', id=0, type=Marker.LINE_STRIP)
+            strip.points = [Point(x=x, y=y) for x, y in corners]
+            markers.append(strip)
+            for m in markers[1:]:
+                m.header.frame_id = 'map'
+                m.pose.orientation.w = 1.0
+                m.scale.x = m.scale.y = m.scale.z = 0.2
+                m.color.r, m.color.b, m.color.a = 1.0, 1.0, 1.0
+            deadline = time.monotonic() + 60.0
+            drawn = 0
+            while drawn < 100 and time.monotonic() < deadline:
+                graph.publish(MarkerArray(markers=markers))
+                peer.spin_until(lambda: False, 0.5)
+                drawn = _shown_minus_hidden(page, 'MarkerArray', _magenta)
+            page.pixels(str(tmp_path / 'markers.png'))
+            print(f'pixels drawn: markers {drawn}')
+            assert drawn >= 100, drawn
             assert nav.interrupt(60) is not None
     finally:
         peer.close()

@@ -20,7 +20,8 @@ def test_a_saved_rviz_config_gives_the_fixed_frame_topics_and_the_displays_not_s
         'odometry_topics': ['/odom'], 'point_cloud_topics': [],
         'robot_description_topics': ['/robot_description'], 'scan_topics': ['/scan'],
         'map_topics': ['/map'], 'particle_cloud_topics': [], 'pose_array_topics': [],
-        'pose_covariance_topics': [], 'path_topics': [], 'polygon_topics': []}
+        'pose_covariance_topics': [], 'path_topics': [], 'polygon_topics': [],
+        'marker_array_topics': []}
     assert config.not_shown == []  # the Path is disabled
 
 
@@ -81,7 +82,8 @@ def test_displays_are_plug_ins_found_through_their_entry_point_group():
     assert list(classes) == ['world', 'map', 'robot_model', 'tf_axes', 'trails', 'laser_scan',
                              'point_cloud', 'imu', 'image', 'navsat', 'contacts',
                              'particle_cloud', 'pose_array', 'pose_covariance', 'path',
-                             'polygon', 'teleop_pad', 'pose_tool', 'nav_panel', 'status']
+                             'polygon', 'marker_array', 'teleop_pad', 'pose_tool', 'nav_panel',
+                             'status']
     assert all(issubclass(cls, Display) for cls in classes.values())
     # every display module's Display subclass is registered: one module, one registration
     folder = os.path.join(os.path.dirname(HERE), '..', 'amr_description', 'web', 'displays')
