@@ -24,6 +24,13 @@ wrong type fails configure with one line naming it.
   -p map_subscribe_transient_local:=true``, as slam_toolbox's ``map_saver.cpp``),
   ``serialize_map``, ``deserialize_map``, ``dynamic_map``, ``pause_new_measurements``,
   ``reset``, ``clear_changes``, ``manual_loop_closure``, ``toggle_interactive_mode``.
+- The loop-closure assistant's services, as slam_toolbox's without its interactive markers:
+  with ``enable_interactive_mode`` false each answers with upstream's warning; true,
+  ``toggle_interactive_mode`` turns interactive mode on or off (the parameters
+  ``interactive_mode`` and ``paused_processing``; while on, the graph is not drawn and the
+  synchronous node holds its queue), ``manual_loop_closure`` warns that no node was moved
+  (nodes cannot be moved without RViz's interactive markers), ``clear_changes`` logs
+  upstream's line.
 - A scan is placed with TF at its stamp: ``odom_frame`` -> ``base_frame`` and
   ``base_frame`` -> the scan's frame. Scans wait in arrival order for the odometry at their
   stamp, as in tf2's MessageFilter, but in a queue of :data:`SCAN_QUEUE` scans (1 s at 10 Hz)
@@ -70,6 +77,7 @@ from nav_msgs.msg import MapMetaData
 from nav_msgs.msg import OccupancyGrid
 from nav_msgs.srv import GetMap
 import numpy as np
+from rclpy.parameter import Parameter
 from rclpy.qos import DurabilityPolicy
 from rclpy.qos import qos_profile_sensor_data
 from rclpy.qos import QoSProfile
@@ -93,8 +101,12 @@ NODE_PARAMETERS = {
     'map_update_interval': 10.0, 'minimum_time_interval': 0.5, 'transform_timeout': 0.5,
     'tf_buffer_duration': 30.0, 'use_lifecycle_manager': False,
     'position_covariance_scale': 1.0, 'yaw_covariance_scale': 1.0,
+    'enable_interactive_mode': False,
 }
 """The node's parameters with slam_toolbox 2.8.3's code defaults."""
+
+ASSISTANT_PARAMETERS = ('paused_processing', 'interactive_mode')
+"""Parameters the loop-closure assistant declares (false) and sets on toggle_interactive_mode."""
 
 
 class SlamToolbox(ManagedNode):
@@ -122,7 +134,7 @@ class SlamToolbox(ManagedNode):
         defaults = {**NODE_PARAMETERS, **{n: getattr(slam.SlamParameters(), n)
                                           for n in slam.SlamParameters.names()}}
         values = read_parameters(self, defaults)
-        unused = unused_parameters(self, defaults)
+        unused = unused_parameters(self, {*defaults, *ASSISTANT_PARAMETERS})
         if unused:
             self.get_logger().info('Parameters not used by this implementation: '
                                    + ', '.join(unused))
@@ -143,6 +155,10 @@ class SlamToolbox(ManagedNode):
         self._last_processed = None
         self._pending = StampedQueue(SCAN_QUEUE, self._process)
         self._paused = False
+        self._interactive = False  # interactive mode on: the graph is not drawn, sync waits
+        for name in ASSISTANT_PARAMETERS:
+            if not self.has_parameter(name):
+                self.declare_parameter(name, False)
         self._map_msg = None
         self._map_version = -1
 
@@ -177,9 +193,9 @@ class SlamToolbox(ManagedNode):
             (GetMap, 'dynamic_map', self._on_dynamic_map),
             (srv.Pause, 'pause_new_measurements', self._on_pause),
             (srv.Reset, 'reset', self._on_reset),
-            (srv.Clear, 'clear_changes', self._on_nothing),
-            (srv.LoopClosure, 'manual_loop_closure', self._on_nothing),
-            (srv.ToggleInteractive, 'toggle_interactive_mode', self._on_nothing)]
+            (srv.Clear, 'clear_changes', self._on_clear_changes),
+            (srv.LoopClosure, 'manual_loop_closure', self._on_manual_loop_closure),
+            (srv.ToggleInteractive, 'toggle_interactive_mode', self._on_toggle_interactive)]
         if p['use_map_saver']:
             services.append((srv.SaveMap, 'save_map', self._on_save_map))
         for kind, name, callback in services:
@@ -285,7 +301,7 @@ class SlamToolbox(ManagedNode):
     def _on_map_timer(self):
         self._publish_map()
         with self._lock:
-            if self.mapper is None or not len(self.mapper.graph):
+            if self.mapper is None or not len(self.mapper.graph) or self._interactive:
                 return
             markers = graph_markers(self.mapper.graph.poses, self.mapper.graph.edges,
                                     self.p['map_frame'], self.get_clock().now().to_msg())
@@ -393,9 +409,30 @@ class SlamToolbox(ManagedNode):
         response.result = srv.Reset.Response.RESULT_SUCCESS
         return response
 
-    def _on_nothing(self, request, response):
-        self.get_logger().warning('Interactive mode is not available in this implementation.',
-                                  throttle_duration_sec=5.0)
+    # --- the loop-closure assistant's services (no interactive markers: nodes cannot move) ---
+    def _interactive_enabled(self, what):
+        if not self.p['enable_interactive_mode']:
+            self.get_logger().warning(f'Called {what} with interactive mode disabled. '
+                                      'Ignoring.')
+        return self.p['enable_interactive_mode']
+
+    def _on_toggle_interactive(self, request, response):
+        if self._interactive_enabled('toggle interactive mode'):
+            self._interactive = not self._interactive
+            self.get_logger().info('SlamToolbox: Toggling '
+                                   f"{'on' if self._interactive else 'off'} interactive mode.")
+            self.set_parameters([Parameter('interactive_mode', value=self._interactive),
+                                 Parameter('paused_processing', value=self._interactive)])
+        return response
+
+    def _on_manual_loop_closure(self, request, response):
+        if self._interactive_enabled('manual loop closure'):
+            self.get_logger().warning('No moved nodes to attempt manual loop closure.')
+        return response
+
+    def _on_clear_changes(self, request, response):
+        if self._interactive_enabled('Clear changes'):
+            self.get_logger().info('LoopClosureAssistant: Clearing manual loop closure nodes.')
         return response
 
 

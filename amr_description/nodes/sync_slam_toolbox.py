@@ -98,8 +98,8 @@ class SyncSlamToolbox(SlamToolbox):
         """Give the queued scans to the mapper in order until deactivated."""
         while True:
             with self._wake:
-                while self._running and not self._queue:
-                    self._wake.wait()
+                while self._running and (not self._queue or self._interactive):
+                    self._wake.wait(0.1 if self._interactive else None)
                 if not self._running:
                     return
                 odom, scan, header_stamp = self._queue.popleft()

@@ -8,7 +8,9 @@ The ``sim`` stack in arena.sdf and ``ros2 launch amr_description online_sync_lau
 circle; every ``/pose`` (one per scan the processing thread gave the mapper, in stamp order)
 is within 10 cm and 3 deg of the ground truth; ``/map`` holds the arena's walls and pillars;
 ``slam_toolbox/clear_queue`` answers ``status=True`` with upstream's line;
-``deserialize_map`` with ``LOCALIZE_AT_POSE`` is refused with upstream's line; Ctrl-C stops
+``deserialize_map`` with ``LOCALIZE_AT_POSE`` is refused with upstream's line; the
+loop-closure assistant's services answer with upstream's lines (``toggle_interactive_mode``
+sets ``paused_processing``); Ctrl-C stops
 the node and its processing thread with exit code 0 and no traceback.
 """
 
@@ -66,6 +68,24 @@ def test_sync_mapper_maps_the_arena(procs, exe, ros_env):
         assert refused.returncode == 0, refused.stdout + refused.stderr
         assert 'Requested a localization deserialization in non-localization mode.' \
             in slam.output
+
+        # the loop-closure assistant (enable_interactive_mode: true in the config)
+        for service, kind, line in (
+                ('toggle_interactive_mode', 'ToggleInteractive',
+                 'SlamToolbox: Toggling on interactive mode.'),
+                ('manual_loop_closure', 'LoopClosure',
+                 'No moved nodes to attempt manual loop closure.'),
+                ('clear_changes', 'Clear',
+                 'LoopClosureAssistant: Clearing manual loop closure nodes.')):
+            done = _call(exe, ros_env, f'/slam_toolbox/{service}', f'slam_toolbox/srv/{kind}',
+                         '{}')
+            assert done.returncode == 0 and line in slam.output, done.stdout + done.stderr
+        paused = subprocess.run([exe('ros2'), 'param', 'get', '/slam_toolbox',
+                                 'paused_processing'], env=ros_env, capture_output=True,
+                                text=True, timeout=180)
+        assert 'Boolean value is: True' in paused.stdout, paused.stdout + paused.stderr
+        unused = [line for line in slam.output.splitlines() if 'not used by this' in line]
+        assert len(unused) == 1 and 'interactive_mode' not in unused[0], unused
     finally:
         peer.close()
         code = slam.interrupt(60)
