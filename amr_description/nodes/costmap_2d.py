@@ -43,7 +43,8 @@ namespace): ``costmap`` (OccupancyGrid, Nav2's translation) and ``costmap_raw``
 Activation waits, as ``Costmap2DROS::on_activate`` (``nav2_costmap_2d/src/costmap_2d_ros.cpp``)
 does, until TF joins ``robot_base_frame`` to ``global_frame``: it says "Timed out waiting for
 transform from BASE to GLOBAL to become available, tf error: ..." twice a second, and after
-``initial_transform_timeout`` seconds of the node's clock it fails the server's activation
+``initial_transform_timeout`` seconds of the node's clock (counted from its first /clock
+with ``use_sim_time``: a time of 0 starts no timeout) it fails the server's activation
 ("Failed to activate NAME because transform from BASE to GLOBAL did not become available before
 timeout"), so a lifecycle manager becomes active only once SLAM or AMCL publishes ``map``.
 """
@@ -219,7 +220,9 @@ class CostmapNode(Node):
             self.get_logger().info(f'Timed out waiting for transform from {base} to {frame} '
                                    f'to become available, tf error: {error}')
             now = self.get_clock().now().nanoseconds * 1e-9
-            if deadline is None or now < deadline - self.p['initial_transform_timeout']:
+            if now == 0.0:
+                pass  # use_sim_time and no /clock yet: the timeout starts with the clock
+            elif deadline is None or now < deadline - self.p['initial_transform_timeout']:
                 deadline = now + self.p['initial_transform_timeout']  # first check, or a reset
             elif now > deadline:
                 raise RuntimeError(f'Failed to activate {self.name} because transform from '

@@ -43,6 +43,32 @@ def test_a_costmap_activates_once_tf_joins_its_frames_and_fails_after_the_timeou
     costmap.destroy_node()
 
 
+def test_the_timeout_starts_with_the_first_clock_message(ros):
+    # use_sim_time before /clock: the node's time is 0; the timeout must count from the first
+    # time the clock gives (a clean-clone run failed planner_server's activation at once:
+    # 0 + 60 s was over when the next check read sim time 73 s)
+    from amr_description.core.tf_buffer import TransformBuffer
+    from amr_description.nodes.costmap_2d import CostmapNode
+    from rclpy.time import Time
+    make, _ = ros
+    tf = TransformBuffer()
+    costmap = CostmapNode('global_costmap', tf, context=make('unused3').context)
+    readings = iter([0.0, 0.0, 73.0, 73.5])
+
+    class Clock:
+        def now(self):
+            seconds = next(readings, 74.0)
+            if seconds == 74.0:  # the transform comes after four checks
+                tf.set_transform('map', 'base_link', 0.0, (1.0, 2.0, 0.0),
+                                 (0.0, 0.0, 0.0, 1.0), static=True)
+            return Time(nanoseconds=int(seconds * 1e9))
+
+    costmap.get_clock = Clock
+    costmap.wait_for_transform(period=0.01)  # no RuntimeError
+    assert tf.lookup('map', 'base_link')[0] is not None
+    costmap.destroy_node()
+
+
 def _scan(stamp, ranges, frame='lidar_link'):
     from sensor_msgs.msg import LaserScan
     scan = LaserScan()
