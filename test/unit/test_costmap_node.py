@@ -56,6 +56,7 @@ def test_the_timeout_starts_with_the_first_clock_message(ros):
     readings = iter([0.0, 0.0, 73.0, 73.5])
 
     class Clock:
+
         def now(self):
             seconds = next(readings, 74.0)
             if seconds == 74.0:  # the transform comes after four checks
