@@ -254,14 +254,28 @@ class SlamToolbox(ManagedNode):
         return True
 
     def _use(self, odom, scan, header_stamp):
-        """Give the mapper a scan at odometry pose ``odom``; publish ``pose`` if it kept it."""
-        stamp = stamp_seconds(header_stamp)
+        """Give the mapper a scan at odometry pose ``odom`` now (:meth:`_match`)."""
+        if self._match(odom, scan, header_stamp):
+            self._last_processed = stamp_seconds(header_stamp)
+
+    def _match(self, odom, scan, header_stamp):
+        """
+        Give the mapper a scan; publish ``pose`` if it kept it.
+
+        :param odom: (x m, y m, yaw rad) of ``base_frame`` in ``odom_frame`` at the scan.
+        :param scan: the mapper's scan (:mod:`amr_description.nav.slam`).
+        :param header_stamp: the scan's ``builtin_interfaces/Time``.
+        :returns: True when the mapper kept the scan.
+        """
         with self._lock:
-            added = self.mapper.process(odom, scan, stamp)
+            added = self.mapper.process(odom, scan, stamp_seconds(header_stamp))
             pose = self.mapper.pose(odom)
         if added:
-            self._last_processed = stamp
             self._publish_pose(header_stamp, pose)
+        return added
+
+    def _interactive_changed(self):
+        """Act on interactive mode toggled (a hook: the synchronous node wakes its thread)."""
 
     def _publish_pose(self, stamp, pose):
         msg = PoseWithCovarianceStamped()
@@ -423,6 +437,7 @@ class SlamToolbox(ManagedNode):
                                    f"{'on' if self._interactive else 'off'} interactive mode.")
             self.set_parameters([Parameter('interactive_mode', value=self._interactive),
                                  Parameter('paused_processing', value=self._interactive)])
+            self._interactive_changed()
         return response
 
     def _on_manual_loop_closure(self, request, response):

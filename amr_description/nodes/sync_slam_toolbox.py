@@ -99,7 +99,7 @@ class SyncSlamToolbox(SlamToolbox):
         while True:
             with self._wake:
                 while self._running and (not self._queue or self._interactive):
-                    self._wake.wait(0.1 if self._interactive else None)
+                    self._wake.wait()
                 if not self._running:
                     return
                 odom, scan, header_stamp = self._queue.popleft()
@@ -107,11 +107,12 @@ class SyncSlamToolbox(SlamToolbox):
             if waiting > QUEUE_WARNING:
                 self.get_logger().warning(f'Queue size has grown to: {waiting}. Recommend '
                                           'stopping until message is gone if online mapping.')
-            with self._lock:
-                added = self.mapper.process(odom, scan, stamp_seconds(header_stamp))
-                pose = self.mapper.pose(odom)
-            if added:
-                self._publish_pose(header_stamp, pose)
+            self._match(odom, scan, header_stamp)
+
+    def _interactive_changed(self):
+        """Wake the processing thread: it holds the queue while interactive mode is on."""
+        with self._wake:
+            self._wake.notify()
 
     def _on_reset(self, request, response):
         self._last_queued = None  # the new map starts with the next scan

@@ -19,16 +19,12 @@ import subprocess
 
 import numpy as np
 import pytest
-from test_slam import _errors  # noqa: I100 - the SLAM test's peer and helpers
+from test_slam import _call  # noqa: I100 - the SLAM test's peer and helpers
+from test_slam import _errors
 from test_slam import _occupied_near_walls
 from test_slam import SlamPeer
 
 pytest.importorskip('slam_toolbox.srv')
-
-
-def _call(exe, env, service, srv_type, values):
-    return subprocess.run([exe('ros2'), 'service', 'call', service, srv_type, values], env=env,
-                          capture_output=True, text=True, timeout=180)
 
 
 def test_sync_mapper_maps_the_arena(procs, exe, ros_env):

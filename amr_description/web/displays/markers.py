@@ -27,6 +27,7 @@ import time
 
 from amr_description.web.displays.discovery import AUTO
 from amr_description.web.displays.sensor_topics import draw_points
+from amr_description.web.displays.sensor_topics import draw_segments
 from amr_description.web.displays.sensor_topics import SensorTopicsDisplay
 import numpy as np
 from std_msgs.msg import Header
@@ -177,17 +178,8 @@ class MarkerArrayDisplay(SensorTopicsDisplay):
         cloud = draw_points(self.server, name + '/points', placed.astype(np.float32), colours,
                             cloud, size)
         cloud.point_size = size
-        if len(segments) == 0:
-            segments, seg_colours = np.zeros((1, 2, 3)), np.zeros((1, 3), np.uint8)
-        ends = (np.asarray(segments, float) @ T[:3, :3].T + T[:3, 3] + (0.0, 0.0, LIFT)
-                ).astype(np.float32)
-        rgb = np.repeat(seg_colours[:, None, :], 2, axis=1)
-        if lines is None:
-            lines = self.server.scene.add_line_segments(name + '/lines', ends, rgb,
-                                                        thickness=THICKNESS,
-                                                        thickness_units='screen')
-        else:
-            lines.points, lines.colors = ends, rgb
+        lines = draw_segments(self.server, name + '/lines', segments, T, seg_colours, lines,
+                              THICKNESS, LIFT)
         return _Nodes(cloud, lines)
 
 

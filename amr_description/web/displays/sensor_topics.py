@@ -209,16 +209,20 @@ def draw_segments(server, name, segments, T, colour, node, thickness=2.0, lift=0
     """
     Create or update a line-segment node of (M, 2, 3) ``segments`` placed with ``T`` (4x4).
 
-    :param colour: RGB of every line.
+    :param colour: RGB of every line, or (M, 3) RGB, one per segment.
     :param thickness: pixels on screen.
     :param lift: m added to z after placing (above a map drawn in the same plane).
     """
+    colour = np.asarray(colour, np.uint8)
     if len(segments) == 0:
         segments = np.zeros((1, 2, 3), np.float32)  # viser needs one segment
+        colour = colour if colour.ndim == 1 else np.zeros(3, np.uint8)
     points = np.asarray(segments, float) @ T[:3, :3].T + T[:3, 3]
     points[..., 2] += lift
     points = points.astype(np.float32)
-    colours = np.broadcast_to(np.array(colour, np.uint8), points.shape).copy()
+    if colour.ndim == 2:
+        colour = colour[:, None, :]
+    colours = np.broadcast_to(colour, points.shape).copy()
     if node is None:
         return server.scene.add_line_segments(name, points, colours, thickness=thickness,
                                               thickness_units='screen')
