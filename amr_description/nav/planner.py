@@ -6,9 +6,15 @@ The ``GridBased`` global planner: NavFn's costs and goal rules over scikit-image
 Each cell's travel cost is NavFn's (``nav2_navfn_planner/include/nav2_navfn_planner/navfn.hpp``,
 ``NavFn::setCostmap``): ``50 + 0.8 * cost`` for costs below 253, 253 for unknown cells when
 ``allow_unknown``, impassable for inscribed, lethal (and unknown otherwise) cells. The
-minimum-cost 8-connected path is found by ``skimage.graph.MCP_Geometric`` (Dijkstra, diagonal
-steps cost sqrt(2) times the mean of the two cells) instead of NavFn's interpolated potential
-field: paths run through the same corridors, their poses are the cells' centres. The goal rules
+potential of every cell (its cheapest travel cost to the goal) comes from
+``skimage.graph.MCP_Geometric`` (Dijkstra over 8-connected cells, a diagonal step costing sqrt(2)
+times the mean of its two cells) instead of NavFn's interpolated wavefront, and the path is
+NavFn's ``calcPath`` on it (:func:`descend`): from the robot's cell down the interpolated
+gradient of the potential in steps of half a cell, following the grid to the lowest neighbour
+where a neighbour is impassable or the path oscillates. Descending one potential of the goal,
+a path replanned from a point on the last one is the rest of it (a path traced back cell by
+cell is not: its equal-cost diagonal and straight steps came in another order after each
+replan, and the robot weaved after the moving kink). The goal rules
 are ``NavfnPlanner::makePlan``'s (``nav2_navfn_planner/src/navfn_planner.cpp``): a goal
 outside the map or a start outside it fail with their codes; a goal cell that is lethal with
 ``tolerance`` 0 fails as occupied; an unreachable goal is replaced by the reachable cell
@@ -29,6 +35,9 @@ COST_NEUTRAL = 50.0
 COST_FACTOR = 0.8
 UNKNOWN_TRAVEL = 253.0
 """NavFn's travel costs: open space, per unit of Nav2 cost, unknown space when allowed."""
+
+PATH_STEP = 0.5
+"""Cells per step down the potential (NavFn's ``pathStep``)."""
 
 
 class PlanError(Exception):
@@ -94,25 +103,116 @@ def make_plan(costmap, start, goal, tolerance=0.5, allow_unknown=True,
     travel = travel_costs(costs, allow_unknown)
     # the robot's own cell is passable even when inflated or lethal (NavFn's clearRobotCell)
     travel[s_cell[1], s_cell[0]] = max(travel[s_cell[1], s_cell[0]], COST_NEUTRAL)
-    mcp = MCP_Geometric(travel, fully_connected=True)
     start_rc, goal_rc = (s_cell[1], s_cell[0]), (g_cell[1], g_cell[0])
+    mcp = MCP_Geometric(travel, fully_connected=True)
+    potential = None
     if travel[goal_rc] >= 0:
-        cumulative, _ = mcp.find_costs([start_rc], [goal_rc])
-    else:
-        cumulative, _ = mcp.find_costs([start_rc])
+        potential, _ = mcp.find_costs([goal_rc])  # the whole map: the robot's neighbours too
     target = goal_rc
-    if not np.isfinite(cumulative[goal_rc]):
-        target = _closest_reachable(cumulative, goal_rc, tolerance / costmap.resolution)
+    if potential is None or not np.isfinite(potential[start_rc]):
+        # the goal's cell is impassable, or walled in: the reachable cell nearest to it
+        reach, _ = MCP_Geometric(travel, fully_connected=True).find_costs([start_rc])
+        target = _closest_reachable(reach, goal_rc, tolerance / costmap.resolution)
         if target is None:
             raise PlanError('NO_VALID_PATH', 'Failed to create plan with tolerance of: '
                             f'{tolerance:.6f}')
-    cells = np.array(mcp.traceback(target))  # (row, col) from start to target
+        mcp = MCP_Geometric(travel, fully_connected=True)
+        potential, _ = mcp.find_costs([target])
+    cells = descend(potential, start_rc, target)
+    if cells is None:  # NavFn would fail here; the cells' own path is still a path
+        cells = np.array(mcp.traceback(start_rc), float)[::-1]
     x, y = costmap.map_to_world(cells[:, 1], cells[:, 0])
     yaw = np.full(len(cells), np.nan)
     yaw[-1] = goal[2]
     if use_final_approach_orientation and len(cells) > 1:
         yaw[-1] = math.atan2(y[-1] - y[-2], x[-1] - x[-2])
     return np.column_stack((x, y, yaw))
+
+
+def cell_gradient(potential, r, c):
+    """
+    Return NavFn's unit descent direction ``(d row, d col)`` of cell ``(r, c)``.
+
+    A reachable cell sums its one-sided differences to its reachable side neighbours along
+    each axis (towards lower potential); an unreachable cell points at a reachable side
+    neighbour; outside the map counts as unreachable. ``(0, 0)`` when nothing sets a
+    direction. Source: ``NavFn::gradCell`` (``nav2_navfn_planner/src/navfn.cpp``).
+
+    :param potential: ``(h, w)`` cost to the goal, ``inf`` where unreachable.
+    """
+    h, w = potential.shape
+    centre = float(potential[r, c])
+    grad = [0.0, 0.0]
+    for axis, (before, after) in enumerate((((r - 1, c), (r + 1, c)),
+                                            ((r, c - 1), (r, c + 1)))):
+        sides = [float(potential[i, j]) if 0 <= i < h and 0 <= j < w else math.inf
+                 for i, j in (before, after)]
+        if math.isfinite(centre):
+            grad[axis] = ((sides[0] - centre if math.isfinite(sides[0]) else 0.0) +
+                          (centre - sides[1] if math.isfinite(sides[1]) else 0.0))
+        elif math.isfinite(sides[0]):
+            grad[axis] = -1.0
+        elif math.isfinite(sides[1]):
+            grad[axis] = 1.0
+    norm = math.hypot(grad[0], grad[1])
+    return (grad[0] / norm, grad[1] / norm) if norm > 0.0 else (0.0, 0.0)
+
+
+def descend(potential, start_rc, target_rc, step=PATH_STEP):
+    """
+    Return the path down a potential: ``(n, 2)`` float (row, col) from start to target.
+
+    NavFn's ``calcPath``: from the start cell, move ``step`` cells along the bilinear
+    interpolation of the four surrounding cells' gradients (:func:`cell_gradient`); where a
+    cell of the 3 x 3 around the position is unreachable, or the position came back to where it
+    was two steps before, move to the neighbour of lowest potential instead. The path ends at
+    the target once within one cell of it. Source: ``nav2_navfn_planner/src/navfn.cpp``.
+
+    :param potential: ``(h, w)`` cost to ``target_rc`` (``inf``: unreachable).
+    :returns: the points, or None where NavFn fails (no lower neighbour, a zero gradient, the
+        map's edge, or more than ``4 (h + w) / step`` steps).
+    """
+    potential = np.asarray(potential, float)
+    h, w = potential.shape
+    pot = np.ascontiguousarray(potential).ravel().item  # a Python float per call: fast
+    cache = {}
+
+    def gradient(n):
+        if n not in cache:
+            cache[n] = cell_gradient(potential, *divmod(n, w))
+        return cache[n]
+
+    inf = math.inf
+    tr, tc = int(target_rc[0]), int(target_rc[1])
+    y, x = float(start_rc[0]), float(start_rc[1])
+    points = [(y, x)]
+    for _ in range(int(4 * (h + w) / step)):
+        r, c = int(round(y)), int(round(x))
+        if abs(r - tr) <= 1 and abs(c - tc) <= 1:
+            points.append((float(tr), float(tc)))
+            return np.array(points)
+        if not (0 < r < h - 1 and 0 < c < w - 1):
+            return None
+        around = [pot(k * w + j) for k in (r - 1, r, r + 1) for j in (c - 1, c, c + 1)]
+        if max(around) == inf or (len(points) > 2 and points[-1] == points[-3]):
+            k = min(range(9), key=around.__getitem__)
+            if around[k] >= around[4]:
+                return None
+            y, x = float(r - 1 + k // 3), float(c - 1 + k % 3)
+        else:
+            r0, c0 = int(y), int(x)
+            fr, fc = y - r0, x - c0
+            n = r0 * w + c0
+            (a0, a1), (b0, b1) = gradient(n), gradient(n + 1)
+            (c0_, c1), (d0, d1) = gradient(n + w), gradient(n + w + 1)
+            g0 = (1 - fr) * ((1 - fc) * a0 + fc * b0) + fr * ((1 - fc) * c0_ + fc * d0)
+            g1 = (1 - fr) * ((1 - fc) * a1 + fc * b1) + fr * ((1 - fc) * c1 + fc * d1)
+            norm = math.hypot(g0, g1)
+            if norm == 0.0:
+                return None
+            y, x = y + step * g0 / norm, x + step * g1 / norm
+        points.append((y, x))
+    return None
 
 
 def _closest_reachable(cumulative, goal_rc, half_cells):

@@ -5,6 +5,7 @@
 import math
 
 from amr_description.nav import costmap as cm
+from amr_description.nav.planner import cell_gradient
 from amr_description.nav.planner import make_plan
 from amr_description.nav.planner import path_length
 from amr_description.nav.planner import PlanError
@@ -93,6 +94,33 @@ def test_plan_on_free_ground_is_the_straight_line():
     assert path[-1, 2] == 1.0 and np.isnan(path[0, 2])
     diagonal = make_plan(_room(), (0.525, 0.525), (3.525, 3.525, 0.0))
     assert path_length(diagonal) == pytest.approx(3.0 * math.sqrt(2), abs=1e-9)
+
+
+def test_cell_gradient_points_down_the_potential_and_out_of_walls():
+    ramp = np.tile(np.arange(5.0) * 2.0, (3, 1))  # potential rising with the column
+    assert cell_gradient(ramp, 1, 2) == pytest.approx((0.0, -1.0))
+    assert cell_gradient(ramp, 0, 0) == pytest.approx((0.0, -1.0))  # one-sided at the edge
+    ramp[1, 2] = math.inf  # unreachable: towards the reachable side neighbours before it
+    assert cell_gradient(ramp, 1, 2) == pytest.approx((-math.sqrt(0.5), -math.sqrt(0.5)))
+    assert cell_gradient(np.full((3, 3), math.inf), 1, 1) == (0.0, 0.0)
+
+
+def test_a_replanned_path_is_the_rest_of_the_last_one():
+    # NavFn's descent on one potential of the goal: the plan from a point on the path follows
+    # it (a path traced back cell by cell put its diagonal steps elsewhere after each replan)
+    room = _room(10.0, 5.0)
+    goal = (8.525, 2.525, 0.0)
+    path = make_plan(room, (0.525, 0.525), goal)
+    assert path_length(path) < 1.02 * math.hypot(8.0, 2.0)
+    for k in (20, 40, 100):
+        rest = make_plan(room, tuple(path[k, :2]), goal)
+        gaps = np.hypot(*(rest[:, None, :2] - path[None, :, :2]).T).min(axis=0)
+        assert gaps.max() < 0.05
+    # poses half a cell apart, turning gradually: no 45 degree kinks of a cell path
+    steps = np.diff(path[:-1, :2], axis=0)
+    assert np.hypot(*steps.T) == pytest.approx(0.025)
+    turns = np.diff(np.arctan2(steps[:, 1], steps[:, 0]))
+    assert np.abs(turns).max() < 0.1
 
 
 def test_plan_goes_through_the_gap_of_a_wall():
