@@ -6,9 +6,11 @@ The ``GridBased`` global planner: NavFn's costs and goal rules over scikit-image
 Each cell's travel cost is NavFn's (``nav2_navfn_planner/include/nav2_navfn_planner/navfn.hpp``,
 ``NavFn::setCostmap``): ``50 + 0.8 * cost`` for costs below 253, 253 for unknown cells when
 ``allow_unknown``, impassable for inscribed, lethal (and unknown otherwise) cells. The
-potential of every cell (its cheapest travel cost to the goal) comes from
+potential (each cell's cheapest travel cost to the goal) comes from
 ``skimage.graph.MCP_Geometric`` (Dijkstra over 8-connected cells, a diagonal step costing sqrt(2)
-times the mean of its two cells) instead of NavFn's interpolated wavefront, and the path is
+times the mean of its two cells) instead of NavFn's interpolated wavefront; like NavFn's
+propagation it stops once it has reached the robot (here: every passable cell within
+:data:`DESCENT_WINDOW` cells of it), the cells not reached being ``inf``. The path is
 NavFn's ``calcPath`` on it (:func:`descend`): from the robot's cell down the interpolated
 gradient of the potential in steps of half a cell, following the grid to the lowest neighbour
 where a neighbour is impassable or the path oscillates. Descending one potential of the goal,
@@ -38,6 +40,9 @@ UNKNOWN_TRAVEL = 253.0
 
 PATH_STEP = 0.5
 """Cells per step down the potential (NavFn's ``pathStep``)."""
+
+DESCENT_WINDOW = 3
+"""Cells on each side of the robot's cell whose potential is final before the search stops."""
 
 
 class PlanError(Exception):
@@ -104,10 +109,13 @@ def make_plan(costmap, start, goal, tolerance=0.5, allow_unknown=True,
     # the robot's own cell is passable even when inflated or lethal (NavFn's clearRobotCell)
     travel[s_cell[1], s_cell[0]] = max(travel[s_cell[1], s_cell[0]], COST_NEUTRAL)
     start_rc, goal_rc = (s_cell[1], s_cell[0]), (g_cell[1], g_cell[0])
+    # NavFn's propagation stops once it reaches the robot (``propNavFnDijkstra``): here once
+    # the cells around the robot that the first steps down the gradient read are final
+    near = _passable_around(travel, start_rc, DESCENT_WINDOW)
     mcp = MCP_Geometric(travel, fully_connected=True)
     potential = None
     if travel[goal_rc] >= 0:
-        potential, _ = mcp.find_costs([goal_rc])  # the whole map: the robot's neighbours too
+        potential, _ = mcp.find_costs([goal_rc], near, find_all_ends=True)
     target = goal_rc
     if potential is None or not np.isfinite(potential[start_rc]):
         # the goal's cell is impassable, or walled in: the reachable cell nearest to it
@@ -117,7 +125,7 @@ def make_plan(costmap, start, goal, tolerance=0.5, allow_unknown=True,
             raise PlanError('NO_VALID_PATH', 'Failed to create plan with tolerance of: '
                             f'{tolerance:.6f}')
         mcp = MCP_Geometric(travel, fully_connected=True)
-        potential, _ = mcp.find_costs([target])
+        potential, _ = mcp.find_costs([target], near, find_all_ends=True)
     cells = descend(potential, start_rc, target)
     if cells is None:  # NavFn would fail here; the cells' own path is still a path
         cells = np.array(mcp.traceback(start_rc), float)[::-1]
@@ -213,6 +221,15 @@ def descend(potential, start_rc, target_rc, step=PATH_STEP):
             y, x = y + step * g0 / norm, x + step * g1 / norm
         points.append((y, x))
     return None
+
+
+def _passable_around(travel, rc, half):
+    """Return the passable cells ``(row, col)`` within ``half`` cells of ``rc`` on the map."""
+    h, w = travel.shape
+    r0, r1 = max(rc[0] - half, 0), min(rc[0] + half + 1, h)
+    c0, c1 = max(rc[1] - half, 0), min(rc[1] + half + 1, w)
+    rows, cols = np.nonzero(travel[r0:r1, c0:c1] >= 0)
+    return [(int(r + r0), int(c + c0)) for r, c in zip(rows, cols)]
 
 
 def _closest_reachable(cumulative, goal_rc, half_cells):

@@ -357,3 +357,28 @@ def test_controller_server_reads_the_checker_plugins_parameters():
         'plugin': 'nav2_controller::SimpleGoalChecker', 'xy': 0.25, 'yaw': 0.25,
         'stateful': True}
     assert 'gc.rot_stopped_velocity' not in declared
+
+
+def test_search_stops_near_the_robot_and_paths_match_the_whole_potential():
+    # NavFn's propagation stops at the robot: the cut-short potential must give the same path
+    # as the potential of the whole map, and leave the cells beyond the robot unsearched
+    from amr_description.nav import planner as planner_module
+    from skimage.graph import MCP_Geometric
+    room = _room(4.0, 3.0)  # 80 x 60 cells
+    room.costs[10:50, 40] = cm.LETHAL_OBSTACLE  # a wall with a way round at both ends
+    start, goal = (1.5, 1.5), (3.5, 1.4, 0.0)
+    path = make_plan(room, start, goal, tolerance=0.0)
+    travel = planner_module.travel_costs(room.costs)
+    s, g = room.world_to_map(*start), room.world_to_map(*goal[:2])
+    s_rc, g_rc = (s[1], s[0]), (g[1], g[0])
+    whole, _ = MCP_Geometric(travel, fully_connected=True).find_costs([g_rc])
+    cells = planner_module.descend(whole, s_rc, g_rc)
+    x, y = room.map_to_world(cells[:, 1], cells[:, 0])
+    assert np.allclose(path[:, :2], np.column_stack((x, y)))
+    near = planner_module._passable_around(travel, s_rc, planner_module.DESCENT_WINDOW)
+    assert len(near) == (2 * planner_module.DESCENT_WINDOW + 1) ** 2
+    search = MCP_Geometric(travel, fully_connected=True)
+    cut, _ = search.find_costs([g_rc], near, find_all_ends=True)
+    assert np.isfinite(cut[s_rc]) and cut[s_rc] == whole[s_rc]
+    assert np.isinf(cut[:, :10]).all()  # the map's west end, beyond the robot: unsearched
+    assert np.isfinite(whole[:, :10]).all()
