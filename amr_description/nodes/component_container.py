@@ -233,14 +233,14 @@ def main(args=None, isolated=False):
         components = read_components(opts.nodes)
     except ComponentError as exc:
         shutdown.fail(prog, exc)
-    shutdown.init(argv)
-    bond.share_endpoints()  # the composed nodes live as long as the container
-    transforms.share_listener_threads()
     container = None
     executor = None
     spinners = []
     failed = threading.Event()
     try:
+        shutdown.init(argv)
+        bond.share_endpoints()  # the composed nodes live as long as the container
+        transforms.share_listener_threads()
         container = shutdown.create(ComponentContainer)
         executor = SingleThreadedExecutor()
         executor.add_node(container)

@@ -186,10 +186,10 @@ def main(args=None):
     argv = sys.argv[1:] if args is None else list(args)
     own = shutdown.remove_ros_args(['create'] + argv)[1:]
     opts = build_parser().parse_args(own)
-    shutdown.init(['create'] + argv)
     node = None
     code = 1
     try:
+        shutdown.init(['create'] + argv)
         node = shutdown.create(Create, opts)
         urdf = node.description()
         if not opts.topic:

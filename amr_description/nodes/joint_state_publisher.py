@@ -130,9 +130,9 @@ def main(args=None):
     :raises SystemExit: code 1 after one error line on bad ROS arguments or a bad parameter
         (:mod:`amr_description.ros.shutdown`).
     """
-    shutdown.init(args)
     node = None
     try:
+        shutdown.init(args)
         node = shutdown.create(JointStatePublisher)
         shutdown.spin(node)
     except KeyboardInterrupt:

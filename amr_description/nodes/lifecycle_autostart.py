@@ -94,13 +94,14 @@ def main(args=None):
         print('usage: lifecycle_autostart NODE [configure|activate ...]', file=sys.stderr)
         return 2
     target, steps = argv[0], argv[1:] or ['configure', 'activate']
-    shutdown.init(args)
-    node = Node(f'launch_ros_{os.getpid()}')
-    executor = SingleThreadedExecutor(context=node.context)
-    executor.add_node(node)
-    wait = _waiter(executor)
+    node = executor = None
     code = 0
     try:
+        shutdown.init(args)
+        node = Node(f'launch_ros_{os.getpid()}')
+        executor = SingleThreadedExecutor(context=node.context)
+        executor.add_node(node)
+        wait = _waiter(executor)
         change_state = node.create_client(ChangeState, f'{target}/change_state')
         get_state = node.create_client(GetState, f'{target}/get_state')
         if not change_state.wait_for_service(timeout_sec=SERVICE_WAIT) or \

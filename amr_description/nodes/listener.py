@@ -37,9 +37,9 @@ def main(args=None):
 
     :param args: command-line arguments for rclpy (default ``sys.argv``).
     """
-    shutdown.init(args)
     node = None
     try:
+        shutdown.init(args)
         node = shutdown.create(MinimalSubscriber)
         shutdown.spin(node)
     except KeyboardInterrupt:

@@ -213,10 +213,10 @@ def cli_main(args=None):
     if options['help']:
         print(USAGE)
         sys.exit(0)
-    shutdown.init(argv)
     node = None
     saved = False
     try:
+        shutdown.init(argv)
         node = shutdown.create(MapSaver)
         node.trigger_configure()
         if node._save_service is None:

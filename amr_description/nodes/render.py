@@ -50,10 +50,10 @@ def _description_from_topic(args, timeout):
     from std_msgs.msg import String
 
     os.environ.setdefault('ROS_AUTOMATIC_DISCOVERY_RANGE', 'LOCALHOST')
-    shutdown.init(args)
     node = None
     received = []
     try:
+        shutdown.init(args)
         node = shutdown.create(Node, 'render')
         node.create_subscription(
             String, 'robot_description', lambda msg: received.append(msg.data),

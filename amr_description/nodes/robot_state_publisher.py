@@ -228,9 +228,9 @@ def main(args=None):
         ``robot_description`` is empty or refused by the URDF loader, or a parameter has the
         wrong type or is out of range (:mod:`amr_description.ros.shutdown`).
     """
-    shutdown.init(args)
     node = None
     try:
+        shutdown.init(args)
         node = shutdown.create(RobotStatePublisher)
         shutdown.spin(node)
     except KeyboardInterrupt:

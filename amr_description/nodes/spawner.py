@@ -28,7 +28,6 @@ from amr_description.control.controller_manager_services import ServiceNotFoundE
 from amr_description.core import ros_param_file
 from amr_description.ros import shutdown
 from amr_description.ros.node import Node
-import rclpy
 
 
 STRICT = cms.STRICT
@@ -183,16 +182,15 @@ def main(args=None):
     """
     argv = sys.argv if args is None else ['spawner'] + list(args)
     os.environ.setdefault('ROS_AUTOMATIC_DISCOVERY_RANGE', 'LOCALHOST')
-    shutdown.init(argv)
-    opts = _parser().parse_args(rclpy.utilities.remove_ros_args(args=argv)[1:])
+    opts = _parser().parse_args(shutdown.remove_ros_args(argv)[1:])
     for path in opts.param_file or []:
         if not os.path.isfile(path):
             print(f'spawner: parameter file {path} not found', file=sys.stderr)
-            rclpy.try_shutdown()
             return 1
     node = None
     code = 1
     try:
+        shutdown.init(argv)
         node = shutdown.create(Spawner, opts.controller_names[0], opts.namespace)
         cm = cms.resolve_controller_manager(node, opts.controller_manager)
         code = run(node, opts, cm)

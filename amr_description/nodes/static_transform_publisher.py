@@ -90,9 +90,9 @@ def main(args=None):
     :raises SystemExit: code 1 after one error line when the ROS arguments cannot be parsed.
     """
     argv = sys.argv if args is None else list(args)
-    shutdown.init(argv)
     node = None
     try:
+        shutdown.init(argv)
         try:
             parsed = static_transform_args.parse(shutdown.remove_ros_args(argv)[1:])
         except ValueError as exc:

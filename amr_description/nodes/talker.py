@@ -40,9 +40,9 @@ def main(args=None):
 
     :param args: command-line arguments for rclpy (default ``sys.argv``).
     """
-    shutdown.init(args)
     node = None
     try:
+        shutdown.init(args)
         node = shutdown.create(MinimalPublisher)
         shutdown.spin(node)
     except KeyboardInterrupt:

@@ -157,9 +157,9 @@ def main(args=None):
         return 1
     fd = sys.stdin.fileno()
     settings = termios.tcgetattr(fd)
-    shutdown.init(args)
     node = executor = spinner = None
     try:
+        shutdown.init(args)
         node = shutdown.create(TeleopTwistKeyboard)
         executor = SingleThreadedExecutor()
         executor.add_node(node)

@@ -14,9 +14,9 @@ and ``spin`` raises ``KeyboardInterrupt`` itself once ``spin_once`` returned; ou
 the handler raises ``KeyboardInterrupt`` in the main thread at once. Later signals are ignored
 while ``main`` stops its threads, destroys its nodes and, last, shuts rclpy down::
 
-    init(args)
     node = None
     try:
+        init(args)
         node = create(MyNode)
         spin(node)
     except KeyboardInterrupt:
@@ -312,10 +312,10 @@ def run(factory, args=None, threads=1):
         same executor and destroyed before it.
     """
     from rclpy.executors import MultiThreadedExecutor
-    init(args)
     node = executor = None
     companions = []
     try:
+        init(args)
         node = create(factory)
         companions = list(getattr(node, 'companion_nodes', ()))
         if threads > 1:

@@ -160,10 +160,10 @@ def run_web_node(node_class, node_name, args=None, executor_class=None):
     """
     import rclpy
     from amr_description.ros import shutdown
-    shutdown.init(args)
     node = None
     executor = None
     try:
+        shutdown.init(args)
         node = shutdown.create(node_class)
         print(f'{node_name}: open {node.url} in a browser', flush=True)
         if executor_class is not None:

@@ -148,3 +148,61 @@ def test_rcl_argument_error_is_one_line_and_exit_1(pattern, capfd):
     with pytest.raises(SystemExit):
         pattern.remove_ros_args(['my_node', '--ros-args', '-p', 'x:='])
     assert len(capfd.readouterr().err.strip().splitlines()) == 1
+
+
+def test_a_signal_during_rclpy_init_stops_run_quietly(pattern, monkeypatch):
+    # a stack stopped while a node is still starting (the viewer refused its port and the
+    # orchestrator sent SIGINT): the KeyboardInterrupt that init raises is main's to catch
+    real_init = rclpy.init
+    built = []
+
+    def init_then_signal(**kwargs):
+        real_init(**kwargs)
+        os.kill(os.getpid(), signal.SIGINT)  # deferred: init is in its rcl start-up
+
+    monkeypatch.setattr(pattern.rclpy, 'init', init_then_signal)
+    assert pattern.run(lambda: built.append(1), args=['test_shutdown']) is None
+    assert built == [] and pattern.interrupted()
+    assert not rclpy.ok()  # the context init made was shut down
+
+
+def _calls_init(node):
+    """Return True when ``node`` (an ast node) is a call of ``shutdown.init`` or ``init``."""
+    import ast
+    if not isinstance(node, ast.Call):
+        return False
+    func = node.func
+    return (isinstance(func, ast.Attribute) and func.attr == 'init' and
+            isinstance(func.value, ast.Name) and func.value.id == 'shutdown') or \
+        (isinstance(func, ast.Name) and func.id == 'init')
+
+
+def test_every_main_calls_init_inside_its_interrupt_handler():
+    # init raises KeyboardInterrupt on a signal during the start-up: called before the try
+    # (as every main once did), that is a traceback in a stopping stack's log
+    import ast
+    import pathlib
+    root = pathlib.Path(shutdown.__file__).resolve().parents[1]
+    outside = []
+    calls = 0
+    for path in sorted(root.rglob('*.py')):
+        tree = ast.parse(path.read_text(), str(path))
+        for function in ast.walk(tree):
+            if not isinstance(function, ast.FunctionDef) or \
+                    not function.name.startswith(('main', 'run')):
+                continue  # a helper's interrupt goes to the main that called it
+            guarded = set()
+            for node in ast.walk(function):
+                if isinstance(node, ast.Try) and any(
+                        handler.type is not None and
+                        'KeyboardInterrupt' in ast.unparse(handler.type)
+                        for handler in node.handlers):
+                    for statement in node.body:
+                        guarded.update(id(each) for each in ast.walk(statement))
+            for node in ast.walk(function):
+                if _calls_init(node):
+                    calls += 1
+                    if id(node) not in guarded:
+                        outside.append(f'{path.relative_to(root)}:{node.lineno}')
+    assert calls >= 15
+    assert outside == []

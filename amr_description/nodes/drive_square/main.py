@@ -159,8 +159,8 @@ def main(args=None):
     orchestrator = log = None
     node = lockstep = None
     log_path = None
-    shutdown.init(['drive_square', '--ros-args', '-p', 'use_sim_time:=true'] + ros_args[1:])
     try:
+        shutdown.init(['drive_square', '--ros-args', '-p', 'use_sim_time:=true'] + ros_args[1:])
         if not opts.no_bringup:
             log_path = os.path.join(opts.output_dir, 'sim_stack.log')
             what = f'{opts.robots} robots' if opts.robots > 1 else 'the sim stack'

@@ -317,10 +317,10 @@ def main(args=None):
 
     :returns: 0; 1 when another simulator already publishes /clock in the domain (one line).
     """
-    shutdown.init(args)
     executor = None
     node = None
     try:
+        shutdown.init(args)
         executor = SimTimeExecutor(SimTime())
         node = shutdown.create(MujocoSim, executor)
         executor.exempt.add(node)

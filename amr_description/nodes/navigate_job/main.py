@@ -362,9 +362,9 @@ def main(args=None):
     argv = list(sys.argv[1:] if args is None else args)
     opts = _parse(argv)
     os.makedirs(opts.output_dir, exist_ok=True)
-    shutdown.init([PROGRAM, '--ros-args', '-p', 'use_sim_time:=true'])
     navigator = None
     try:
+        shutdown.init([PROGRAM, '--ros-args', '-p', 'use_sim_time:=true'])
         from amr_description.core.gazebo.sdf_world import load_world
         from amr_description.core.scan_map import world_sections
         from amr_description.launch.nav_stacks import share_file
