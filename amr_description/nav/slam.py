@@ -203,6 +203,7 @@ class Mapper:
         self.loop_closures = 0
         self.last_response = None
         self._session = []  # keyframes of this session (the running buffer's candidates)
+        self._traced = {}  # keyframe index -> (keyframe, pose bytes) + trace_cells(...)
         self._restart_pose = None
         self._restart_odom = None
 
@@ -375,47 +376,69 @@ class Mapper:
         Return the :class:`~amr_description.nav.map_io.GridMap` of every keyframe, or None.
 
         The grid covers every ray (cell (0, 0)'s corner on a multiple of the resolution);
-        values -1 / 0 / 100 as slam_toolbox publishes.
+        values -1 / 0 / 100 as slam_toolbox publishes. Like slam_toolbox's, the grid is made
+        again from every keyframe's rays each time; a keyframe's cells are traced once per
+        pose of it (kept until the graph moves it).
         """
         if not self.keyframes:
             return None
         res = self.params.resolution
-        origins, ends, hits = [], [], []
-        for frame, pose in zip(self.keyframes, self.graph.poses):
-            origins.append(transform_points(frame.origin[None], pose)[0])
-            ends.append(transform_points(frame.ends, pose))
-            hits.append(frame.hits)
-        every = np.vstack([np.vstack(ends), np.array(origins)])
-        lo = np.floor(every.min(axis=0) / res) * res - res
-        hi = every.max(axis=0) + 2 * res
+        cache = {}
+        for i, (frame, pose) in enumerate(zip(self.keyframes, self.graph.poses)):
+            at = np.asarray(pose, dtype=float).tobytes()
+            traced = self._traced.get(i)
+            if traced is None or traced[0] is not frame or traced[1] != at:
+                traced = (frame, at) + trace_cells(frame, pose, res)
+            cache[i] = traced
+        self._traced = cache
+        lo_cell = np.min([t[2] for t in cache.values()], axis=0) - 1
+        hi = np.max([t[3] for t in cache.values()], axis=0) + 2 * res
+        lo = lo_cell * res
         width, height = (int(v) for v in np.ceil((hi - lo) / res))
-        passes = np.zeros(width * height, dtype=np.int32)
-        hit_count = np.zeros(width * height, dtype=np.int32)
-        for o, e, h in zip(origins, ends, hits):
-            self._trace(o, e, h, lo, res, width, passes, hit_count)
-        data = np.full(width * height, -1, dtype=np.int8)
+        size = width * height
+
+        def counts(column):
+            cells = np.concatenate([t[column] for t in cache.values()]).astype(np.int64)
+            flat = (cells[:, 1] - lo_cell[1]) * width + (cells[:, 0] - lo_cell[0])
+            return np.bincount(flat, minlength=size)
+
+        passes, hit_count = counts(4), counts(5)
+        data = np.full(size, -1, dtype=np.int8)
         seen = passes > self.params.min_pass_through
-        ratio = np.divide(hit_count, passes, out=np.zeros(len(passes)), where=passes > 0)
+        ratio = np.divide(hit_count, passes, out=np.zeros(size), where=passes > 0)
         data[seen] = np.where(ratio[seen] > self.params.occupancy_threshold, 100, 0)
         return GridMap(data.reshape(height, width), res, (float(lo[0]), float(lo[1]), 0.0))
 
-    @staticmethod
-    def _trace(origin, ends, hits, lo, res, width, passes, hit_count):
-        """Count passes (each cell once per ray) and end-point hits of one scan's rays."""
-        if len(ends) == 0:
-            return
-        delta = ends - origin
-        length = np.hypot(delta[:, 0], delta[:, 1])
-        samples = int(np.ceil(length.max() / (0.5 * res))) + 1
-        t = np.linspace(0.0, 1.0, samples)
-        pts = origin + delta[:, None, :] * t[None, :, None]
-        cells = np.floor((pts - lo) / res).astype(np.int64)
-        flat = cells[..., 1] * width + cells[..., 0]
-        first = np.ones(flat.shape, dtype=bool)
-        first[:, 1:] = flat[:, 1:] != flat[:, :-1]
-        np.add.at(passes, flat[first], 1)
-        end_cells = np.floor((ends[hits] - lo) / res).astype(np.int64)
-        np.add.at(hit_count, end_cells[:, 1] * width + end_cells[:, 0], 1)
+
+def trace_cells(frame, pose, res):
+    """
+    Return the cells of one keyframe's rays at ``pose``, on the grid of cells ``res`` wide.
+
+    A ray passes each cell it crosses once; a ray that hit something ends in a hit. Cells are
+    integer ``(column, row)`` pairs counted from the map frame's origin (``floor(x / res)``).
+
+    :param frame: a :class:`Keyframe`.
+    :param pose: ``(x, y, yaw)`` of the keyframe in the map frame.
+    :param res: m per cell.
+    :returns: ``(low, high, pass_cells, hit_cells)``: the lowest cell (2,) int, the highest
+        point (2,) m, a cell (N, 2) int32 per ray and cell it passes, one (M, 2) per hit.
+    """
+    origin = transform_points(frame.origin[None], pose)[0]
+    ends = transform_points(frame.ends, pose)
+    every = np.vstack([ends, origin[None]])
+    low = np.floor(every.min(axis=0) / res).astype(np.int64)
+    high = every.max(axis=0)
+    if len(ends) == 0:
+        return low, high, np.zeros((0, 2), np.int32), np.zeros((0, 2), np.int32)
+    delta = ends - origin
+    length = np.hypot(delta[:, 0], delta[:, 1])
+    samples = int(np.ceil(length.max() / (0.5 * res))) + 1
+    t = np.linspace(0.0, 1.0, samples)
+    cells = np.floor((origin + delta[:, None, :] * t[None, :, None]) / res).astype(np.int32)
+    first = np.ones(cells.shape[:2], dtype=bool)
+    first[:, 1:] = (cells[:, 1:] != cells[:, :-1]).any(axis=2)
+    hit_cells = np.floor(ends[frame.hits] / res).astype(np.int32)
+    return low, high, cells[first], hit_cells
 
 
 def save_graph(mapper, stem):

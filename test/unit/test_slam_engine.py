@@ -219,3 +219,25 @@ def test_load_graph_names_the_file(tmp_path):
     (tmp_path / 'x.posegraph').write_text('not a graph')
     with pytest.raises(ValueError, match=r'x\.posegraph / .*x\.data: not a pose graph'):
         slam.load_graph(str(tmp_path / 'x'))
+
+
+def test_occupancy_counts_passes_and_hits_and_follows_a_moved_keyframe():
+    # one ray 1 m along +x from the sensor, ending in a return; min_pass_through 2 needs three
+    # keyframes' passes before a cell counts as seen
+    mapper = slam.Mapper()
+    ray = slam.Keyframe(np.zeros(3), np.zeros(2), np.array([[1.0, 0.0]]), np.array([True]))
+    for _ in range(3):
+        mapper.keyframes.append(ray)
+        mapper.graph.add_node((0.0, 0.01, 0.0))
+    grid = mapper.occupancy()
+    res = grid.resolution
+
+    def at(x, y):
+        return grid.data[int((y - grid.origin[1]) // res), int((x - grid.origin[0]) // res)]
+    assert at(0.5, 0.01) == 0 and at(1.01, 0.01) == 100  # free along the ray, its end hit
+    assert at(0.5, -0.02) == -1  # the margin row below the ray: never passed
+    # the graph moves every keyframe 0.5 m up: the grid follows (the cached rays are redone)
+    mapper.graph.poses[:, 1] += 0.5
+    grid = mapper.occupancy()
+    assert at(0.5, 0.51) == 0 and at(1.01, 0.51) == 100
+    assert grid.origin[1] == pytest.approx(0.45)  # a cell below the lowest ray, as before
