@@ -43,17 +43,25 @@ class Recorder:
     """
     The ground truth of the robot (``/ground_truth/odom``), recorded on the navigator's node.
 
+    The ground truth's 50 messages a second are taken on a thread of their own
+    (:class:`~amr_description.ros.take_loop.TakeLoop`): on the navigator's executor each woke
+    it with every entity of its action and service clients. ``stop_loops_of(node)`` ends
+    the thread.
+
     :param node: the rclpy node (the job's ``BasicNavigator``).
     """
 
     def __init__(self, node):
+        from amr_description.ros.take_loop import TakeLoop
         from geometry_msgs.msg import PoseWithCovarianceStamped
         from nav_msgs.msg import Odometry
         from rclpy.qos import DurabilityPolicy
         from rclpy.qos import QoSProfile
         self.samples = []  # (t, x, y, yaw): sim s, world-frame m and rad
         self.amcl = None  # the last /amcl_pose as (t, x, y, yaw), map frame
-        node.create_subscription(Odometry, '/ground_truth/odom', self._on_truth, 50)
+        loop = TakeLoop(node, f'{PROGRAM}_ground_truth')
+        loop.subscribe(Odometry, '/ground_truth/odom', 50, self._on_truth, raw=False)
+        loop.start()
         node.create_subscription(PoseWithCovarianceStamped, '/amcl_pose', self._on_amcl,
                                  QoSProfile(depth=1,
                                             durability=DurabilityPolicy.TRANSIENT_LOCAL))
@@ -394,6 +402,9 @@ def main(args=None):
     except (KeyboardInterrupt, ExternalShutdownException):
         return 1
     finally:
+        if navigator is not None:
+            from amr_description.ros.take_loop import stop_loops_of
+            stop_loops_of(navigator)  # the recorder's thread, before the node goes
         shutdown.shutdown(navigator)
 
 
