@@ -18,8 +18,10 @@ wrong type fails configure with one line naming it.
   ``pose`` (PoseWithCovarianceStamped, depth 10) per processed scan;
   ``slam_toolbox/graph_visualization`` (the pose graph's markers, depth 1, with each map
   update: :mod:`amr_description.nav.graph_markers`); TF ``map_frame`` ->
-  ``odom_frame`` every ``transform_publish_period`` s (0: never) stamped with the last scan's
-  stamp + ``transform_timeout``, nothing before the first scan; the services
+  ``odom_frame`` every ``transform_publish_period`` s of wall time on a thread of its own (0:
+  never), stamped with the newest scan's
+  stamp + ``transform_timeout`` (every scan placed with TF, used by the mapper or not, as
+  slam_toolbox's ``scan_header``), nothing before the first scan; the services
   ``slam_toolbox/save_map`` (runs ``ros2 run nav2_map_server map_saver_cli -f NAME --ros-args
   -p map_subscribe_transient_local:=true``, as slam_toolbox's ``map_saver.cpp``),
   ``serialize_map``, ``deserialize_map``, ``dynamic_map``, ``pause_new_measurements``,
@@ -50,9 +52,6 @@ Source: slam_toolbox 2.8.3 ``src/slam_toolbox_common.cpp``, ``src/slam_toolbox_a
 """
 
 import math
-import os
-import shutil
-import subprocess
 import threading
 
 from amr_description.core.tf_buffer import TransformBuffer
@@ -62,6 +61,8 @@ from amr_description.nav.graph_markers import graph_markers
 from amr_description.nav.grid_message import occupancy_grid
 from amr_description.ros import shutdown
 from amr_description.ros.managed_node import ManagedNode
+from amr_description.ros.map_saver_cli import map_saver_command
+from amr_description.ros.map_saver_cli import run_map_saver
 from amr_description.ros.parameters import read_parameters
 from amr_description.ros.parameters import unused_parameters
 from amr_description.ros.stamps import time_to_msg
@@ -72,6 +73,8 @@ from amr_description.ros.transforms import set_yaw
 from amr_description.ros.transforms import stamp_seconds
 from amr_description.ros.transforms import StampedQueue
 from amr_description.ros.transforms import TransformListener
+from amr_description.ros.worker_threads import OnRequest
+from amr_description.ros.worker_threads import Periodic
 from geometry_msgs.msg import PoseWithCovarianceStamped
 from nav_msgs.msg import MapMetaData
 from nav_msgs.msg import OccupancyGrid
@@ -122,6 +125,8 @@ class SlamToolbox(ManagedNode):
         self._listener = None
         self.p = {}
         self._lock = threading.RLock()  # the mapper, for the sync node's processing thread
+        self._map_to_odom = None  # the last map -> odom read from the mapper
+        self._threads = []  # the map's and map -> odom's (worker_threads), while active
 
     def wants_bond(self):
         """Bond with a lifecycle manager only with ``use_lifecycle_manager`` (slam_toolbox)."""
@@ -178,14 +183,20 @@ class SlamToolbox(ManagedNode):
         self._listener = TransformListener(self, self.tf_buffer, spin_thread=True)
         scan_sub = self.create_subscription(LaserScan, p['scan_topic'], self._on_scan,
                                             qos_profile_sensor_data)
-        self._graph_pub = self.create_publisher(MarkerArray, 'slam_toolbox/graph_visualization',
-                                                1)
+        self._graph_pub = self.create_publisher(MarkerArray, 'slam_toolbox/graph_visualization', 1)
         self._active = [self._map_pub, self._meta_pub, self._pose_pub, self._tf_pub, scan_sub,
                         self._graph_pub,
                         self.create_timer(p['map_update_interval'], self._on_map_timer)]
+        # off the executor, as slam_toolbox (on it, map -> odom went stale: docs/navigation.md)
+        log = self.get_logger()
+        self._map_worker = OnRequest('slam_map', self._publish_map_and_graph, log,
+                                     'map not published')
+        self._threads = [self._map_worker]
         if p['transform_publish_period'] > 0.0:
-            self._active.append(self.create_timer(p['transform_publish_period'],
-                                                  self._publish_tf))
+            self._threads.append(Periodic('slam_map_to_odom', p['transform_publish_period'],
+                                          self._publish_tf, log, 'map -> odom not published'))
+        for thread in self._threads:
+            thread.start()
         prefix = 'slam_toolbox/'
         services = [
             (srv.SerializePoseGraph, 'serialize_map', self._on_serialize),
@@ -204,6 +215,7 @@ class SlamToolbox(ManagedNode):
     def deactivate(self):
         """Destroy what :meth:`activate` created."""
         self.get_logger().info('Deactivating')
+        self._stop_threads()
         self.destroy_entities(self._active)
         self._active = []
         if self._listener is not None:
@@ -214,17 +226,24 @@ class SlamToolbox(ManagedNode):
         """Forget the map."""
         self.get_logger().info('Cleaning up')
         self.mapper = None
+        self._map_to_odom = None
+
+    def destroy_node(self):
+        """Stop the map and ``map -> odom`` threads before the publishers go (Ctrl-C)."""
+        self._stop_threads()
+        return super().destroy_node()
 
     # --- scans ------------------------------------------------------------------------------
     def _on_scan(self, msg):
         # scans wait for the odometry at their stamp; each new scan lets the waiting ones try
         # again (no polling timer: it woke the node's executor 50 times a second)
         self._scans += 1
-        if not self._paused and not self._scans % max(1, self.p['throttle_scans']):
-            self._pending.add(msg)
+        wanted = not self._paused and not self._scans % max(1, self.p['throttle_scans'])
+        self._pending.add((msg, wanted))
 
-    def _process(self, msg):
-        """Use or drop ``msg``; return False while its odometry has not arrived yet."""
+    def _process(self, queued):
+        """Use or drop a queued scan; return False while its odometry has not arrived yet."""
+        msg, wanted = queued
         stamp = stamp_seconds(msg.header.stamp)
         try:
             odom, _ = self.tf_buffer.lookup(self.p['odom_frame'], self.p['base_frame'], stamp)
@@ -235,6 +254,9 @@ class SlamToolbox(ManagedNode):
             self.get_logger().warning(
                 f"Failed to compute odom pose of scan in frame '{msg.header.frame_id}': "
                 f'{str(exc).strip()}', throttle_duration_sec=5.0)
+            return True
+        self._last_stamp = msg.header.stamp  # used or not: slam_toolbox's scan_header
+        if not wanted:
             return True
         expected = int(round((msg.angle_max - msg.angle_min) / msg.angle_increment)) + 1 \
             if msg.angle_increment else 1
@@ -249,7 +271,6 @@ class SlamToolbox(ManagedNode):
             return True
         scan = slam.Scan(np.asarray(msg.ranges, dtype=float), msg.angle_min,
                          msg.angle_increment, msg.range_min, msg.range_max, planar_pose(laser))
-        self._last_stamp = msg.header.stamp
         self._use(planar_pose(odom), scan, msg.header.stamp)
         return True
 
@@ -289,12 +310,29 @@ class SlamToolbox(ManagedNode):
         msg.pose.covariance = cov
         self._pose_pub.publish(msg)
 
+    def _stop_threads(self):
+        """Stop and join the map and ``map -> odom`` threads, if they run."""
+        threads, self._threads = self._threads, []
+        for thread in threads:
+            thread.stop()
+
     def _publish_tf(self):
-        with self._lock:
-            if self._last_stamp is None or self.mapper is None:
-                return
-            map_to_odom = self.mapper.map_to_odom()
-        t = stamp_seconds(self._last_stamp) + self.p['transform_timeout']
+        """
+        Publish ``map -> odom``, stamped with the newest scan + ``transform_timeout``.
+
+        Read from the mapper when nothing holds it, else the last one read is sent again, as
+        slam_toolbox's thread sends ``map_to_odom_`` while a scan is matched.
+        """
+        if self._lock.acquire(blocking=False):
+            try:
+                if self.mapper is not None:
+                    self._map_to_odom = self.mapper.map_to_odom()
+            finally:
+                self._lock.release()
+        stamp, map_to_odom = self._last_stamp, self._map_to_odom
+        if stamp is None or map_to_odom is None:
+            return
+        t = stamp_seconds(stamp) + self.p['transform_timeout']
         self._tf_pub.publish(TFMessage(transforms=[planar_transform(
             self.p['map_frame'], self.p['odom_frame'], time_to_msg(t), map_to_odom)]))
 
@@ -313,6 +351,9 @@ class SlamToolbox(ManagedNode):
             return self._map_msg
 
     def _on_map_timer(self):
+        self._map_worker.request()  # every map_update_interval of the node's clock
+
+    def _publish_map_and_graph(self):
         self._publish_map()
         with self._lock:
             if self.mapper is None or not len(self.mapper.graph) or self._interactive:
@@ -335,21 +376,14 @@ class SlamToolbox(ManagedNode):
             response.result = srv.SaveMap.Response.RESULT_NO_MAP_RECEIEVD
             return response
         self._publish_map()
-        ros2 = shutil.which('ros2')
-        if ros2 is None:
-            self.get_logger().error("Map Saver: 'ros2' is not on PATH")
+        try:
+            cmd = map_saver_command(request.name.data, self.get_namespace())
+        except FileNotFoundError as exc:
+            self.get_logger().error(f'Map Saver: {exc}')
             response.result = srv.SaveMap.Response.RESULT_UNDEFINED_FAILURE
             return response
-        cmd = [ros2, 'run', 'nav2_map_server', 'map_saver_cli']
-        if request.name.data:
-            cmd += ['-f', request.name.data]
-        cmd += ['--ros-args', '-p', 'map_subscribe_transient_local:=true', '-p',
-                'save_map_timeout:=10.0']
-        if self.get_namespace() != '/':
-            cmd += ['-r', f'__ns:={self.get_namespace()}']
         self.get_logger().info('Map Saver: ' + ' '.join(cmd[1:]))
-        done = subprocess.run(cmd, env=os.environ.copy(), stdin=subprocess.DEVNULL,
-                              check=False)
+        done = run_map_saver(cmd)
         response.result = (srv.SaveMap.Response.RESULT_SUCCESS if done.returncode == 0
                            else srv.SaveMap.Response.RESULT_UNDEFINED_FAILURE)
         return response
@@ -418,6 +452,7 @@ class SlamToolbox(ManagedNode):
         with self._lock:
             self.mapper = self._new_mapper()
             self._map_version = -1
+            self._map_to_odom = None
         self._last_stamp = None
         self._paused = bool(request.pause_new_measurements)
         response.result = srv.Reset.Response.RESULT_SUCCESS

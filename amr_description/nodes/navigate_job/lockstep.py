@@ -34,9 +34,10 @@ WAIT_LIMIT = 0.5
 """Wall seconds to wait for an owed command before advancing anyway (a source that stopped)."""
 
 MAP_LAG = 0.7
-"""Sim seconds ``map -> odom`` may trail the simulation: slam_toolbox's last scan may be
-``minimum_time_interval`` (0.5 s) + a scan period old, its stamp is then 0.2 s ahead
-(``transform_timeout``), which leaves 0.3 s."""
+"""Sim seconds ``map -> odom`` may trail the simulation before the lock-step waits for the
+localizer. slam_toolbox stamps it with its newest scan + ``transform_timeout`` (0.2 s), so on
+time it leads the simulation; 0.7 s leaves room for a scan period and for the node's Python
+TF listener, measured up to 0.28 s behind the scans (:mod:`amr_description.nodes.slam_toolbox`)."""
 
 LOCALIZER_WAIT = 2.0
 """Wall seconds to wait for the localizer to catch up before advancing anyway."""

@@ -6,8 +6,6 @@ import argparse
 import bisect
 import math
 import os
-import shutil
-import subprocess
 import sys
 import time
 
@@ -20,6 +18,8 @@ from amr_description.nodes.navigate_job.report import robot_params
 from amr_description.nodes.navigate_job.report import write_map_png
 from amr_description.nodes.navigate_job.report import write_navigation_png
 from amr_description.ros import shutdown
+from amr_description.ros.map_saver_cli import map_saver_command
+from amr_description.ros.map_saver_cli import run_map_saver
 from amr_description.ros.transforms import set_yaw
 from amr_description.ros.transforms import stamp_seconds
 from amr_description.ros.transforms import yaw_of
@@ -294,15 +294,11 @@ def _map_phase(opts, navigator, recorder):
             raise RuntimeError(f'the mapping route ended {result.name} with waypoints '
                                f'{[m.index for m in missed]} missed')
         stem = os.path.join(os.path.abspath(opts.output_dir), 'map')
-        ros2 = shutil.which('ros2')
-        if ros2 is None:
-            raise RuntimeError("no 'ros2' on PATH to run map_saver_cli (source scripts/env.sh)")
-        # save_map_timeout 10 s (2 s by default): a new process on a busy machine took longer
-        # than 2 s to match SLAM's latched /map once (--rtf 2, 50 goals)
-        saved = subprocess.run([ros2, 'run', 'nav2_map_server', 'map_saver_cli', '-f', stem,
-                                '--ros-args', '-p', 'use_sim_time:=true', '-p',
-                                'save_map_timeout:=10.0'],
-                               capture_output=True, text=True, timeout=120)
+        try:  # save_map_timeout 10 s: once 2 s was too short (--rtf 2, 50 goals)
+            cmd = map_saver_command(stem, ros_args=('-p', 'use_sim_time:=true'))
+        except FileNotFoundError as exc:
+            raise RuntimeError(str(exc)) from None
+        saved = run_map_saver(cmd, capture=True, timeout=120)
         if saved.returncode != 0 or not os.path.isfile(stem + '.yaml'):
             raise RuntimeError(f'map_saver_cli failed ({saved.returncode}): '
                                f'{(saved.stdout + saved.stderr).strip()[-300:]}')
