@@ -103,3 +103,47 @@ def test_navigation_stack_runs_sim_bringup_and_starts_amcl_at_the_spawn(tmp_path
         assert exe in processes, sorted(processes)
     assert 'component_container_isolated' not in processes
     assert processes['amcl'].parameters[-1]['set_initial_pose'] is True
+
+
+def test_panel_cancel_waits_for_a_navigator_not_yet_matched():
+    # a request sent before the cancel service matched is lost: the panel once logged
+    # "cancel requested" while asking nothing of a navigator started just before the click
+    from amr_description.web.displays import nav_panel
+
+    class Client:
+
+        def __init__(self, ready_after_wait):
+            self.ready_after_wait, self.sent = ready_after_wait, []
+            self.service_name = '/navigate_to_pose/_action/cancel_goal'
+
+        def service_is_ready(self):
+            return False
+
+        def wait_for_service(self, timeout):
+            assert timeout == nav_panel.CANCEL_WAIT
+            return self.ready_after_wait
+
+        def call_async(self, request):
+            self.sent.append(request)
+
+    class Log:
+
+        def __init__(self):
+            self.lines = []
+
+        def info(self, text):
+            self.lines.append(('info', text))
+
+        def warning(self, text):
+            self.lines.append(('warning', text))
+
+    log = Log()
+    panel = object.__new__(nav_panel.NavigationPanelDisplay)
+    panel.node = type('Node', (), {'get_logger': lambda self: log})()
+    panel._cancel = [Client(True), Client(False)]
+    panel._send_cancel()
+    assert [len(c.sent) for c in panel._cancel] == [1, 0]
+    assert log.lines == [('info', 'Navigation 2 panel: cancel requested')]
+    panel._cancel = [Client(False), Client(False)]
+    panel._send_cancel()
+    assert log.lines[-1][0] == 'warning' and 'cancel not sent' in log.lines[-1][1]

@@ -12,7 +12,9 @@ Navigation 2: what nav2_rviz_plugins' Nav2 panel shows, and its Cancel button.
   and recoveries, in the panel's words and units (:func:`feedback_lines`);
 - **Cancel**: cancels every goal of ``navigate_to_pose`` and ``navigate_through_poses``
   (action_msgs/CancelGoal with a zero goal id and stamp: all goals), whoever sent them,
-  since a goal from the 2D Goal Pose tool is bt_navigator's own.
+  since a goal from the 2D Goal Pose tool is bt_navigator's own. Each request waits up to
+  :data:`CANCEL_WAIT` s for its service to match (a request sent before is lost), on a
+  thread of its own; a navigator that never offers it is one warning line.
 
 The panel is shown once a lifecycle manager answers or a goal is seen. Source of the texts:
 ``nav2_rviz_plugins/src/nav2_panel.cpp`` (``getNavToPoseFeedbackLabel``).
@@ -33,6 +35,8 @@ from std_srvs.srv import Trigger
 
 PERIOD = 1.0
 """Seconds (wall) between two lifecycle questions and text refreshes."""
+CANCEL_WAIT = 10.0
+"""Seconds (wall) Cancel waits for a navigator's ``cancel_goal`` service not yet matched."""
 STATUS_QOS = QoSProfile(depth=1, reliability=ReliabilityPolicy.RELIABLE,
                         durability=DurabilityPolicy.TRANSIENT_LOCAL)
 """rcl_action's status topic QoS."""
@@ -117,11 +121,24 @@ class NavigationPanelDisplay(Display):
                 self.feedback = msg.feedback
 
     def cancel(self):
-        """Ask both navigators to cancel all their goals."""
+        """Ask both navigators to cancel all their goals, on a thread (returns at once)."""
+        threading.Thread(target=self._send_cancel, name='nav_panel_cancel', daemon=True).start()
+
+    def _send_cancel(self):
+        # a request sent before the service's reader matched ours is lost: a navigator
+        # started just before the click (a suite's run) was asked nothing, though the log said
+        # it was; each client now waits for its service first
+        sent = 0
         for client in self._cancel:
-            if client.service_is_ready():
+            if client.service_is_ready() or client.wait_for_service(CANCEL_WAIT):
                 client.call_async(CancelGoal.Request())
-        self.node.get_logger().info('Navigation 2 panel: cancel requested')
+                sent += 1
+        log = self.node.get_logger()
+        if sent:
+            log.info('Navigation 2 panel: cancel requested')
+        else:
+            log.warning(f'Navigation 2 panel: cancel not sent: no navigator offers '
+                        f'{self._cancel[0].service_name} after {CANCEL_WAIT:g} s')
 
     def _ask(self, label, client):
         if not client.service_is_ready():
