@@ -130,12 +130,19 @@ class RegulatedPurePursuit:
         return p['lookahead_dist']
 
     def _rotate(self, angle, w_now, dt):
+        # RegulatedPurePursuitController::rotateToHeading: the turn rate within the
+        # acceleration limit of the odometry's, then, if faster than stops within the angle,
+        # that stopping rate towards the heading: a turn that overshot (the odometry still
+        # turning the other way) is reversed at once, not carried on at the stopping rate
         p = self.p
-        w = math.copysign(p['rotate_to_heading_angular_vel'], angle)
+        sign = 1.0 if angle > 0.0 else -1.0
+        w = sign * p['rotate_to_heading_angular_vel']
         a = p['max_angular_accel']
         w = min(max(w, w_now - a * dt), w_now + a * dt)
         limit = math.sqrt(2.0 * a * abs(angle))
-        return 0.0, min(max(w, -limit), limit)
+        if abs(w) > limit:
+            w = sign * limit
+        return 0.0, w
 
     def compute(self, path, speed=(0.0, 0.0), dt=0.05, cost=0, remaining=None,
                 collision=None):

@@ -203,6 +203,19 @@ def test_rpp_rotates_in_place_with_its_acceleration_limit():
     assert rpp.rotating_to_goal
 
 
+def test_rpp_reverses_a_turn_that_overshot_the_heading_as_upstream():
+    # rotateToHeading: still turning at 1.0 rad/s with the heading 0.1 rad behind, the rate
+    # within the acceleration limit is 1.0 - 3.2 x 0.05 = 0.84, above the stopping rate
+    # sqrt(2 x 3.2 x 0.1) = 0.8: the command is that rate towards the heading, -0.8 (kept at
+    # +0.8, the base turned on away from the heading and spun for minutes)
+    rpp = RegulatedPurePursuit()
+    v, w = rpp.compute(np.array([[0.05, 0.0, -0.1]]), speed=(0.0, 1.0), dt=0.05)
+    assert v == 0.0 and w == pytest.approx(-math.sqrt(0.64))
+    # before the heading the same rate brakes the turn, in its own direction
+    assert rpp.compute(np.array([[0.05, 0.0, 0.1]]), speed=(0.0, 1.0))[1] == \
+        pytest.approx(math.sqrt(0.64))
+
+
 def test_a_new_path_restarts_the_goal_latches_as_nav2s_set_planner_path():
     # Nav2's ControllerServer::setPlannerPath resets the goal checker and RPP's setPlan its
     # has_reached_xy_tolerance_: with RPP's latch kept, a replan that moved the goal out of
