@@ -294,10 +294,8 @@ def _map_phase(opts, navigator, recorder):
             raise RuntimeError(f'the mapping route ended {result.name} with waypoints '
                                f'{[m.index for m in missed]} missed')
         stem = os.path.join(os.path.abspath(opts.output_dir), 'map')
-        try:  # save_map_timeout 10 s: once 2 s was too short (--rtf 2, 50 goals)
-            cmd = map_saver_command(stem, ros_args=('-p', 'use_sim_time:=true'))
-        except FileNotFoundError as exc:
-            raise RuntimeError(str(exc)) from None
+        # no ros2 on PATH: FileNotFoundError, an OSError, main's one line
+        cmd = map_saver_command(stem, ros_args=('-p', 'use_sim_time:=true'))
         saved = run_map_saver(cmd, capture=True, timeout=120)
         if saved.returncode != 0 or not os.path.isfile(stem + '.yaml'):
             raise RuntimeError(f'map_saver_cli failed ({saved.returncode}): '
