@@ -106,18 +106,26 @@ def test_viewer_drives_the_robot_from_the_page(ros_env, procs, exe, tmp_path):
             h, w = shape[:2]
             assert abs(start[0] - w / 2) < w / 3 and abs(start[1] - h / 2) < h / 3, start
             # drive 1 m forward by holding the pad's Forward button
+            from geometry_msgs.msg import TwistStamped
+            commands = []
+            peer.node.create_subscription(TwistStamped, '/diff_drive_controller/cmd_vel',
+                                          commands.append, 10)
             peer.spin_until(lambda: False, 0.5)
             x0 = peer.position()
             button = page.page.get_by_role('button', name='Forward', exact=True)
-            button.scroll_into_view_if_needed()  # below the sensor displays' rows
-            box = button.bounding_box()
-            page.page.mouse.move(box['x'] + box['width'] / 2, box['y'] + box['height'] / 2)
+            # hover() scrolls the button (below the sensor displays' rows) into view and waits
+            # until it stays put and is what the pointer hits: a display row found meanwhile
+            # moves it, and a press at an old bounding box would miss it
+            button.hover(timeout=60_000)
             page.page.mouse.down()
             try:
                 moved = peer.spin_until(lambda: peer.position()[0] - x0[0] >= 0.95, 120.0)
             finally:
                 page.page.mouse.up()
-            assert moved, f'the robot did not drive 1 m: {peer.position() - x0}'
+            assert moved, (
+                f'the robot did not drive 1 m: {peer.position() - x0}; the pad sent '
+                f'{len(commands)} commands, the last {commands[-1:]}; the last truth '
+                f'{peer.truth[-1].header.stamp}\n{stack.output[-3000:]}')
 
             # released: the robot stops (dead-man zero twist), ~1 m forward, no drift sideways
             def stopped():
@@ -411,9 +419,7 @@ def test_the_teleop_pad_finds_the_controllers_cmd_vel_and_shows_only_while_heard
             assert viewer.wait_for_output(
                 'teleop pad: publishing geometry_msgs/msg/TwistStamped on '
                 '/diff_drive_base_controller/cmd_vel', 10.0), viewer.output
-            forward.scroll_into_view_if_needed()
-            box = forward.bounding_box()
-            page.page.mouse.move(box['x'] + box['width'] / 2, box['y'] + box['height'] / 2)
+            forward.hover(timeout=60_000)  # in view, still, and hit (see the test above)
             page.page.mouse.down()
             try:
                 moving = peer.spin_until(
