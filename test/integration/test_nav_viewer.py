@@ -19,6 +19,7 @@ drawn in the plan's red, and a pose graph of known shape on slam_toolbox's
 """
 
 import math
+import os
 import time
 
 from browser import centroid  # noqa: I100 - helpers next to this file
@@ -33,6 +34,8 @@ from test_localization import LocalizationPeer
 from test_localization import RVIZ_COVARIANCE
 from test_web_pages import CHASSIS_RGB
 from test_web_pages import chromium  # noqa: F401 - its autouse fixture: chromium is there
+from test_web_pages import ROOT
+import yaml
 
 pytest.importorskip('nav2_msgs.msg')
 
@@ -137,6 +140,21 @@ def _shown_minus_hidden(page, label, measure):
     return shown - hidden
 
 
+SLOW_SPEED = 0.1
+"""m/s: the controller's ``desired_linear_vel`` here, so that a goal outlasts the page's steps."""
+
+
+def _slow_params(tmp_path):
+    """Write config/nav2_params.yaml with FollowPath's speed at :data:`SLOW_SPEED`."""
+    with open(os.path.join(ROOT, 'config', 'nav2_params.yaml')) as f:
+        params = yaml.safe_load(f)
+    params['controller_server']['ros__parameters']['FollowPath']['desired_linear_vel'] = \
+        SLOW_SPEED
+    path = tmp_path / 'slow_nav2_params.yaml'
+    path.write_text(yaml.safe_dump(params))
+    return str(path)
+
+
 def test_map_particles_and_the_pose_estimate_tool(procs, exe, ros_env, tmp_path):
     from geometry_msgs.msg import Point
     from geometry_msgs.msg import PoseStamped
@@ -233,7 +251,8 @@ def test_map_particles_and_the_pose_estimate_tool(procs, exe, ros_env, tmp_path)
             # active; a goal on /goal_pose shows its feedback, the red /plan and the green
             # footprint (each gone with its checkbox); Cancel cancels it
             nav = procs.start([exe('ros2'), 'launch', 'amr_description', 'navigation_launch.py',
-                               'use_sim_time:=true'], ros_env)
+                               'use_sim_time:=true', f'params_file:={_slow_params(tmp_path)}'],
+                              ros_env)
             assert nav.wait_for_output('Managed nodes are active', 240.0), nav.output[-3000:]
             assert page.wait_for_text('Navigation: active', 60.0)
             assert page.wait_for_text('Localization: active', 60.0)
@@ -252,12 +271,13 @@ def test_map_particles_and_the_pose_estimate_tool(procs, exe, ros_env, tmp_path)
             # "collision ahead" in 2 of 3 tries, docs/navigation.md)
             send(2.2, 2.0)
             assert page.wait_for_text('Feedback: active', 60.0), page.page.inner_text('body')
-            # at once: the goal takes about 14 s of sim time, and beside a busy machine the
-            # page's next check came after the goal had been reached ("Feedback: reached").
-            # The click is dispatched to the button once it is enabled: Playwright's pointer
-            # click (the label's, then the button's) returned 11 s after it began, beside
-            # software WebGL, and the viewer never logged the panel's cancel; the goal was
-            # reached (three runs on 2026-11-25 ended "reached", one in a clean-clone suite)
+            # at once: beside software WebGL each step on the page is slow. At the params
+            # file's 0.5 m/s the goal took 15 s; one run on 2026-11-28 saw "Feedback: active"
+            # 10 s after "Begin navigating", the button enabled 2.5 s later, and the click's
+            # dispatch returned 9 s after that, 7 s after "Goal succeeded" (so did 4 runs of
+            # 6 on this machine). At SLOW_SPEED the goal lasts about 5 times longer. The click
+            # is dispatched to the button once it is enabled: Playwright's pointer click (the
+            # label's, then the button's) returned 11 s after it began
             button = page.page.get_by_role('button', name='Cancel', exact=True)
             expect(button).to_be_enabled(timeout=60_000)
             button.dispatch_event('click')
