@@ -116,9 +116,6 @@ def test_panel_cancel_waits_for_a_navigator_not_yet_matched():
             self.ready_after_wait, self.sent = ready_after_wait, []
             self.service_name = '/navigate_to_pose/_action/cancel_goal'
 
-        def service_is_ready(self):
-            return False
-
         def wait_for_service(self, timeout):
             assert timeout == nav_panel.CANCEL_WAIT
             return self.ready_after_wait

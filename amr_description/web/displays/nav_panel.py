@@ -130,7 +130,7 @@ class NavigationPanelDisplay(Display):
         # it was; each client now waits for its service first
         sent = 0
         for client in self._cancel:
-            if client.service_is_ready() or client.wait_for_service(CANCEL_WAIT):
+            if client.wait_for_service(CANCEL_WAIT):  # at once when matched
                 client.call_async(CancelGoal.Request())
                 sent += 1
         log = self.node.get_logger()
