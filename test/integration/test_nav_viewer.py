@@ -274,8 +274,9 @@ def test_map_particles_and_the_pose_estimate_tool(procs, exe, ros_env, tmp_path)
             # at once: beside software WebGL each step on the page is slow. At the params
             # file's 0.5 m/s the goal took 15 s; one run on 2026-11-28 saw "Feedback: active"
             # 10 s after "Begin navigating", the button enabled 2.5 s later, and the click's
-            # dispatch returned 9 s after that, 7 s after "Goal succeeded" (so did 4 runs of
-            # 6 on this machine). At SLOW_SPEED the goal lasts about 5 times longer. The click
+            # dispatch returned 9 s after that, 7 s after "Goal succeeded" (6 of 7 runs of this
+            # test alone failed here at Cancel; that one was timed). At SLOW_SPEED the goal
+            # lasts about 5 times longer. The click
             # is dispatched to the button once it is enabled: Playwright's pointer click (the
             # label's, then the button's) returned 11 s after it began
             button = page.page.get_by_role('button', name='Cancel', exact=True)
