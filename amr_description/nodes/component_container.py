@@ -103,6 +103,28 @@ def registry():
     return {ep.name: ep for ep in entry_points(group=COMPONENT_GROUP)}
 
 
+def preload(components, plugins):
+    """
+    Import the modules of the listed components before any of them is created.
+
+    A lifecycle manager loaded early starts its bringup at once; the later components' imports
+    (numpy, SciPy, scikit-image: seconds of the interpreter lock on a loaded 2-core machine)
+    then kept the managed nodes' bond threads from sending a heartbeat, and the manager gave
+    up on a bond after its 2 s ("Server map_server was unable to be reached after 2.00s by
+    bond", docs/navigation.md). A plugin that cannot be imported is reported by
+    :meth:`ComponentContainer.load` when its turn comes.
+
+    :param components: ``(plugin, ros_args)`` pairs, as :func:`read_components` returns.
+    :param plugins: :func:`registry` result.
+    """
+    for plugin, _ in components:
+        if plugin in plugins:
+            try:
+                plugins[plugin].load()
+            except Exception:  # noqa: B902 - load() says what failed, in the component's turn
+                pass
+
+
 class ComponentContainer(Node):
     """The container's own node; loads and owns the composed nodes."""
 
@@ -245,6 +267,7 @@ def main(args=None, isolated=False):
         executor = SingleThreadedExecutor()
         executor.add_node(container)
         plugins = registry()
+        preload(components, plugins)
         for plugin, ros_args in components:
             node = container.load(plugin, ros_args, plugins)
             if node is None:
