@@ -48,6 +48,7 @@ class WorkerProcess:
         self._preload = tuple(preload)
         self._lock = threading.Lock()
         self._proc = None
+        self._stopped = False
 
     def start(self):
         """Start the child if it is not running (it imports ``preload`` meanwhile)."""
@@ -55,6 +56,8 @@ class WorkerProcess:
             self._ensure()
 
     def _ensure(self):
+        if self._stopped:
+            raise WorkerError('the worker process was stopped')
         if self._proc is not None and self._proc.poll() is None:
             return
         try:
@@ -71,8 +74,8 @@ class WorkerProcess:
 
         The arguments and the result are pickled (numpy arrays and plain classes travel).
 
-        :raises WorkerError: the child cannot be started or died before answering (the next
-            call starts a new one).
+        :raises WorkerError: the child cannot be started, died before answering (the next
+            call starts a new one) or was stopped (:meth:`stop`: no more calls).
         :raises Exception: whatever the function raised, re-raised here.
         """
         request = pickle.dumps((module, function, args, kwargs), pickle.HIGHEST_PROTOCOL)
@@ -93,8 +96,9 @@ class WorkerProcess:
         return value
 
     def stop(self):
-        """Close the child's stdin and wait up to 2 s for it to exit; kill it after that."""
+        """End the child (stdin closed, up to 2 s to exit, then killed); later calls fail."""
         with self._lock:
+            self._stopped = True
             proc, self._proc = self._proc, None
         if proc is None:
             return

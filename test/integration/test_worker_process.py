@@ -89,6 +89,8 @@ def test_the_child_ends_with_stop_and_ignores_ctrl_c(worker):
     assert worker.call('os', 'getpid') == pid
     worker.stop()
     assert _wait_gone(pid)
+    with pytest.raises(WorkerError, match='stopped'):
+        worker.call('os', 'getpid')  # no new child after stop (a node cleaned up)
 
 
 def test_no_child_outlives_a_killed_parent(tmp_path):
