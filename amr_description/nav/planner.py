@@ -59,10 +59,6 @@ class PlanError(Exception):
         super().__init__(message)
         self.code = code
 
-    def __reduce__(self):
-        """Pickle the code with the message (a plan made in a worker process)."""
-        return PlanError, (self.code, str(self))
-
 
 def travel_costs(costs, allow_unknown=True):
     """

@@ -37,8 +37,6 @@ from amr_description.ros.transforms import planar_pose
 from amr_description.ros.transforms import set_yaw
 from amr_description.ros.transforms import transform_planar
 from amr_description.ros.transforms import TransformListener
-from amr_description.ros.worker_process import WorkerError
-from amr_description.ros.worker_process import WorkerProcess
 from geometry_msgs.msg import PoseStamped
 from nav2_msgs.action import ComputePathThroughPoses
 from nav2_msgs.action import ComputePathToPose
@@ -48,9 +46,6 @@ from rclpy.action import ActionServer
 from rclpy.duration import Duration
 
 NAVFN = 'NavfnPlanner'
-
-PLAN_MODULE = 'amr_description.nav.planner'
-"""The module whose ``make_plan`` the worker process runs."""
 
 
 class PlannerServer(ManagedNode):
@@ -80,7 +75,6 @@ class PlannerServer(ManagedNode):
             use_sim_time=self.get_parameter('use_sim_time').value, **kwargs)
         self.companion_nodes = [self.costmap]
         self._listener = self._action = self._plan_pub = None
-        self._worker = None
 
     def configure(self):
         """Say which planner runs for each id; listen to TF."""
@@ -97,13 +91,6 @@ class PlannerServer(ManagedNode):
             else:
                 self.get_logger().info(f'Created global planner plugin {pid} of type {kind}')
         self._listener = TransformListener(self, self.tf_buffer, spin_thread=True)
-        # the search holds the interpreter lock for 0.1-0.25 s: in a process of its own, so
-        # that the servers composed with this one (the controller's loop) run meanwhile
-        self._worker = WorkerProcess(preload=(PLAN_MODULE,))
-        try:
-            self._worker.start()
-        except WorkerError as exc:
-            self.get_logger().warning(f'planning in this process: {exc}')
 
     def activate(self):
         """Start the costmap, the action server and the plan publisher."""
@@ -128,25 +115,11 @@ class PlannerServer(ManagedNode):
         self.costmap.stop()
 
     def cleanup(self):
-        """Stop listening to TF and the planning process."""
+        """Stop listening to TF."""
         self.get_logger().info('Cleaning up')
         if self._listener is not None:
             self._listener.destroy()
             self._listener = None
-        if self._worker is not None:
-            self._worker.stop()
-            self._worker = None
-
-    def _plan(self, *args):
-        """Return :func:`make_plan` of ``args``, made in the worker process when it runs."""
-        worker = self._worker
-        if worker is not None:
-            try:
-                return worker.call(PLAN_MODULE, 'make_plan', *args)
-            except WorkerError as exc:
-                self.get_logger().warning(f'planning in this process: {exc}',
-                                          throttle_duration_sec=60.0)
-        return make_plan(*args)
 
     def _in_frame(self, pose_stamped, frame):
         """Return ``(x, y, yaw)`` of a PoseStamped in ``frame`` (latest TF)."""
@@ -191,9 +164,9 @@ class PlannerServer(ManagedNode):
             planner = self.planners[pid]
             pieces = []
             for target in targets:
-                piece = self._plan(self.costmap.grid, start[:2], target, planner['tolerance'],
-                                   planner['allow_unknown'],
-                                   planner['use_final_approach_orientation'])
+                piece = make_plan(self.costmap.grid, start[:2], target, planner['tolerance'],
+                                  planner['allow_unknown'],
+                                  planner['use_final_approach_orientation'])
                 pieces.append(piece if not pieces else piece[1:])
                 start = target
             path = np.concatenate(pieces)
