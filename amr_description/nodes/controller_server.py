@@ -114,6 +114,7 @@ class ControllerServer(ManagedNode):
         self._entities = []
         self.speed = (0.0, 0.0)
         self._odom = None
+        self._cycles = rpp.CycleClock(1.0 / max(self.frequency, 1e-3))
         self.speed_limit = None
         self.run = None
 
@@ -178,6 +179,7 @@ class ControllerServer(ManagedNode):
             self.create_subscription(SpeedLimit, self.speed_limit_topic, self._on_speed_limit,
                                      10),
             self.create_timer(1.0 / max(self.frequency, 1e-3), self._cycle)]
+        self._cycles = rpp.CycleClock(1.0 / max(self.frequency, 1e-3))
         self._server = SingleGoalServer(self, FollowPath, 'follow_path', self._on_goal)
 
     def deactivate(self):
@@ -272,6 +274,7 @@ class ControllerServer(ManagedNode):
             return
         codes = FollowPath.Result
         run = self.run
+        step = self._cycles.tick(self._now())
         base = self.costmap.p['robot_base_frame']
         try:
             T_path, _ = self.tf_buffer.lookup(run['frame'], base)
@@ -292,7 +295,7 @@ class ControllerServer(ManagedNode):
         local = rpp.to_robot_frame(path, robot)
         remaining = path_length(local)
         try:
-            v, w = self._command(run['rpp'], local, robot_cost, remaining)
+            v, w = self._command(run['rpp'], local, robot_cost, remaining, step)
             run['failing_since'] = None
         except rpp.NoValidControl as exc:
             now = self._now()
@@ -313,7 +316,7 @@ class ControllerServer(ManagedNode):
             self._server.finish_current('succeed', FollowPath.Result())
             self.run = None
 
-    def _command(self, controller, local, robot_cost, remaining):
+    def _command(self, controller, local, robot_cost, remaining, step):
         grid = self.costmap.grid
         cost = grid.cost_at(robot_cost[0], robot_cost[1]) or 0
         if self.speed_limit is not None:
@@ -337,8 +340,8 @@ class ControllerServer(ManagedNode):
                 return False
             return value >= LETHAL_OBSTACLE
 
-        return controller.compute(local, self.speed, 1.0 / self.frequency, cost, remaining,
-                                  collides)
+        dt, lateness = step  # the loop's step and lateness (CycleClock)
+        return controller.compute(local, self.speed, dt, cost, remaining, collides, lateness)
 
     # outputs
     def _publish(self, v, w):

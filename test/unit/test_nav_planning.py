@@ -11,6 +11,7 @@ from amr_description.nav.planner import path_length
 from amr_description.nav.planner import PlanError
 from amr_description.nav.pure_pursuit import carrot
 from amr_description.nav.pure_pursuit import circle_collides
+from amr_description.nav.pure_pursuit import CycleClock
 from amr_description.nav.pure_pursuit import NoValidControl
 from amr_description.nav.pure_pursuit import PoseProgressChecker
 from amr_description.nav.pure_pursuit import RegulatedPurePursuit
@@ -214,6 +215,35 @@ def test_rpp_reverses_a_turn_that_overshot_the_heading_as_upstream():
     # before the heading the same rate brakes the turn, in its own direction
     assert rpp.compute(np.array([[0.05, 0.0, 0.1]]), speed=(0.0, 1.0))[1] == \
         pytest.approx(math.sqrt(0.64))
+
+
+def test_a_late_loop_brakes_the_turn_in_place_earlier():
+    # turning at 1.8 rad/s, 0.5 rad before the goal's heading, max_angular_accel 1.5: on time
+    # the stopping rate is upstream's sqrt(2 x 1.5 x 0.5) = 1.2247; with the next command up
+    # to 0.2 s late it is the w that turns w x 0.2 + w^2 / (2 x 1.5) = 0.5 rad in all:
+    # 1.5 x (sqrt(0.04 + 2 x 0.5 / 1.5) - 0.2) = 0.9270
+    at_goal = np.array([[0.05, 0.0, 0.5]])
+    rpp = RegulatedPurePursuit({'max_angular_accel': 1.5})
+    assert rpp.compute(at_goal, speed=(0.0, 1.8))[1] == pytest.approx(math.sqrt(1.5))
+    w = rpp.compute(at_goal, speed=(0.0, 1.8), lateness=0.2)[1]
+    assert w == pytest.approx(1.5 * (math.sqrt(0.04 + 1.0 / 1.5) - 0.2))
+    assert w * 0.2 + w * w / 3.0 == pytest.approx(0.5)
+    # the acceleration limit spans the step given: from rest, 1.5 x 0.2 = 0.3 rad/s
+    rpp = RegulatedPurePursuit({'max_angular_accel': 1.5})
+    assert rpp.compute(-_line(), speed=(0.0, 0.0), dt=0.2) == pytest.approx((0.0, 0.3))
+
+
+def test_the_cycle_clock_gives_the_step_and_the_lateness():
+    clock = CycleClock(0.05, window=3, stall=1.0)
+    assert clock.tick(10.0) == (0.05, 0.0)  # the first cycle: the nominal step
+    assert clock.tick(10.05) == pytest.approx((0.05, 0.0))  # on time: upstream's
+    assert clock.tick(10.30) == pytest.approx((0.25, 0.20))  # 0.2 s late
+    assert clock.tick(10.31) == pytest.approx((0.05, 0.20))  # early: the nominal step
+    assert clock.tick(10.36) == pytest.approx((0.05, 0.20))
+    assert clock.tick(10.41) == pytest.approx((0.05, 0.0))  # out of the last 3 intervals
+    assert clock.tick(15.0) == pytest.approx((0.05, 0.0))  # idle between goals: no lateness
+    clock.reset()
+    assert clock.tick(15.5) == (0.05, 0.0)
 
 
 def test_a_new_path_restarts_the_goal_latches_as_nav2s_set_planner_path():
