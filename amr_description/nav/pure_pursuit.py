@@ -159,10 +159,11 @@ class RegulatedPurePursuit:
         :param cost: the local costmap's cost under the robot (0..255).
         :param remaining: the path's length from the robot (m; default: from ``path``).
         :param collision: ``f(x, y, yaw) -> bool`` in the robot frame, or None (no check).
-        :param lateness: s the next command may come later than ``dt`` (:class:`CycleClock`):
-            the in-place turn's stopping rate leaves that much time at the command's rate
-            before braking, ``w lateness + w^2 / (2 max_angular_accel) <= |angle|``; 0 is
-            upstream's ``sqrt(2 max_angular_accel |angle|)``.
+        :param lateness: s the next command may come later than ``dt``
+            (:class:`amr_description.nav.cycle_clock.CycleClock`): the in-place turn's
+            stopping rate leaves that much time at the command's rate before braking,
+            ``w lateness + w^2 / (2 max_angular_accel) <= |angle|``; 0 is upstream's
+            ``sqrt(2 max_angular_accel |angle|)``.
         :raises NoValidControl: when the robot's footprint is in collision now or on the
             command's arc (a rotation in place included) within the carrot's distance and
             ``max_allowed_time_to_collision_up_to_carrot``.
@@ -253,57 +254,6 @@ class RegulatedPurePursuit:
             if collision(x, y, yaw):
                 return True
         return False
-
-
-class CycleClock:
-    """
-    A control loop's time step and lateness, from the times its cycles ran.
-
-    Upstream's controller_server runs its loop on a thread of its own at
-    ``controller_frequency``, and Regulated Pure Pursuit takes ``1 / controller_frequency`` as
-    the time between commands. Here the loop is a timer among the composed servers' Python
-    threads, which ran over 0.1 s late at 22-32 % of the cycles on a loaded 2-core machine
-    (docs/navigation.md, "A late loop's turns"): each command then stays in force longer,
-    so an in-place turn braked late and overshot. :meth:`tick` gives the step the
-    acceleration limit may span and how late the loop has been lately; on time they are
-    upstream's ``1 / controller_frequency`` and 0.
-
-    :param period: the nominal period (s), ``1 / controller_frequency``.
-    :param window: how many recent intervals the lateness is the largest of (10: 0.5 s at
-        20 Hz).
-    :param stall: s; a longer interval (the loop idle between goals, a paused clock) is not
-        a late cycle and is ignored.
-    """
-
-    def __init__(self, period, window=10, stall=1.0):
-        """Keep the period; no cycle yet."""
-        self.period = float(period)
-        self.window = int(window)
-        self.stall = float(stall)
-        self.reset()
-
-    def reset(self):
-        """Forget the cycles (the loop restarts)."""
-        self._last = None
-        self._intervals = []
-
-    def tick(self, now):
-        """
-        Record a cycle at ``now`` (s, the node's clock) and return ``(dt, lateness)``.
-
-        ``dt`` is the time since the previous cycle, at least ``period`` (``period`` after a
-        stall or at the first cycle); ``lateness`` is the largest of the last ``window``
-        intervals minus ``period``, at least 0.
-        """
-        elapsed = None if self._last is None else now - self._last
-        self._last = now
-        if elapsed is None or not 0.0 < elapsed <= self.stall:
-            return self.period, self._lateness()
-        self._intervals = (self._intervals + [elapsed])[-self.window:]
-        return max(self.period, elapsed), self._lateness()
-
-    def _lateness(self):
-        return max([0.0] + [e - self.period for e in self._intervals])
 
 
 def circle_collides(costmap, x, y):

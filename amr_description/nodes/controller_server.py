@@ -40,6 +40,7 @@ from amr_description.nav import pure_pursuit as rpp
 from amr_description.nav.costmap import footprint_cost
 from amr_description.nav.costmap import LETHAL_OBSTACLE
 from amr_description.nav.costmap import NO_INFORMATION
+from amr_description.nav.cycle_clock import CycleClock
 from amr_description.nav.planner import path_length
 from amr_description.nodes.costmap_2d import CostmapNode
 from amr_description.ros import shutdown
@@ -114,7 +115,7 @@ class ControllerServer(ManagedNode):
         self._entities = []
         self.speed = (0.0, 0.0)
         self._odom = None
-        self._cycles = rpp.CycleClock(1.0 / max(self.frequency, 1e-3))
+        self._cycles = CycleClock(1.0 / max(self.frequency, 1e-3))
         self.speed_limit = None
         self.run = None
 
@@ -179,7 +180,7 @@ class ControllerServer(ManagedNode):
             self.create_subscription(SpeedLimit, self.speed_limit_topic, self._on_speed_limit,
                                      10),
             self.create_timer(1.0 / max(self.frequency, 1e-3), self._cycle)]
-        self._cycles = rpp.CycleClock(1.0 / max(self.frequency, 1e-3))
+        self._cycles = CycleClock(1.0 / max(self.frequency, 1e-3))
         self._server = SingleGoalServer(self, FollowPath, 'follow_path', self._on_goal)
 
     def deactivate(self):

@@ -5,13 +5,13 @@
 import math
 
 from amr_description.nav import costmap as cm
+from amr_description.nav.cycle_clock import CycleClock
 from amr_description.nav.planner import cell_gradient
 from amr_description.nav.planner import make_plan
 from amr_description.nav.planner import path_length
 from amr_description.nav.planner import PlanError
 from amr_description.nav.pure_pursuit import carrot
 from amr_description.nav.pure_pursuit import circle_collides
-from amr_description.nav.pure_pursuit import CycleClock
 from amr_description.nav.pure_pursuit import NoValidControl
 from amr_description.nav.pure_pursuit import PoseProgressChecker
 from amr_description.nav.pure_pursuit import RegulatedPurePursuit
