@@ -7,13 +7,13 @@ class CycleClock:
     """
     A control loop's time step and lateness, from the times its cycles ran.
 
-    Upstream's controller_server and velocity_smoother run their loops on threads of their
-    own and take ``1 / frequency`` as the time between commands. Here each loop is a timer
-    among the composed servers' Python threads, which ran over 0.1 s late at 22-32 % of the
-    cycles on a loaded 2-core machine (docs/navigation.md, "A late loop's turns"): each
-    command then stays in force longer, so an in-place turn braked late and overshot.
-    :meth:`tick` gives the step an acceleration limit may span and how late the loop has
-    been lately; on time they are upstream's ``1 / frequency`` and 0.
+    Upstream's controller_server runs its loop on a thread of its own and Regulated Pure
+    Pursuit takes ``1 / controller_frequency`` as the time between commands. Here the loop
+    is a timer among the composed servers' Python threads, which ran over 0.1 s late at
+    22-32 % of the cycles on a loaded 2-core machine (docs/navigation.md, "A late loop's
+    turns"): each command then stays in force longer, so an in-place turn braked late and
+    overshot. :meth:`tick` gives the step an acceleration limit may span and how late the
+    loop has been lately; on time they are upstream's ``1 / frequency`` and 0.
 
     :param period: the nominal period (s), ``1 / frequency``.
     :param window: how many recent intervals the lateness is the largest of (10: 0.5 s at
