@@ -122,6 +122,11 @@ def test_viewer_drives_the_robot_from_the_page(ros_env, procs, exe, tmp_path):
                 moved = peer.spin_until(lambda: peer.position()[0] - x0[0] >= 0.95, 120.0)
             finally:
                 page.page.mouse.up()
+            # where the robot was when the release had been dispatched to the page: on a loaded
+            # machine the dispatch itself took seconds (one CI run stopped 1.80 m out, where
+            # the whole drive was bounded), so the stop is measured from here
+            peer.spin_until(lambda: False, 0.1)
+            released = peer.position()
             assert moved, (
                 f'the robot did not drive 1 m: {peer.position() - x0}; the pad sent '
                 f'{len(commands)} commands, the last {commands[-1:]}; the last truth '
@@ -135,7 +140,10 @@ def test_viewer_drives_the_robot_from_the_page(ros_env, procs, exe, tmp_path):
                 return math.hypot(v.x, v.y) < 0.02
             assert peer.spin_until(stopped, 30.0), peer.truth[-1].twist.twist
             dx, dy = peer.position() - x0
-            assert 0.95 <= dx <= 1.5 and abs(dy) < 0.15, (dx, dy)
+            after = peer.position()[0] - released[0]
+            # 0.5 m/s for the press's 0.25 s hold, the controller's braking and the release's
+            # way to the viewer's server: well under 0.6 m
+            assert dx >= 0.95 and after <= 0.6 and abs(dy) < 0.15, (dx, after, dy)
             page.page.wait_for_timeout(1500)
             shot = tmp_path / 'viewer.png'
             end, _ = _blue(page, str(shot))
