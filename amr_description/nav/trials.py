@@ -12,7 +12,9 @@ by, as pure functions of grids, poses and the world's shapes (no rclpy):
 - :func:`footprint_clearance`: the signed distance from the robot's footprint polygon to the
   world's collision shapes at each ground-truth pose (negative: overlapping; a contact);
 - :func:`time_bound`: the issue's target time to a goal, ``slack`` x (path length / desired
-  speed + in-place turns / rotate-to-heading speed).
+  speed + in-place turns / rotate-to-heading speed);
+- :func:`time_budget`: where a drive's time went (standing, turning in place, at speed,
+  slower), from its ground truth.
 """
 
 import math
@@ -225,3 +227,39 @@ def time_bound(path, start_yaw, goal_yaw, speed, turn_rate, slack=1.5):
         last = math.atan2(steps[-1][1], steps[-1][0])
         turns = abs(wrap_angle(first - start_yaw)) + abs(wrap_angle(goal_yaw - last))
     return slack * (path_length(xy) / speed + turns / turn_rate)
+
+
+def time_budget(truth, speed, span=None, still=0.03, turning=0.1, cruise=0.8):
+    """
+    Return where a drive's time went, from its ground truth.
+
+    Each interval between two samples counts by the base's speeds over it, taken as finite
+    differences (``|delta (x, y)| / delta t`` and the wrapped ``delta yaw / delta t``):
+    turning in place when it translates slower than ``still`` and turns at ``turning`` or
+    faster; standing when both are slower; at speed from ``cruise`` x ``speed``; slower
+    otherwise (accelerating, braking, regulated on an arc or near the goal).
+
+    :param truth: (N, 4) samples ``t`` (s), ``x``, ``y`` (m, world), ``yaw`` (rad).
+    :param speed: m/s, the follower's desired speed (``desired_linear_vel``).
+    :param span: ``(t0, t1)`` s: only intervals within it count (default: all).
+    :param still: m/s below which the base is not translating.
+    :param turning: rad/s from which a base not translating is turning in place.
+    :param cruise: the fraction of ``speed`` counted as at speed.
+    :returns: dict ``standing``, ``turning``, ``at_speed``, ``slower`` (s).
+    """
+    samples = np.asarray(truth, dtype=float).reshape(-1, 4)
+    if span is not None:
+        t0, t1 = span
+        samples = samples[(samples[:, 0] >= t0) & (samples[:, 0] <= t1)]
+    dt = np.diff(samples[:, 0])
+    keep = dt > 0.0
+    dt = dt[keep]
+    v = (np.hypot(*np.diff(samples[:, 1:3], axis=0).T)[keep] / dt) if len(dt) else dt
+    w = np.abs(np.arctan2(np.sin(np.diff(samples[:, 3])), np.cos(np.diff(samples[:, 3]))))
+    w = w[keep] / dt if len(dt) else dt
+    moving = v >= still
+    fast = v >= cruise * speed - 1e-9  # a sampled 0.4 m/s is at 0.8 x 0.5, not just under
+    return {'standing': float(dt[~moving & (w < turning)].sum()),
+            'turning': float(dt[~moving & (w >= turning)].sum()),
+            'at_speed': float(dt[fast].sum()),
+            'slower': float(dt[moving & ~fast].sum())}

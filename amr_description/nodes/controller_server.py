@@ -180,7 +180,7 @@ class ControllerServer(ManagedNode):
             self.create_subscription(SpeedLimit, self.speed_limit_topic, self._on_speed_limit,
                                      10),
             self.create_timer(1.0 / max(self.frequency, 1e-3), self._cycle)]
-        self._cycles = CycleClock(1.0 / max(self.frequency, 1e-3))
+        self._cycles.reset()
         self._server = SingleGoalServer(self, FollowPath, 'follow_path', self._on_goal)
 
     def deactivate(self):

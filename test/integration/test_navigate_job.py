@@ -75,6 +75,13 @@ def test_navigate_job_maps_saves_and_reaches_its_goals(ros_env, procs, exe, tmp_
                         r"bounds' ([\d.]+) s", text)
     assert summary and int(summary[1]) <= 2, text[-2000:]
     assert float(summary[2]) == pytest.approx(sum(float(row[5]) for row in rows), abs=0.15)
+    # the ground truth's account of those seconds covers them (a sample interval lost at
+    # each end of a goal at most)
+    budget = re.search(r"where the goals' time went \(ground truth\): ([\d.]+) s turning in "
+                       r'place, ([\d.]+) s at [\d.]+ m/s or more .*, ([\d.]+) s slower, '
+                       r'([\d.]+) s standing', text)
+    assert budget and sum(map(float, budget.groups())) == pytest.approx(
+        float(summary[2]), abs=0.5), text[-2000:]
 
     for name in ('map.png', 'navigation.png'):
         data = (out / name).read_bytes()

@@ -138,15 +138,43 @@ def test_the_jobs_robot_params_and_table(tmp_path):
     assert 'time to goal within its bound (1.5 x (planned length / desired_linear_vel + ' \
         f"in-place turns / rotate_to_heading_angular_vel)) at 1; 5.0 s against the bounds' " \
         f'{bound:.1f} s ({5.0 / bound:.2f})' in text, text
+    assert "where the goals' time went (ground truth): 0.0 s turning in place, 5.0 s at " \
+        '0.40 m/s or more (80 % of desired_linear_vel), 0.0 s slower, 0.0 s standing' in text
     slow = dict(row, truth=[(10.0 + 0.2 * i, 0.02 * i, 0.0, 0.0) for i in range(101)])
-    assert f"at 0; 20.0 s against the bounds' {bound:.1f} s" in \
-        format_table([slow], truth, wall, robot)[0]
+    slow_text = format_table([slow], truth, wall, robot)[0]
+    assert f"at 0; 20.0 s against the bounds' {bound:.1f} s" in slow_text
+    assert '0.0 s turning in place, 0.0 s at 0.40 m/s or more (80 % of desired_linear_vel), ' \
+        '20.0 s slower, 0.0 s standing' in slow_text
     # the time runs from the goal's sending to its result, not to the last ground truth
     settled = dict(row, span=(10.0, 14.0))
     assert f'  SUCCEEDED     4.0 {bound:7.1f}' in format_table([settled], truth, wall, robot)[0]
     touching = dict(row, truth=[(t, x, 1.35, yaw) for t, x, _, yaw in truth])
     assert format_table([row, touching], truth, wall, robot)[1] is False  # 0.02 m into it
     assert format_table([dict(row, result='ABORTED')], truth, wall, robot)[1] is False
+
+
+def test_time_budget_splits_a_drive_by_the_speeds_of_its_ground_truth():
+    from amr_description.nav.trials import time_budget
+    # 1 s standing, 2 s turning in place at 1 rad/s through +-pi (wrapped), 2 s at 0.45 m/s,
+    # 3 s at 0.2 m/s, sampled every 0.02 s
+    truth, t, x, yaw = [(0.0, 0.0, 0.0, 3.0)], 0.0, 0.0, 3.0
+    for steps, v, w in ((50, 0.0, 0.0), (100, 0.0, 1.0), (100, 0.45, 0.0), (150, 0.2, 0.0)):
+        for _ in range(steps):
+            t, x = t + 0.02, x + v * 0.02
+            yaw = math.atan2(math.sin(yaw + w * 0.02), math.cos(yaw + w * 0.02))
+            truth.append((t, x, 0.0, yaw))
+    budget = time_budget(truth, 0.5)
+    assert budget == pytest.approx({'standing': 1.0, 'turning': 2.0, 'at_speed': 2.0,
+                                    'slower': 3.0})
+    # only the span counts; a repeated stamp is skipped, not divided by
+    assert time_budget(truth, 0.5, span=(0.99, 3.01)) == pytest.approx(
+        {'standing': 0.0, 'turning': 2.0, 'at_speed': 0.0, 'slower': 0.0})
+    assert time_budget([(0.0, 0, 0, 0), (0.0, 1, 0, 0), (1.0, 1, 0, 0)], 0.5) == \
+        {'standing': 1.0, 'turning': 0.0, 'at_speed': 0.0, 'slower': 0.0}
+    # at 0.45 m/s a 1.0 m/s follower is slower; no samples, no time
+    assert time_budget(truth, 1.0)['slower'] == pytest.approx(5.0)
+    assert time_budget([], 0.5) == {'standing': 0.0, 'turning': 0.0, 'at_speed': 0.0,
+                                    'slower': 0.0}
 
 
 def test_the_jobs_real_time_factor_is_a_factor_or_0_for_lock_step(capsys):

@@ -61,11 +61,14 @@ def goal_figures(row, sections, robot):
     :param robot: :func:`robot_params`.
     :returns: dict ``time`` and ``bound`` (s; bound from the plan, or None without one),
         ``planned`` and ``driven`` (m), ``error`` (m) and ``yaw_error`` (rad) of the last
-        ground truth from the goal, ``clearance`` (m, the closest approach; negative: touched).
+        ground truth from the goal, ``clearance`` (m, the closest approach; negative: touched),
+        ``budget`` (:func:`amr_description.nav.trials.time_budget` between the goal's sending
+        and its result).
     """
     from amr_description.nav.trials import footprint_clearance
     from amr_description.nav.trials import path_length
     from amr_description.nav.trials import time_bound
+    from amr_description.nav.trials import time_budget
     truth = np.asarray(row['truth'], dtype=float).reshape(-1, 4)
     x, y, yaw = row['goal']
     end = truth[-1] if len(truth) else (0.0,) + tuple(row['start'])
@@ -80,7 +83,8 @@ def goal_figures(row, sections, robot):
             'error': math.hypot(end[1] - x, end[2] - y),
             'yaw_error': abs(wrap_angle(end[3] - yaw)),
             'clearance': float(footprint_clearance(truth[::5, 1:], robot['footprint'],
-                                                   sections).min()) if len(truth) else math.inf}
+                                                   sections).min()) if len(truth) else math.inf,
+            'budget': time_budget(truth, robot['speed'], span)}
 
 
 def format_table(rows, route, sections, robot):
@@ -89,7 +93,8 @@ def format_table(rows, route, sections, robot):
 
     The last lines count the goals reached, those whose ground truth ended within Nav2's
     default tolerances, and those reached within their time bound
-    (:func:`amr_description.nav.trials.time_bound`), with the times' sum against the bounds'.
+    (:func:`amr_description.nav.trials.time_bound`), with the times' sum against the bounds',
+    and say where the goals' time went (:func:`amr_description.nav.trials.time_budget`).
 
     :param rows: :func:`goal_figures`' rows.
     :param route: the mapping route's ground truth [(t, x, y, yaw)].
@@ -110,8 +115,10 @@ def format_table(rows, route, sections, robot):
     ok = route_gap > 0.0
     reached = within = timely = 0
     times = bounds = 0.0
+    budget = dict.fromkeys(('turning', 'at_speed', 'slower', 'standing'), 0.0)
     for i, row in enumerate(rows, 1):
         f = goal_figures(row, sections, robot)
+        budget = {key: budget[key] + f['budget'][key] for key in budget}
         x, y, yaw = row['goal']
         bound = '-' if f['bound'] is None else f"{f['bound']:.1f}"
         lines.append(f"{i:3d} {x:6.2f} {y:5.2f} {yaw:5.2f}  {row['result']:<10} "
@@ -132,6 +139,11 @@ def format_table(rows, route, sections, robot):
                      f'desired_linear_vel + in-place turns / rotate_to_heading_angular_vel)) '
                      f"at {timely}; {times:.1f} s against the bounds' {bounds:.1f} s "
                      f'({times / bounds:.2f})')
+    if rows:
+        lines.append(f"where the goals' time went (ground truth): {budget['turning']:.1f} s "
+                     f"turning in place, {budget['at_speed']:.1f} s at "
+                     f"{0.8 * robot['speed']:.2f} m/s or more (80 % of desired_linear_vel), "
+                     f"{budget['slower']:.1f} s slower, {budget['standing']:.1f} s standing")
     return '\n'.join(lines), ok
 
 
