@@ -20,7 +20,9 @@ non-zero of the planner's and the controller's. ``goal_pose`` (geometry_msgs/Pos
 Parameters, with Nav2's defaults: ``global_frame`` (map), ``robot_base_frame`` (base_link),
 ``transform_tolerance`` (0.1), ``odom_topic`` (odom), ``navigators``
 ([navigate_to_pose, navigate_through_poses]) with ``<id>.plugin``, ``bt_loop_duration``
-(10 ms; ticks run at most at 20 Hz here, and only while a navigation runs),
+(10 ms; ticks run at most at 20 Hz here, and only while a navigation runs: a goal's first
+tick runs when it is accepted, and a step's goal goes to its server as soon as the step before
+it ends, not at the next tick),
 ``error_code_names``, ``default_nav_to_pose_bt_xml`` and ``default_nav_through_poses_bt_xml``
 (a tree other than the default, here or in a goal's ``behavior_tree``, is said in one line and
 the default's semantics run). A server that stays
@@ -242,6 +244,7 @@ class BtNavigator(ManagedNode):
                     'follow_retry': False, 'state': 'run', 'rr': 0, 'rr_failed': 0,
                     'to_send': {}, 'clearing': 0}
         self._timer.reset()
+        self._tick()  # the first plan now, not a loop period later
 
     def _stop_clients(self):
         for name, client in self.goal_clients.items():
@@ -268,8 +271,12 @@ class BtNavigator(ManagedNode):
         nav['server'].finish_current(outcome, result)
 
     def _send(self, nav, name, goal, on_done):
-        """Send when the server is discovered (tried again each tick)."""
-        nav['to_send'][name] = (goal, on_done, self._now())
+        """Send now if the server is discovered, else at the first tick that finds it."""
+        client = self.goal_clients[name]
+        if client.ready():
+            client.send(goal, lambda s, r, n=nav, k=name, f=on_done: self._done(n, k, s, r, f))
+        else:
+            nav['to_send'][name] = (goal, on_done, self._now())
 
     def _tick(self):
         nav = self.nav
@@ -287,7 +294,7 @@ class BtNavigator(ManagedNode):
             client = self.goal_clients[name]
             if client.ready():
                 del nav['to_send'][name]
-                client.send(goal, lambda s, r, n=nav, k=name, f=on_done: self._done(n, k, s, r, f))
+                self._send(nav, name, goal, on_done)
             elif now - since > SERVER_WAIT:
                 del nav['to_send'][name]
                 self._done(nav, name, GoalStatus.STATUS_ABORTED, None, on_done)

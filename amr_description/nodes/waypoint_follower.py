@@ -6,7 +6,8 @@
 Offers ``follow_waypoints`` (nav2_msgs/action/FollowWaypoints) and drives bt_navigator's
 ``navigate_to_pose`` one waypoint at a time (:class:`amr_description.nav.waypoints.WaypointRun`:
 ``goal_index``, ``number_of_loops``, ``stop_on_failure``), publishing ``current_waypoint`` as
-feedback every ``loop_rate`` tick. The result lists the missed waypoints (index, pose and the
+feedback every ``loop_rate`` tick and when a waypoint is sent (upstream's loop does both in one
+pass). The result lists the missed waypoints (index, pose and the
 navigator's error code, or TASK_EXECUTOR_FAILED); the goal succeeds after the last waypoint, or
 is aborted at the first miss with ``stop_on_failure``. A goal with no poses, or a
 ``goal_index`` past them, is aborted with one line. A cancel cancels the navigation too; a new
@@ -143,6 +144,9 @@ class WaypointFollower(ManagedNode):
         goal.pose.header.stamp = self.get_clock().now().to_msg()
         run = self.run
         self.client.send(goal, lambda status, result: self._on_navigated(run, status, result))
+        # as upstream's loop, which sends a waypoint and publishes its index in one pass: every
+        # waypoint is in the feedback, even one whose navigation ends before the next tick
+        self.server.feedback(FollowWaypoints.Feedback(current_waypoint=run.index))
 
     def _on_navigated(self, run, status, result):
         if run is not self.run:
