@@ -13,6 +13,8 @@ by, as pure functions of grids, poses and the world's shapes (no rclpy):
   world's collision shapes at each ground-truth pose (negative: overlapping; a contact);
 - :func:`time_bound`: the issue's target time to a goal, ``slack`` x (path length / desired
   speed + in-place turns / rotate-to-heading speed);
+- :func:`fastest_time`: the least time a base within given speed and acceleration limits could
+  take by the same path and turns (:func:`rest_to_rest` for each);
 - :func:`time_budget`: where a drive's time went (standing, turning in place, at speed,
   slower), from its ground truth.
 """
@@ -203,6 +205,17 @@ def footprint_clearance(poses, footprint, sections, step=0.01):
     return out
 
 
+def _turns(xy, start_yaw, goal_yaw):
+    """Return the in-place turns (rad) to a path's first heading and from its last."""
+    steps = np.diff(xy, axis=0)
+    steps = steps[np.hypot(*steps.T) > 1e-9] if len(steps) else steps
+    if not len(steps):
+        return abs(wrap_angle(goal_yaw - start_yaw)), 0.0
+    first = math.atan2(steps[0][1], steps[0][0])
+    last = math.atan2(steps[-1][1], steps[-1][0])
+    return abs(wrap_angle(first - start_yaw)), abs(wrap_angle(goal_yaw - last))
+
+
 def time_bound(path, start_yaw, goal_yaw, speed, turn_rate, slack=1.5):
     """
     Return the target time to a goal: ``slack`` x (length / speed + turns / turn rate).
@@ -219,14 +232,51 @@ def time_bound(path, start_yaw, goal_yaw, speed, turn_rate, slack=1.5):
     :returns: s.
     """
     xy = np.asarray(path, dtype=float).reshape(-1, 2)
-    turns = abs(wrap_angle(goal_yaw - start_yaw))
-    steps = np.diff(xy, axis=0)
-    steps = steps[np.hypot(*steps.T) > 1e-9] if len(steps) else steps
-    if len(steps):
-        first = math.atan2(steps[0][1], steps[0][0])
-        last = math.atan2(steps[-1][1], steps[-1][0])
-        turns = abs(wrap_angle(first - start_yaw)) + abs(wrap_angle(goal_yaw - last))
-    return slack * (path_length(xy) / speed + turns / turn_rate)
+    return slack * (path_length(xy) / speed + sum(_turns(xy, start_yaw, goal_yaw)) / turn_rate)
+
+
+def rest_to_rest(distance, top, accel):
+    """
+    Return the shortest time to move ``distance`` from rest to rest within a speed and accel.
+
+    Bang-bang with a cruise: ``distance / top + top / accel`` when the base reaches ``top``
+    (``distance >= top^2 / accel``), else ``2 sqrt(distance / accel)`` (accelerate half-way,
+    brake the rest).
+
+    :param distance: m (or rad), >= 0.
+    :param top: m/s (rad/s), > 0.
+    :param accel: m/s^2 (rad/s^2), > 0, the same for speeding up and braking.
+    :returns: s.
+    """
+    distance = abs(float(distance))
+    if distance >= top * top / accel:
+        return distance / top + top / accel
+    return 2.0 * math.sqrt(distance / accel)
+
+
+def fastest_time(path, start_yaw, goal_yaw, speed, turn_rate, accel, angular_accel):
+    """
+    Return the least time a base within these limits could take to a goal by this path.
+
+    The turns of :func:`time_bound` in place and the path's length, each from rest to rest
+    (:func:`rest_to_rest`); the path's bends are taken as free (turning while driving costs
+    nothing), so no base with these limits is faster. A yardstick for :func:`time_bound`,
+    which does not count speeding up and braking.
+
+    :param path: (N, 2) m, the shortest (planned) path.
+    :param start_yaw: rad.
+    :param goal_yaw: rad.
+    :param speed: m/s, the top speed on the path (``desired_linear_vel``).
+    :param turn_rate: rad/s, the top turn rate in place (``rotate_to_heading_angular_vel``).
+    :param accel: m/s^2 (velocity_smoother's ``max_accel`` in x).
+    :param angular_accel: rad/s^2 (its ``max_accel`` in theta).
+    :returns: s.
+    """
+    xy = np.asarray(path, dtype=float).reshape(-1, 2)
+    before, after = _turns(xy, start_yaw, goal_yaw)
+    return (rest_to_rest(before, turn_rate, angular_accel) +
+            rest_to_rest(path_length(xy), speed, accel) +
+            rest_to_rest(after, turn_rate, angular_accel))
 
 
 def time_budget(truth, speed, span=None, still=0.03, turning=0.1, cruise=0.8):

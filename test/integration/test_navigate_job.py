@@ -82,6 +82,11 @@ def test_navigate_job_maps_saves_and_reaches_its_goals(ros_env, procs, exe, tmp_
                        r'([\d.]+) s standing', text)
     assert budget and sum(map(float, budget.groups())) == pytest.approx(
         float(summary[2]), abs=0.5), text[-2000:]
+    # no base within the params file's limits is faster than the yardstick, the real one included
+    fastest = re.search(r'could reach them .*: ([\d.]+) s; the goals took ([\d.]+) x that, '
+                        r'the bounds allow ([\d.]+) x', text)
+    assert fastest and 1.0 <= float(fastest[2]) and 1.0 < float(fastest[3]) < 1.5, \
+        text[-2000:]
 
     for name in ('map.png', 'navigation.png'):
         data = (out / name).read_bytes()

@@ -89,6 +89,34 @@ def test_path_length_and_time_bound():
     # facing -x at the start: a half turn first
     assert time_bound([[0, 0], [2, 0]], math.pi, 0.0, 0.5, 1.8, slack=1.0) == \
         pytest.approx(4.0 + math.pi / 1.8)
+    # a goal where the base already stands: its turn only
+    assert time_bound([[1, 1], [1, 1]], 0.0, -1.0, 0.5, 1.8, slack=1.0) == \
+        pytest.approx(1.0 / 1.8)
+
+
+def test_rest_to_rest_and_the_fastest_time_to_a_goal():
+    from amr_description.nav.trials import fastest_time
+    from amr_description.nav.trials import rest_to_rest
+    # 2 m at 0.5 m/s and 2 m/s^2: 0.25 s (0.0625 m) to speed, as long to brake, 3.75 s between
+    assert rest_to_rest(2.0, 0.5, 2.0) == pytest.approx(0.25 + 3.75 + 0.25)
+    # 0.1 m never reaches 0.5 m/s (it takes 0.125 m): 0.05 m speeding up in sqrt(0.05) s
+    assert rest_to_rest(0.1, 0.5, 2.0) == pytest.approx(2.0 * math.sqrt(0.05))
+    assert rest_to_rest(0.125, 0.5, 2.0) == pytest.approx(0.5)  # both forms meet there
+    assert rest_to_rest(-0.125, 0.5, 2.0) == pytest.approx(0.5)
+    assert rest_to_rest(0.0, 0.5, 2.0) == 0.0
+    # a quarter turn at 1.8 rad/s and 2 rad/s^2 (1.62 rad to reach 1.8): 2 sqrt(pi / 4) s;
+    # a half turn reaches it: pi / 1.8 + 0.9 s
+    quarter, half = 2.0 * math.sqrt(math.pi / 4), math.pi / 1.8 + 0.9
+    assert fastest_time([[0, 0], [1, 0], [2, 0]], math.pi / 2, 0.0, 0.5, 1.8, 2.0, 2.0) == \
+        pytest.approx(quarter + 4.25)
+    assert fastest_time([[0, 0], [2, 0]], math.pi, -math.pi / 2, 0.5, 1.8, 2.0, 2.0) == \
+        pytest.approx(half + 4.25 + quarter)
+    # the bends cost nothing: an L of 1 + 1 m takes as long as a straight 2 m
+    assert fastest_time([[0, 0], [1, 0], [1, 1]], 0.0, math.pi / 2, 0.5, 1.8, 2.0, 2.0) == \
+        pytest.approx(4.25)
+    # the yardstick is below the bound of the same goal at these limits
+    assert fastest_time([[0, 0], [2, 0]], math.pi, 0.0, 0.5, 1.8, 2.0, 2.0) < \
+        time_bound([[0, 0], [2, 0]], math.pi, 0.0, 0.5, 1.8)
 
 
 def test_footprint_clearance_to_a_box():
@@ -114,12 +142,17 @@ def test_the_jobs_robot_params_and_table(tmp_path):
     root = os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', '..')
     robot = robot_params(os.path.join(root, 'config', 'nav2_params.yaml'))
     assert robot == {'footprint': [(0.3, 0.17), (0.3, -0.17), (-0.3, -0.17), (-0.3, 0.17)],
-                     'speed': 0.5, 'turn_rate': 1.8}
+                     'speed': 0.5, 'turn_rate': 1.8, 'accel': 2.0, 'angular_accel': 2.0}
     bare = tmp_path / 'bare.yaml'
     bare.write_text('local_costmap:\n  local_costmap:\n    ros__parameters:\n'
                     '      robot_radius: 0.22\n')
     round_robot = robot_params(str(bare))
     assert (round_robot['speed'], round_robot['turn_rate']) == (0.5, 1.8)  # RPP's defaults
+    assert (round_robot['accel'], round_robot['angular_accel']) == (2.5, 3.2)  # the smoother's
+    wrong = tmp_path / 'wrong.yaml'
+    wrong.write_text('velocity_smoother:\n  ros__parameters:\n    max_accel: 2.5\n')
+    with pytest.raises(ValueError, match="velocity_smoother max_accel '2.5': expected"):
+        robot_params(str(wrong))
     assert np.hypot(*np.array(round_robot['footprint']).T) == pytest.approx([0.22] * 16)
     # a 2 m drive along +x in 5 s, 1 m from a wall at y = 1.5 (wall half-thickness 0.1)
     wall = [('box', (1.0, 1.6), 0.0, (5.0, 0.1))]
@@ -140,6 +173,13 @@ def test_the_jobs_robot_params_and_table(tmp_path):
         f'{bound:.1f} s ({5.0 / bound:.2f})' in text, text
     assert "where the goals' time went (ground truth): 0.0 s turning in place, 5.0 s at " \
         '0.40 m/s or more (80 % of desired_linear_vel), 0.0 s slower, 0.0 s standing' in text
+    # 2.1 m from rest to rest at 0.5 m/s and 2 m/s^2, then 0.1 rad at 2 rad/s^2
+    fastest = 2.1 / 0.5 + 0.25 + 2.0 * math.sqrt(0.1 / 2.0)
+    assert 'the fastest a base within these limits could reach them (in-place turns and ' \
+        'planned length, each from rest to rest within desired_linear_vel, ' \
+        "rotate_to_heading_angular_vel and velocity_smoother's max_accel): " \
+        f'{fastest:.1f} s; the goals took {5.0 / fastest:.2f} x that, the bounds allow ' \
+        f'{bound / fastest:.2f} x' in text, text
     slow = dict(row, truth=[(10.0 + 0.2 * i, 0.02 * i, 0.0, 0.0) for i in range(101)])
     slow_text = format_table([slow], truth, wall, robot)[0]
     assert f"at 0; 20.0 s against the bounds' {bound:.1f} s" in slow_text

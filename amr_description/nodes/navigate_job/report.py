@@ -25,9 +25,11 @@ def robot_params(path):
     :returns: dict ``footprint`` (list of (x, y), m; the local costmap's ``footprint``, or a
         16-gon of its ``robot_radius``), ``speed`` (FollowPath's ``desired_linear_vel``, m/s,
         default 0.5) and ``turn_rate`` (``rotate_to_heading_angular_vel``, rad/s, default 1.8;
-        Regulated Pure Pursuit's defaults).
+        Regulated Pure Pursuit's defaults), ``accel`` and ``angular_accel`` (velocity_smoother's
+        ``max_accel`` in x, m/s^2, and theta, rad/s^2; Nav2's defaults 2.5 and 3.2).
     :raises OSError: an unreadable file.
-    :raises ValueError: a footprint that is not a list of points.
+    :raises ValueError: a footprint that is not a list of points, or a ``max_accel`` that is
+        not a list of three.
     """
     import yaml
     with open(path) as stream:
@@ -36,6 +38,10 @@ def robot_params(path):
     local = local.get('ros__parameters', {})
     follow = document.get('controller_server', {}).get('ros__parameters', {}).get(
         'FollowPath', {})
+    smoother = document.get('velocity_smoother', {}).get('ros__parameters', {})
+    accel = smoother.get('max_accel', [2.5, 0.0, 3.2])
+    if not (isinstance(accel, list) and len(accel) == 3):
+        raise ValueError(f"{path}: velocity_smoother max_accel '{accel}': expected [x, y, theta]")
     footprint = local.get('footprint', '[]')
     points = yaml.safe_load(footprint) if isinstance(footprint, str) else footprint
     if not points:
@@ -45,7 +51,8 @@ def robot_params(path):
         raise ValueError(f"{path}: local_costmap footprint '{footprint}': expected [[x, y], ...]")
     return {'footprint': [tuple(map(float, p)) for p in points],
             'speed': float(follow.get('desired_linear_vel', 0.5)),
-            'turn_rate': float(follow.get('rotate_to_heading_angular_vel', 1.8))}
+            'turn_rate': float(follow.get('rotate_to_heading_angular_vel', 1.8)),
+            'accel': float(accel[0]), 'angular_accel': float(accel[2])}
 
 
 def goal_figures(row, sections, robot):
@@ -59,12 +66,15 @@ def goal_figures(row, sections, robot):
         settling): its last sample is the end pose.
     :param sections: the world's shapes (:func:`amr_description.core.scan_map.world_sections`).
     :param robot: :func:`robot_params`.
-    :returns: dict ``time`` and ``bound`` (s; bound from the plan, or None without one),
+    :returns: dict ``time``, ``bound`` and ``fastest`` (s; the last two from the plan, or
+        None without one: :func:`amr_description.nav.trials.time_bound` and
+        :func:`amr_description.nav.trials.fastest_time`),
         ``planned`` and ``driven`` (m), ``error`` (m) and ``yaw_error`` (rad) of the last
         ground truth from the goal, ``clearance`` (m, the closest approach; negative: touched),
         ``budget`` (:func:`amr_description.nav.trials.time_budget` between the goal's sending
         and its result).
     """
+    from amr_description.nav.trials import fastest_time
     from amr_description.nav.trials import footprint_clearance
     from amr_description.nav.trials import path_length
     from amr_description.nav.trials import time_bound
@@ -72,13 +82,15 @@ def goal_figures(row, sections, robot):
     truth = np.asarray(row['truth'], dtype=float).reshape(-1, 4)
     x, y, yaw = row['goal']
     end = truth[-1] if len(truth) else (0.0,) + tuple(row['start'])
-    bound = None
+    bound = fastest = None
     if len(row['planned']) > 1:
         bound = time_bound(row['planned'], row['start'][2], yaw, robot['speed'],
                            robot['turn_rate'])
+        fastest = fastest_time(row['planned'], row['start'][2], yaw, robot['speed'],
+                               robot['turn_rate'], robot['accel'], robot['angular_accel'])
     span = row.get('span') or ((truth[0, 0], truth[-1, 0]) if len(truth) > 1 else (0.0, 0.0))
     return {'time': float(span[1] - span[0]),
-            'bound': bound, 'planned': path_length(row['planned']),
+            'bound': bound, 'fastest': fastest, 'planned': path_length(row['planned']),
             'driven': path_length(truth[:, 1:3]),
             'error': math.hypot(end[1] - x, end[2] - y),
             'yaw_error': abs(wrap_angle(end[3] - yaw)),
@@ -94,7 +106,9 @@ def format_table(rows, route, sections, robot):
     The last lines count the goals reached, those whose ground truth ended within Nav2's
     default tolerances, and those reached within their time bound
     (:func:`amr_description.nav.trials.time_bound`), with the times' sum against the bounds',
-    and say where the goals' time went (:func:`amr_description.nav.trials.time_budget`).
+    the least time a base within the params file's limits could have taken for the same goals
+    (:func:`amr_description.nav.trials.fastest_time`), and say where the goals' time went
+    (:func:`amr_description.nav.trials.time_budget`).
 
     :param rows: :func:`goal_figures`' rows.
     :param route: the mapping route's ground truth [(t, x, y, yaw)].
@@ -114,7 +128,7 @@ def format_table(rows, route, sections, robot):
              'deg        m']
     ok = route_gap > 0.0
     reached = within = timely = 0
-    times = bounds = 0.0
+    times = bounds = fastest = 0.0
     budget = dict.fromkeys(('turning', 'at_speed', 'slower', 'standing'), 0.0)
     for i, row in enumerate(rows, 1):
         f = goal_figures(row, sections, robot)
@@ -131,6 +145,7 @@ def format_table(rows, route, sections, robot):
         if succeeded and f['bound'] is not None:
             timely += f['time'] <= f['bound']
             times, bounds = times + f['time'], bounds + f['bound']
+            fastest += f['fastest']
         ok = ok and succeeded and f['clearance'] > 0.0
     lines += ['', f'{reached} of {len(rows)} goals SUCCEEDED; the ground truth ended within '
               f"Nav2's default tolerances (0.25 m, 0.25 rad) at {within}"]
@@ -139,6 +154,11 @@ def format_table(rows, route, sections, robot):
                      f'desired_linear_vel + in-place turns / rotate_to_heading_angular_vel)) '
                      f"at {timely}; {times:.1f} s against the bounds' {bounds:.1f} s "
                      f'({times / bounds:.2f})')
+        lines.append(f'the fastest a base within these limits could reach them (in-place turns '
+                     f'and planned length, each from rest to rest within desired_linear_vel, '
+                     f"rotate_to_heading_angular_vel and velocity_smoother's max_accel): "
+                     f'{fastest:.1f} s; the goals took {times / fastest:.2f} x that, the bounds '
+                     f'allow {bounds / fastest:.2f} x')
     if rows:
         lines.append(f"where the goals' time went (ground truth): {budget['turning']:.1f} s "
                      f"turning in place, {budget['at_speed']:.1f} s at "
