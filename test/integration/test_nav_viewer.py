@@ -107,6 +107,16 @@ def _magenta(view):
     return int(np.count_nonzero((r > 190) & (g < 70) & (b > 190)))
 
 
+def _view_red(image):
+    """Return :func:`_red` of a screenshot's 3D view."""
+    return _red(_view(image))
+
+
+def _view_magenta(image):
+    """Return :func:`_magenta` of a screenshot's 3D view."""
+    return _magenta(_view(image))
+
+
 def _green(view):
     """Return how many pixels are the footprint's green (25, 255, 0), blended with the floor."""
     r, g, b = view[..., 0], view[..., 1], view[..., 2]
@@ -319,6 +329,21 @@ def test_map_particles_and_the_pose_estimate_tool(procs, exe, ros_env, tmp_path)
                 pose.pose.position.x, pose.pose.position.y = x, y
                 pose.pose.orientation.w = 1.0
                 loop.poses.append(pose)
+            # first an empty Path, until the view's red is what it is with the display hidden,
+            # so that the red measured after can only be the loop's and not the canceled
+            # goal's own plan
+            empty = Path()
+            empty.header.frame_id = 'map'
+            page.page.get_by_text('Path', exact=True).click()
+            base = _redrawn(page, _red, _view_red(page.pixels()))
+            page.page.get_by_text('Path', exact=True).click()
+            deadline = time.monotonic() + 60.0
+            left = None
+            while (left is None or left >= base + 20) and time.monotonic() < deadline:
+                plan.publish(empty)
+                peer.spin_until(lambda: False, 0.5)
+                left = _wait_for_pixels(page, _view_red, lambda n: n < base + 20, 5.0)
+            assert left < base + 20, f'{left} red pixels after an empty Path, {base} hidden'
             deadline = time.monotonic() + 60.0
             drawn = 0
             while drawn < 100 and time.monotonic() < deadline:
@@ -326,7 +351,8 @@ def test_map_particles_and_the_pose_estimate_tool(procs, exe, ros_env, tmp_path)
                 peer.spin_until(lambda: False, 0.5)
                 drawn = _shown_minus_hidden(page, 'Path', _red)
             page.pixels(str(tmp_path / 'path.png'))
-            print(f'pixels drawn: path {drawn}, footprint {outline}')
+            print(f'pixels drawn: path {drawn} ({left} red after an empty Path, {base} with the '
+                  f'display hidden), footprint {outline}')
             assert drawn >= 100 and outline >= 15, (drawn, outline)
             # the MarkerArray display (the config's slam_toolbox/graph_visualization): a graph
             # of known shape, magenta spheres joined by a line strip, 0.4 m inside the path
@@ -350,16 +376,15 @@ def test_map_particles_and_the_pose_estimate_tool(procs, exe, ros_env, tmp_path)
             # only then measured with and without its checkbox: a clean-clone run measured 0
             # while its screenshot showed the graph drawn, the markers having come after the
             # "shown" screenshot of a measurement and before the last
-            magenta = lambda image: _magenta(_view(image))  # noqa: E731
             deadline = time.monotonic() + 60.0
             shown = 0
             while shown < 100 and time.monotonic() < deadline:
                 graph.publish(MarkerArray(markers=markers))
                 peer.spin_until(lambda: False, 0.5)
-                shown = _wait_for_pixels(page, magenta, lambda n: n >= 100, 5.0)
+                shown = _wait_for_pixels(page, _view_magenta, lambda n: n >= 100, 5.0)
             page.pixels(str(tmp_path / 'markers.png'))
             page.page.get_by_text('MarkerArray', exact=True).click()
-            hidden = _wait_for_pixels(page, magenta, lambda n: n < shown - 100, 30.0)
+            hidden = _wait_for_pixels(page, _view_magenta, lambda n: n < shown - 100, 30.0)
             page.page.get_by_text('MarkerArray', exact=True).click()
             drawn = shown - hidden
             print(f'pixels drawn: markers {drawn} ({shown} shown, {hidden} hidden)')
