@@ -286,3 +286,47 @@ def test_filter_converges_in_a_room_with_scans(model):
         truth = truth + step
         odom = odom + [0.06, 0.0, 0.0]  # odometry frame at 0, heading 0: along its own x
     assert np.hypot(*(loc.pose[:2] - (truth - step)[:2])) < 0.05
+
+
+def test_recovery_particles_as_pf_c():
+    # pf.c (nav2_amcl/src/pf/pf.c): after each sensor update w_slow += alpha_slow (w_avg -
+    # w_slow) and w_fast likewise (both start at the first w_avg, w_avg being the mean of the
+    # weights before normalising); a resampling draws each particle from the map's free space
+    # with probability max(0, 1 - w_fast / w_slow) and then sets both averages to 0
+    room = _room()
+    field = amcl.LikelihoodMap(room, 2.0)
+    params = amcl.AmclParameters(recovery_alpha_slow=0.1, recovery_alpha_fast=0.5,
+                                 min_particles=2000, max_particles=2000)
+    here, elsewhere = (0.5, 0.3, 0.0), (2.5, 1.5, 2.0)
+    angles = np.linspace(-math.pi, math.pi, 61)[:-1]
+    select = amcl.Amcl(params)
+
+    def beams_from(pose):
+        ranges = field.cast(np.tile(pose[:2], (len(angles), 1)), pose[2] + angles, 10.0)
+        return select.beams(list(ranges), -math.pi, angles[1] - angles[0], 0.1, 10.0,
+                            (0.0, 0.0, 0.0))
+
+    f_here = _factor(params, here, field, *beams_from(here))
+    f_there = _factor(params, here, field, *beams_from(elsewhere))
+    assert f_there < f_here  # the scan from elsewhere fits the particles' pose worse
+    pf = amcl.ParticleFilter(params, seed=0)
+    pf.initialize(here, np.zeros((3, 3)))  # every particle on one pose: one factor for all
+    n = len(pf.particles)
+    pf.weigh(field, *beams_from(here))
+    assert pf.w_slow == pytest.approx(f_here / n) and pf.w_fast == pytest.approx(f_here / n)
+    pf.weigh(field, *beams_from(elsewhere))
+    slow = f_here / n + 0.1 * (f_there - f_here) / n
+    fast = f_here / n + 0.5 * (f_there - f_here) / n
+    assert (pf.w_slow, pf.w_fast) == pytest.approx((slow, fast))
+    pf.resample(field)
+    moved = np.any(pf.particles != here, axis=1)
+    assert moved.mean() == pytest.approx(1.0 - fast / slow, abs=0.05)  # binomial sd 0.011
+    assert np.all(field.lookup(pf.particles[moved, :2]) > 0.0)  # on free cells, not walls
+    assert pf.w_slow == 0.0 and pf.w_fast == 0.0
+    # the defaults (alphas 0) keep both averages at the first w_avg: no particle is drawn
+    pf = amcl.ParticleFilter(amcl.AmclParameters(min_particles=2000, max_particles=2000), 0)
+    pf.initialize(here, np.zeros((3, 3)))
+    pf.weigh(field, *beams_from(here))
+    pf.weigh(field, *beams_from(elsewhere))
+    pf.resample(None)  # Amcl passes no map unless recovery_alpha_slow > 0
+    assert np.all(pf.particles == here)
