@@ -323,10 +323,12 @@ def test_recovery_particles_as_pf_c():
     assert moved.mean() == pytest.approx(1.0 - fast / slow, abs=0.05)  # binomial sd 0.011
     assert np.all(field.lookup(pf.particles[moved, :2]) > 0.0)  # on free cells, not walls
     assert pf.w_slow == 0.0 and pf.w_fast == 0.0
-    # the defaults (alphas 0) keep both averages at the first w_avg: no particle is drawn
+    # the defaults (alphas 0) keep both averages at the first w_avg: none is drawn even when
+    # the resampling is given the map
     pf = amcl.ParticleFilter(amcl.AmclParameters(min_particles=2000, max_particles=2000), 0)
     pf.initialize(here, np.zeros((3, 3)))
     pf.weigh(field, *beams_from(here))
     pf.weigh(field, *beams_from(elsewhere))
-    pf.resample(None)  # Amcl passes no map unless recovery_alpha_slow > 0
+    assert pf.w_slow == pf.w_fast == pytest.approx(f_here / n)
+    pf.resample(field)
     assert np.all(pf.particles == here)
