@@ -142,7 +142,7 @@ def test_the_jobs_robot_params_and_table(tmp_path):
     root = os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', '..')
     robot = robot_params(os.path.join(root, 'config', 'nav2_params.yaml'))
     assert robot == {'footprint': [(0.3, 0.17), (0.3, -0.17), (-0.3, -0.17), (-0.3, 0.17)],
-                     'speed': 0.5, 'turn_rate': 1.8, 'accel': 2.0, 'angular_accel': 2.0}
+                     'speed': 0.5, 'turn_rate': 1.8, 'accel': 2.0, 'angular_accel': 4.0}
     bare = tmp_path / 'bare.yaml'
     bare.write_text('local_costmap:\n  local_costmap:\n    ros__parameters:\n'
                     '      robot_radius: 0.22\n')
@@ -173,8 +173,8 @@ def test_the_jobs_robot_params_and_table(tmp_path):
         f'{bound:.1f} s ({5.0 / bound:.2f})' in text, text
     assert "where the goals' time went (ground truth): 0.0 s turning in place, 5.0 s at " \
         '0.40 m/s or more (80 % of desired_linear_vel), 0.0 s slower, 0.0 s standing' in text
-    # 2.1 m from rest to rest at 0.5 m/s and 2 m/s^2, then 0.1 rad at 2 rad/s^2
-    fastest = 2.1 / 0.5 + 0.25 + 2.0 * math.sqrt(0.1 / 2.0)
+    # 2.1 m from rest to rest at 0.5 m/s and 2 m/s^2, then 0.1 rad at 4 rad/s^2
+    fastest = 2.1 / 0.5 + 0.25 + 2.0 * math.sqrt(0.1 / 4.0)
     assert 'the fastest a base within these limits could reach them (in-place turns and ' \
         'planned length, each from rest to rest within desired_linear_vel, ' \
         "rotate_to_heading_angular_vel and velocity_smoother's max_accel): " \
