@@ -122,8 +122,8 @@ def _set(args):
         raise CliError('Node not found')
     with cli_node(default_node_name()) as node:
         available = call(node, GetAvailableTransitions, f'{target}/get_available_transitions',
-                         GetAvailableTransitions.Request(),
-                         timeout=SERVICE_WAIT).available_transitions
+                         GetAvailableTransitions.Request(), timeout=SERVICE_WAIT,
+                         resend=RESEND).available_transitions
         chosen = next((t.transition for t in available
                        if t.transition.label == args.transition), None) or \
             next((t.transition for t in available

@@ -158,8 +158,9 @@ class _LostFirstAnswer:
         def result(self):
             return self._result
 
-    def __init__(self, clock):
+    def __init__(self, clock, answer='answer'):
         self.clock = clock
+        self.answer = answer
         self.sent = []
         self._cli_executor = self
 
@@ -174,7 +175,7 @@ class _LostFirstAnswer:
 
     def call_async(self, request):
         self.sent.append(self.clock[0])
-        return self._Future(None if len(self.sent) == 1 else 'answer')
+        return self._Future(None if len(self.sent) == 1 else self.answer)
 
     def spin_once(self, timeout_sec=None):
         self.clock[0] += timeout_sec
@@ -192,3 +193,21 @@ def test_a_query_resent_after_its_answer_was_lost(monkeypatch):
     with pytest.raises(api.CliError, match='Timed out waiting'):
         api.call(node, None, '/n/get_state', 'request', service_timeout=30.0)
     assert len(node.sent) == 1
+
+
+def test_parameter_queries_are_resent_and_a_set_is_not(monkeypatch):
+    from amr_description.cli.param import api
+    from rcl_interfaces.msg import Parameter
+    from rcl_interfaces.srv import GetParameters
+    clock = [0.0]
+    monkeypatch.setattr(api.time, 'monotonic', lambda: clock[0])
+    node = _LostFirstAnswer(clock, GetParameters.Response())
+    assert api.get_parameters(node, '/slam_toolbox', ['paused_processing'],
+                              service_timeout=30.0) == []
+    assert len(node.sent) == 2 and api.QUERY_RESEND < node.sent[1] < api.QUERY_RESEND + 0.2
+    node = _LostFirstAnswer(clock)
+    start = clock[0]
+    with pytest.raises(api.CliError, match='Timed out waiting'):
+        api.set_parameters(node, '/slam_toolbox', [Parameter(name='paused_processing')],
+                           service_timeout=30.0)
+    assert node.sent == [start]

@@ -229,6 +229,21 @@ def call(node, srv_type, service, request, timeout=5.0, service_timeout=None, re
         node.destroy_client(client)
 
 
+QUERY_RESEND = 5.0
+"""
+Seconds after which an unanswered parameter query (list, get, describe) is sent again.
+
+A lost answer (see :func:`call`) hung ``ros2 param get`` for 180 s in a 2026-11-29 CI run;
+the queries change nothing, so sending them again is safe. ``set`` and ``delete`` are not
+resent.
+"""
+
+
+def _query(kwargs):
+    """Return ``kwargs`` with ``resend`` set to :data:`QUERY_RESEND` unless given."""
+    return {'resend': QUERY_RESEND, **kwargs}
+
+
 def list_parameters(node, node_name, prefixes=(), **kwargs):
     """
     Return the sorted parameter names of ``node_name``.
@@ -241,7 +256,7 @@ def list_parameters(node, node_name, prefixes=(), **kwargs):
     from rcl_interfaces.srv import ListParameters
     request = ListParameters.Request(prefixes=list(prefixes))
     return sorted(call(node, ListParameters, f'{node_name}/list_parameters', request,
-                       **kwargs).result.names)
+                       **_query(kwargs)).result.names)
 
 
 def get_parameters(node, node_name, names, **kwargs):
@@ -255,7 +270,7 @@ def get_parameters(node, node_name, names, **kwargs):
     """
     from rcl_interfaces.srv import GetParameters
     return list(call(node, GetParameters, f'{node_name}/get_parameters',
-                     GetParameters.Request(names=list(names)), **kwargs).values)
+                     GetParameters.Request(names=list(names)), **_query(kwargs)).values)
 
 
 def describe_parameters(node, node_name, names, **kwargs):
@@ -269,7 +284,8 @@ def describe_parameters(node, node_name, names, **kwargs):
     """
     from rcl_interfaces.srv import DescribeParameters
     return list(call(node, DescribeParameters, f'{node_name}/describe_parameters',
-                     DescribeParameters.Request(names=list(names)), **kwargs).descriptors)
+                     DescribeParameters.Request(names=list(names)),
+                     **_query(kwargs)).descriptors)
 
 
 def set_parameters(node, node_name, parameters, **kwargs):
