@@ -26,14 +26,12 @@ from amr_description.cli.extension import Command
 from amr_description.cli.extension import Verb
 from amr_description.cli.node import fully_qualified
 from amr_description.cli.param.api import call
+from amr_description.cli.param.api import QUERY_RESEND
 
 GET_STATE_TYPE = 'lifecycle_msgs/srv/GetState'
 
 SERVICE_WAIT = 30.0
 """Seconds to wait for a lifecycle service of a node the graph has shown."""
-
-RESEND = 5.0
-"""Seconds after which an unanswered query (``get_state``, the transitions) is sent again."""
 
 
 def lifecycle_node_names(node_names, services):
@@ -83,7 +81,7 @@ def _list(args):
     service = 'get_transition_graph' if args.all else 'get_available_transitions'
     with cli_node(default_node_name()) as node:
         answer = call(node, GetAvailableTransitions, f'{target}/{service}',
-                      GetAvailableTransitions.Request(), timeout=SERVICE_WAIT, resend=RESEND)
+                      GetAvailableTransitions.Request(), timeout=SERVICE_WAIT, resend=QUERY_RESEND)
     for t in answer.available_transitions:
         print(f'- {t.transition.label} [{t.transition.id}]\n'
               f'\tStart: {t.start_state.label}\n\tGoal: {t.goal_state.label}')
@@ -103,7 +101,7 @@ def _get(args):
             try:
                 state = call(node, GetState, f'{name}/get_state', GetState.Request(),
                              timeout=SERVICE_WAIT, service_timeout=args.timeout,
-                             resend=RESEND).current_state
+                             resend=QUERY_RESEND).current_state
             except CliError as exc:
                 if args.node_name:
                     raise
@@ -123,7 +121,7 @@ def _set(args):
     with cli_node(default_node_name()) as node:
         available = call(node, GetAvailableTransitions, f'{target}/get_available_transitions',
                          GetAvailableTransitions.Request(), timeout=SERVICE_WAIT,
-                         resend=RESEND).available_transitions
+                         resend=QUERY_RESEND).available_transitions
         chosen = next((t.transition for t in available
                        if t.transition.label == args.transition), None) or \
             next((t.transition for t in available

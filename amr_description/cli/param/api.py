@@ -231,11 +231,12 @@ def call(node, srv_type, service, request, timeout=5.0, service_timeout=None, re
 
 QUERY_RESEND = 5.0
 """
-Seconds after which an unanswered parameter query (list, get, describe) is sent again.
+Seconds after which an unanswered query is sent again (``resend`` of :func:`call`).
 
-A lost answer (see :func:`call`) hung ``ros2 param get`` for 180 s in a 2026-11-29 CI run;
-the queries change nothing, so sending them again is safe. ``set`` and ``delete`` are not
-resent.
+The parameter queries (list, get, describe) and the lifecycle ones (``get_state``, the
+available transitions). A lost answer (see :func:`call`) hung ``ros2 param get`` for 180 s
+in a 2026-11-29 CI run; the queries change nothing, so sending them again is safe.
+``set``, ``delete`` and lifecycle transitions are not resent.
 """
 
 
