@@ -10,12 +10,19 @@ place towards the path when the carrot is more than ``rotate_to_heading_min_angl
 towards the goal's heading once the carrot is within the goal tolerance; otherwise the speed
 starts at ``desired_linear_vel``, is regulated by curvature and by cost (distance to
 obstacles estimated from the inflation cost), floored at ``regulated_linear_scaling_min_speed``,
-slowed on approach, and ``w = v * curvature``. The arc ahead is checked on the local costmap;
-a collision raises :class:`NoValidControl`. Parameters, defaults and formulas:
+slowed on approach, and ``w = v * curvature``. With ``use_fixed_curvature_lookahead`` the
+curvature (for the speed, ``w`` and the rotation to the path) is taken at
+``curvature_lookahead_dist`` instead, past the goal along the last segment with
+``interpolate_curvature_after_goal``; with ``allow_reversing`` (only without
+``use_rotate_to_heading``) a carrot behind the robot drives it backwards and neither point lies
+beyond the path's first cusp; after :meth:`RegulatedPurePursuit.cancel` with
+``use_cancel_deceleration`` the speed falls by ``cancel_deceleration``. The arc ahead is checked
+on the local costmap; a collision raises :class:`NoValidControl`. Parameters, defaults and
+formulas:
 ``parameter_handler.cpp``, ``regulated_pure_pursuit_controller.cpp``, ``path_handler.cpp``,
 ``collision_checker.cpp`` and ``regulation_functions.hpp`` of
 nav2_regulated_pure_pursuit_controller (Jazzy).
-:class:`SimpleGoalChecker` and :class:`SimpleProgressChecker` are ``nav2_controller/plugins``'.
+The goal and progress checkers are in :mod:`amr_description.nav.checkers`.
 """
 
 import math
@@ -39,29 +46,40 @@ RPP_DEFAULTS = {
     'rotate_to_heading_min_angle': 0.785, 'max_angular_accel': 3.2, 'cost_scaling_dist': 0.6,
     'cost_scaling_gain': 1.0, 'inflation_cost_scaling_factor': 3.0,
     'use_cancel_deceleration': False, 'cancel_deceleration': 3.2,
-    'interpolate_curvature_after_goal': False, 'max_robot_pose_search_dist': -1.0,
+    'interpolate_curvature_after_goal': False, 'max_robot_pose_search_dist': math.inf,
     'stateful': True,
 }
-"""RPP's parameters (under ``<controller_id>.``) and Nav2's code defaults."""
+"""
+RPP's parameters (under ``<controller_id>.``) and Nav2's code defaults.
+
+Upstream's ``max_robot_pose_search_dist`` defaults to half the local costmap's width, which
+the controller server declares (amr_description/nodes/controller_server.py); here, the whole
+path.
+"""
 
 
 class NoValidControl(Exception):
     """No safe command exists (FollowPath's NO_VALID_CONTROL, 106)."""
 
 
-def carrot(path_xy, distance):
+def carrot(path_xy, distance, interpolate_after_goal=False):
     """
     Return the point at ``distance`` (m) from the origin along a path in the robot frame.
 
     The first pose at least ``distance`` away and the one before it bound a segment; the
     carrot is where the circle of radius ``distance`` crosses it (the first pose itself when it
-    is the path's first). No such pose: the last pose. ``path_xy`` is ``(n, 2)``, n >= 1.
-    Source: ``getLookAheadPoint`` and ``circleSegmentIntersection``.
+    is the path's first). No such pose: the last pose, or, with ``interpolate_after_goal`` and
+    two poses or more, where the last segment carried on past the goal leaves the circle.
+    ``path_xy`` is ``(n, 2)``, n >= 1. Source: ``getLookAheadPoint`` and
+    ``circleSegmentIntersection``.
     """
     p = np.asarray(path_xy, float)
     d = np.hypot(p[:, 0], p[:, 1])
     far = np.nonzero(d >= distance)[0]
     if not len(far):
+        if interpolate_after_goal and len(p) >= 2 and np.any(p[-1] != p[-2]):
+            ahead = p[-1] - p[-2]
+            return _leave_circle(p[-1], ahead / math.hypot(*ahead), distance)
         return p[-1].copy()
     k = int(far[0])
     if k == 0:
@@ -75,6 +93,68 @@ def carrot(path_xy, distance):
     disc = max(qb * qb - 4.0 * qa * qc, 0.0)
     t = (-qb + math.sqrt(disc)) / (2.0 * qa) if qa > 0 else 1.0
     return a + min(max(t, 0.0), 1.0) * seg
+
+
+def _leave_circle(inside, direction, radius):
+    """Return where the ray from ``inside`` along the unit ``direction`` leaves the circle."""
+    b = inside @ direction
+    t = -b + math.sqrt(max(b * b - (inside @ inside - radius * radius), 0.0))
+    return inside + t * direction
+
+
+def cusp_distance(path_xy):
+    """
+    Return the distance (m) from the origin to the path's first cusp, or infinity.
+
+    A pose is a cusp where the steps before and after it point apart (a negative dot product).
+    Upstream also counts two poses at one place with different orientations; the planners
+    here give every pose its own place. Source: ``findVelocitySignChange``.
+    """
+    p = np.asarray(path_xy, float)[:, :2]
+    if len(p) < 3:
+        return math.inf
+    step = np.diff(p, axis=0)
+    back = np.nonzero(np.einsum('ij,ij->i', step[:-1], step[1:]) < 0.0)[0]
+    if not len(back):
+        return math.inf
+    return float(math.hypot(*p[back[0] + 1]))
+
+
+def checked_params(params):
+    """
+    Return RPP's parameters over the defaults, and the lines upstream logs while setting them.
+
+    As ``ParameterHandler``'s constructor: ``allow_reversing`` with ``use_rotate_to_heading``
+    is turned off, ``interpolate_curvature_after_goal`` without
+    ``use_fixed_curvature_lookahead`` too, and cost regulation with an
+    ``inflation_cost_scaling_factor`` of 0 or less (its distance divides by it). A negative
+    ``max_robot_pose_search_dist`` searches the whole path.
+
+    :param params: ``{name: value}`` (names without the controller id).
+    :returns: ``(params, warnings)``: a new dict; a list of str.
+    """
+    p = dict(RPP_DEFAULTS)
+    p.update(params or {})
+    warnings = []
+    if p['use_rotate_to_heading'] and p['allow_reversing']:
+        warnings.append('Disabling reversing. Both use_rotate_to_heading and allow_reversing '
+                        'parameter cannot be set to true. By default setting '
+                        'use_rotate_to_heading true')
+        p['allow_reversing'] = False
+    if p['interpolate_curvature_after_goal'] and not p['use_fixed_curvature_lookahead']:
+        warnings.append('For interpolate_curvature_after_goal to be set to true, '
+                        'use_fixed_curvature_lookahead should be true, it is currently set '
+                        'to false. Disabling.')
+        p['interpolate_curvature_after_goal'] = False
+    if p['max_robot_pose_search_dist'] < 0.0:
+        warnings.append('Max robot search distance is negative, setting to max to search '
+                        'every point on path for the closest value.')
+        p['max_robot_pose_search_dist'] = math.inf
+    if p['inflation_cost_scaling_factor'] <= 0.0:
+        warnings.append('The value inflation_cost_scaling_factor is incorrectly set, it '
+                        'should be >0. Disabling cost regulated linear velocity scaling.')
+        p['use_cost_regulated_linear_velocity_scaling'] = False
+    return p, warnings
 
 
 def curvature(x, y):
@@ -108,18 +188,31 @@ class RegulatedPurePursuit:
 
     def __init__(self, params=None, goal_xy_tolerance=0.25, inscribed_radius=0.0,
                  circumscribed_radius=0.0, resolution=0.05):
-        """Merge the parameters over the defaults."""
-        self.p = dict(RPP_DEFAULTS)
-        self.p.update(params or {})
+        """Merge the parameters over the defaults (:func:`checked_params`; its lines kept)."""
+        self.p, self.warnings = checked_params(params)
         self.goal_xy_tolerance = float(goal_xy_tolerance)
         self.inscribed_radius = float(inscribed_radius)
         self.circumscribed_radius = float(circumscribed_radius) or self.inscribed_radius or 0.1
         self.resolution = float(resolution)
+        self.cancelling = self.cancel_finished = False
         self.reset()
 
     def reset(self):
         """Forget the latched goal-heading rotation (a new path)."""
         self.rotating_to_goal = False
+
+    def cancel(self):
+        """
+        Return True once a cancelled goal may end (``RegulatedPurePursuitController::cancel``).
+
+        Without ``use_cancel_deceleration`` at once; with it, :meth:`compute` from now on
+        slows the robot by ``cancel_deceleration`` (m/s^2) and this returns True once it has
+        commanded 0 m/s.
+        """
+        if not self.p['use_cancel_deceleration']:
+            return True
+        self.cancelling = True
+        return self.cancel_finished
 
     def lookahead(self, speed):
         """Return the lookahead distance (m) for the current speed (m/s)."""
@@ -171,10 +264,22 @@ class RegulatedPurePursuit:
         p = self.p
         path = np.asarray(path, float)
         L = self.lookahead(speed[0])
+        curvature_L = p['curvature_lookahead_dist']
+        if p['allow_reversing']:  # a cusp ahead: look no further than it
+            cusp = cusp_distance(path)
+            L, curvature_L = min(L, cusp), min(curvature_L, cusp)
         goal = path[-1]
         c = carrot(path[:, :2], L)
         c_dist = math.hypot(c[0], c[1])
-        heading = math.atan2(c[1], c[0])
+        toward = c  # the point the rotation to the path turns to
+        kappa = curvature(c[0], c[1])
+        if p['use_fixed_curvature_lookahead']:
+            toward = carrot(path[:, :2], curvature_L, p['interpolate_curvature_after_goal'])
+            kappa = curvature(toward[0], toward[1])
+        sign = -1.0 if p['allow_reversing'] and c[0] < 0.0 else 1.0
+        heading = math.atan2(toward[1], toward[0])
+        if sign < 0.0:
+            heading = math.atan2(-math.sin(heading), -math.cos(heading))
         if p['use_rotate_to_heading'] and (c_dist < self.goal_xy_tolerance or
                                            (p['stateful'] and self.rotating_to_goal)):
             self.rotating_to_goal = p['stateful']
@@ -184,8 +289,11 @@ class RegulatedPurePursuit:
         elif p['use_rotate_to_heading'] and abs(heading) > p['rotate_to_heading_min_angle']:
             v, w = self._rotate(heading, speed[1], dt, lateness)
         else:
-            kappa = curvature(c[0], c[1])
-            v = self._regulate(kappa, cost, path, remaining)
+            v = sign * self._regulate(kappa, cost, path, remaining)
+            if self.cancelling:  # slow down from the odometry's speed, then stop
+                v = speed[0] - sign * dt * p['cancel_deceleration']
+                if sign * v <= 0.0:
+                    v, self.cancel_finished = 0.0, True
             w = v * kappa
         # every command is checked, a rotation in place too, as computeVelocityCommands does
         if collision is not None and p['use_collision_detection'] and \
@@ -260,123 +368,6 @@ def circle_collides(costmap, x, y):
     """Return True when a round robot's centre cell at ``(x, y)`` is inscribed or lethal."""
     cost = costmap.cost_at(x, y)
     return cost is not None and INSCRIBED_INFLATED_OBSTACLE <= cost <= LETHAL_OBSTACLE
-
-
-class SimpleGoalChecker:
-    """
-    ``nav2_controller::SimpleGoalChecker``: xy within tolerance, then yaw (xy latched).
-
-    :param xy_goal_tolerance: m. :param yaw_goal_tolerance: rad.
-    :param stateful: once xy is reached it stays reached until :meth:`reset`.
-    """
-
-    def __init__(self, xy_goal_tolerance=0.25, yaw_goal_tolerance=0.25, stateful=True):
-        """Keep the tolerances."""
-        self.xy = float(xy_goal_tolerance)
-        self.yaw = float(yaw_goal_tolerance)
-        self.stateful = bool(stateful)
-        self.reset()
-
-    def reset(self):
-        """Forget the latched position."""
-        self.xy_reached = False
-
-    def is_goal_reached(self, pose, goal, speed=(0.0, 0.0)):
-        """
-        Return True for ``pose`` and ``goal`` as ``(x, y, yaw)`` in one frame.
-
-        :param speed: the robot's ``(v, w)`` (m/s, rad/s); not used here (see
-            :class:`StoppedGoalChecker`).
-        """
-        if not self.xy_reached:
-            if (pose[0] - goal[0]) ** 2 + (pose[1] - goal[1]) ** 2 > self.xy * self.xy:
-                return False
-            self.xy_reached = self.stateful
-        d = math.atan2(math.sin(goal[2] - pose[2]), math.cos(goal[2] - pose[2]))
-        return abs(d) <= self.yaw
-
-
-class StoppedGoalChecker(SimpleGoalChecker):
-    """
-    ``nav2_controller::StoppedGoalChecker``: as :class:`SimpleGoalChecker`, and stopped.
-
-    The goal counts as reached only while the odometry's speed is at most
-    ``trans_stopped_velocity`` (m/s, 0.25) and its turn rate at most ``rot_stopped_velocity``
-    (rad/s, 0.25). Source: ``nav2_controller/plugins/stopped_goal_checker.cpp``.
-    """
-
-    def __init__(self, xy_goal_tolerance=0.25, yaw_goal_tolerance=0.25, stateful=True,
-                 rot_stopped_velocity=0.25, trans_stopped_velocity=0.25):
-        """Keep the tolerances (m, rad, rad/s, m/s)."""
-        super().__init__(xy_goal_tolerance, yaw_goal_tolerance, stateful)
-        self.rot_stopped = float(rot_stopped_velocity)
-        self.trans_stopped = float(trans_stopped_velocity)
-
-    def is_goal_reached(self, pose, goal, speed=(0.0, 0.0)):
-        """Return True at the goal (:class:`SimpleGoalChecker`) with ``speed`` (v, w) stopped."""
-        return super().is_goal_reached(pose, goal) and abs(speed[1]) <= self.rot_stopped and \
-            abs(speed[0]) <= self.trans_stopped
-
-
-class SimpleProgressChecker:
-    """
-    ``nav2_controller::SimpleProgressChecker``: move far enough in time, or fail.
-
-    The robot must move ``required_movement_radius`` (m) from a baseline pose within
-    ``movement_time_allowance`` (s); the baseline resets each time it does.
-    Source: ``nav2_controller/plugins/simple_progress_checker.cpp``.
-    """
-
-    def __init__(self, required_movement_radius=0.5, movement_time_allowance=10.0):
-        """Keep the limits (m, s)."""
-        self.radius = float(required_movement_radius)
-        self.allowance = float(movement_time_allowance)
-        self.reset()
-
-    def reset(self):
-        """Start over at the next pose."""
-        self.baseline = None  # the pose the robot must move (or turn) away from
-        self.since = None  # when it was there (s)
-
-    def moved_enough(self, pose):
-        """Return True when ``pose`` (x, y[, yaw]) is farther than the radius from the baseline."""
-        b = self.baseline
-        return math.hypot(pose[0] - b[0], pose[1] - b[1]) > self.radius
-
-    def check(self, pose, now):
-        """
-        Return False when the robot made no progress.
-
-        :param pose: the robot's ``(x, y, yaw)`` (m, rad; ``(x, y)`` is enough here).
-        :param now: the time (s).
-        """
-        if self.baseline is None or self.moved_enough(pose):
-            self.baseline = tuple(pose)
-            self.since = now
-            return True
-        return now - self.since <= self.allowance
-
-
-class PoseProgressChecker(SimpleProgressChecker):
-    """
-    ``nav2_controller::PoseProgressChecker`` (Jazzy): a turn in place is progress too.
-
-    As :class:`SimpleProgressChecker`, and the baseline also resets when the heading has turned
-    more than ``required_movement_angle`` (rad, default 0.5) from the baseline's.
-    Source: ``nav2_controller/plugins/pose_progress_checker.cpp``.
-    """
-
-    def __init__(self, required_movement_radius=0.5, movement_time_allowance=10.0,
-                 required_movement_angle=0.5):
-        """Keep the limits (m, s, rad)."""
-        super().__init__(required_movement_radius, movement_time_allowance)
-        self.angle = float(required_movement_angle)
-
-    def moved_enough(self, pose):
-        """Return True when ``pose`` (x, y, yaw) moved or turned enough from the baseline."""
-        turned = pose[2] - self.baseline[2]
-        return super().moved_enough(pose) or \
-            abs(math.atan2(math.sin(turned), math.cos(turned))) > self.angle
 
 
 def to_robot_frame(path, pose):

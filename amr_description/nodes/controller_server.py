@@ -28,14 +28,19 @@ nearest the robot and put in the robot's frame, RPP's command with the collision
 local costmap's footprint cost (NO_VALID_CONTROL after ``failure_tolerance``), feedback
 (``distance_to_goal`` along the path, ``speed``), ``cmd_vel`` (reliable, depth 1), then the
 goal check against the path's last pose; a reached goal, a failure or a cancel publishes a zero
-command. An empty or NaN path is INVALID_PATH, an unknown ``controller_id`` INVALID_CONTROLLER,
-a missing transform TF_ERROR. Source: ``nav2_controller/src/controller_server.cpp``.
+command (a cancel once the controller says it may end: RPP with ``use_cancel_deceleration``
+slows down first, logging "Waiting for the controller to finish cancellation"). An empty or
+NaN path is INVALID_PATH, an unknown ``controller_id`` INVALID_CONTROLLER, a missing transform
+TF_ERROR. RPP's ``max_robot_pose_search_dist`` defaults to half the local costmap's width, as
+upstream's; ``ros2 param set`` changes the parameters listed in
+:meth:`ControllerServer._on_set_parameters`. Source: ``nav2_controller/src/controller_server.cpp``.
 """
 
 import math
 
 from amr_description.core.tf_buffer import TransformBuffer
 from amr_description.core.tf_buffer import TransformException
+from amr_description.nav import checkers
 from amr_description.nav import pure_pursuit as rpp
 from amr_description.nav.costmap import footprint_cost
 from amr_description.nav.costmap import LETHAL_OBSTACLE
@@ -54,8 +59,17 @@ from amr_description.ros.twist_io import TwistPublisher
 from nav2_msgs.action import FollowPath
 from nav2_msgs.msg import SpeedLimit
 import numpy as np
+from rcl_interfaces.msg import SetParametersResult
 
 RPP = 'RegulatedPurePursuitController'
+GOAL_CHECKER_KEYS = {'xy_goal_tolerance': 'xy', 'yaw_goal_tolerance': 'yaw',
+                     'stateful': 'stateful', 'rot_stopped_velocity': 'rot_stopped',
+                     'trans_stopped_velocity': 'trans_stopped'}
+"""A goal checker's parameters that ``ros2 param set`` changes, and their keys here."""
+PROGRESS_CHECKER_KEYS = {'required_movement_radius': ('radius', 'radius'),
+                         'movement_time_allowance': ('time', 'allowance'),
+                         'required_movement_angle': ('angle', 'angle')}
+"""A progress checker's parameters that ``ros2 param set`` changes: (key here, attribute)."""
 OTHER_SPEEDS = {'DWBLocalPlanner': 'max_vel_x', 'MPPIController': 'vx_max'}
 """Controllers run as RPP here, and the parameter giving their desired speed."""
 
@@ -99,19 +113,20 @@ class ControllerServer(ManagedNode):
         self.zero_on_stop = bool(d('publish_zero_velocity', True).value)
         d('use_realtime_priority', False)
         d('costmap_update_timeout', 0.30)
+        self.tf_buffer = TransformBuffer()
+        ns = self.get_namespace()
+        self.costmap = CostmapNode(
+            'local_costmap', self.tf_buffer, ns if ns != '/' else '',
+            use_sim_time=self.get_parameter('use_sim_time').value, **kwargs)
         self.controllers = {cid: self._controller_params(cid) for cid in
                             d('controller_plugins', ['FollowPath']).value}
         self.goal_checkers = {gid: self._goal_params(gid) for gid in
                               d('goal_checker_plugins', ['goal_checker']).value}
         self.progress_checkers = {pid: self._progress_params(pid) for pid in
                                   d('progress_checker_plugins', ['progress_checker']).value}
-        self.tf_buffer = TransformBuffer()
-        ns = self.get_namespace()
-        self.costmap = CostmapNode(
-            'local_costmap', self.tf_buffer, ns if ns != '/' else '',
-            use_sim_time=self.get_parameter('use_sim_time').value, **kwargs)
         self.companion_nodes = [self.costmap]
-        self._listener = self._server = self._cmd_pub = None
+        self._listener = self._server = self._cmd_pub = self._timer = None
+        self._parameters_handler = None
         self._entities = []
         self.speed = (0.0, 0.0)
         self._odom = None
@@ -146,7 +161,12 @@ class ControllerServer(ManagedNode):
         kind = str(d(f'{cid}.plugin', 'dwb_core::DWBLocalPlanner').value)
         params = {}
         if plugin_kind(kind) == RPP:
-            for name, default in rpp.RPP_DEFAULTS.items():
+            defaults = dict(rpp.RPP_DEFAULTS)
+            # upstream: half the local costmap's getSizeInMetersX(), (cells - 0.5) x resolution
+            res = float(self.costmap.p['resolution'])
+            cells = int(float(self.costmap.p['width']) / res) if res > 0.0 else 0
+            defaults['max_robot_pose_search_dist'] = max(cells - 0.5, 0.0) * res / 2.0
+            for name, default in defaults.items():
                 params[name] = d(f'{cid}.{name}', default).value
         elif plugin_kind(kind) in OTHER_SPEEDS:
             speed = float(d(f'{cid}.{OTHER_SPEEDS[plugin_kind(kind)]}', 0.0).value)
@@ -160,6 +180,10 @@ class ControllerServer(ManagedNode):
         for cid, c in self.controllers.items():
             if plugin_kind(c['plugin']) == RPP:
                 self.get_logger().info(f"Created controller : {cid} of type {c['plugin']}")
+                # as RPP's ParameterHandler: contradicting settings turned off, with a line
+                c['params'], warnings = rpp.checked_params(c['params'])
+                for line in warnings:
+                    self.get_logger().warn(line)
             else:
                 speed = c['params'].get('desired_linear_vel', rpp.RPP_DEFAULTS[
                     'desired_linear_vel'])
@@ -175,23 +199,29 @@ class ControllerServer(ManagedNode):
         self._cmd_pub = TwistPublisher(self, 'cmd_vel', self.stamped,
                                        self.costmap.p['robot_base_frame'])
         self._odom = TwistListener(self, self.odom_topic, self._on_odom)
+        self._timer = self.create_timer(1.0 / max(self.frequency, 1e-3), self._cycle)
         self._entities = [
             self._cmd_pub.pub,
             self.create_subscription(SpeedLimit, self.speed_limit_topic, self._on_speed_limit,
                                      10),
-            self.create_timer(1.0 / max(self.frequency, 1e-3), self._cycle)]
+            self._timer]
         self._cycles.reset()
         self._server = SingleGoalServer(self, FollowPath, 'follow_path', self._on_goal)
+        self._parameters_handler = self.add_on_set_parameters_callback(self._on_set_parameters)
 
     def deactivate(self):
         """Stop the robot, the action server and the costmap."""
         self.get_logger().info('Deactivating')
+        if self._parameters_handler is not None:
+            self.remove_on_set_parameters_callback(self._parameters_handler)
+            self._parameters_handler = None
         if self._server is not None:
             self._stop_robot()
             self._server.destroy()
             self._server = None
         self.destroy_entities(self._entities)
         self._entities = []
+        self._timer = None
         if self._odom is not None:
             self._odom.destroy()
             self._odom = None
@@ -204,6 +234,71 @@ class ControllerServer(ManagedNode):
         if self._listener is not None:
             self._listener.destroy()
             self._listener = None
+
+    # ros2 param set
+    def _on_set_parameters(self, parameters):
+        """
+        Take ``ros2 param set`` values while active, as upstream's dynamic parameter callbacks.
+
+        The controller server's ``controller_frequency``, ``min_x_velocity_threshold``,
+        ``min_theta_velocity_threshold`` and ``failure_tolerance``; every RPP parameter; the goal
+        and progress checkers' tolerances. Refused with upstream's line, nothing changed:
+        ``allow_reversing`` true while ``use_rotate_to_heading`` is, and an
+        ``inflation_cost_scaling_factor`` of 0 or less. Sources: ``dynamicParametersCallback``
+        of ``controller_server.cpp`` and the checkers, RPP's ``parameter_handler.cpp``.
+        """
+        for parameter in parameters:
+            cid, _, name = parameter.name.partition('.')
+            c = self.controllers.get(cid)
+            if c is None or plugin_kind(c['plugin']) != RPP:
+                continue
+            line = None
+            if name == 'allow_reversing' and parameter.value and \
+                    c['params']['use_rotate_to_heading']:
+                line = ('Both use_rotate_to_heading and allow_reversing parameter cannot be set '
+                        'to true. Rejecting parameter update.')
+            elif name == 'inflation_cost_scaling_factor' and parameter.value <= 0.0:
+                line = ('The value inflation_cost_scaling_factor is incorrectly set, it should '
+                        'be >0. Ignoring parameter update.')
+            if line is not None:
+                self.get_logger().warn(line)
+                return SetParametersResult(successful=False, reason=line)
+        for parameter in parameters:
+            self._apply_parameter(parameter.name, parameter.value)
+        return SetParametersResult(successful=True)
+
+    def _apply_parameter(self, full_name, value):
+        run = self.run
+        if full_name == 'controller_frequency' and value > 0.0:
+            self.frequency = float(value)
+            self._cycles.period = 1.0 / self.frequency
+            if self._timer is not None:
+                self._timer.timer_period_ns = int(1e9 / self.frequency)
+        elif full_name == 'min_x_velocity_threshold':
+            self.min_v = float(value)
+        elif full_name == 'min_theta_velocity_threshold':
+            self.min_w = float(value)
+        elif full_name == 'failure_tolerance':
+            self.failure_tolerance = float(value)
+        owner, _, name = full_name.partition('.')
+        if owner in self.controllers and name in rpp.RPP_DEFAULTS:
+            if name == 'max_robot_pose_search_dist' and value < 0.0:
+                value = math.inf  # as at start-up: search the whole path
+            self.controllers[owner]['params'][name] = value
+            if run is not None and run['cid'] == owner:
+                run['rpp'].p[name] = value
+        elif owner in self.goal_checkers and name in GOAL_CHECKER_KEYS:
+            key = GOAL_CHECKER_KEYS[name]
+            self.goal_checkers[owner][key] = value
+            if run is not None and run['gid'] == owner:
+                setattr(run['goal'], key, value)
+                if key == 'xy':  # RPP reads the goal checker's tolerance each cycle
+                    run['rpp'].goal_xy_tolerance = float(value)
+        elif owner in self.progress_checkers and name in PROGRESS_CHECKER_KEYS:
+            key, attribute = PROGRESS_CHECKER_KEYS[name]
+            self.progress_checkers[owner][key] = value
+            if run is not None and run['pid'] == owner:
+                setattr(run['progress'], attribute, value)
 
     # inputs
     def _on_odom(self, twist):
@@ -247,7 +342,8 @@ class ControllerServer(ManagedNode):
             controller = rpp.RegulatedPurePursuit(
                 self.controllers[cid]['params'], gc['xy'], self.costmap.inscribed,
                 self.costmap.circumscribed, self.costmap.p['resolution'])
-            self.run = {'cid': cid, 'rpp': controller, 'failing_since': None,
+            self.run = {'cid': cid, 'gid': gid, 'pid': pid, 'rpp': controller,
+                        'failing_since': None,
                         'goal': _goal_checker(gc), 'progress': _progress_checker(pc)}
             self.get_logger().info('Received a goal, begin computing control effort.')
         else:
@@ -267,14 +363,18 @@ class ControllerServer(ManagedNode):
         server = self._server
         if server is None or not server.active:
             return
-        if server.cancel_requested:
-            self.get_logger().info('Goal was canceled. Stopping the robot.')
-            self._stop_robot()
-            server.finish_current('canceled', FollowPath.Result())
-            self.run = None
-            return
-        codes = FollowPath.Result
         run = self.run
+        if server.cancel_requested:
+            # the controller may first slow the robot down (RPP's use_cancel_deceleration)
+            if run is None or run['rpp'].cancel():
+                self.get_logger().info('Cancellation was successful. Stopping the robot.')
+                self._stop_robot()
+                server.finish_current('canceled', FollowPath.Result())
+                self.run = None
+                return
+            self.get_logger().info('Waiting for the controller to finish cancellation',
+                                   throttle_duration_sec=1.0)
+        codes = FollowPath.Result
         step = self._cycles.tick(self._now())
         base = self.costmap.p['robot_base_frame']
         try:
@@ -287,11 +387,7 @@ class ControllerServer(ManagedNode):
         if not run['progress'].check(robot_cost, self._now()):
             return self._fail(codes.FAILED_TO_MAKE_PROGRESS, 'Failed to make progress')
         path = run['path']
-        search = run['rpp'].p['max_robot_pose_search_dist']
-        if search <= 0.0:
-            h, w = self.costmap.grid.shape
-            search = max(h, w) * self.costmap.grid.resolution / 2.0
-        k = rpp.closest_pose(path, robot, search)
+        k = rpp.closest_pose(path, robot, run['rpp'].p['max_robot_pose_search_dist'])
         run['path'] = path = path[k:]
         local = rpp.to_robot_frame(path, robot)
         remaining = path_length(local)
@@ -367,16 +463,16 @@ class ControllerServer(ManagedNode):
 def _goal_checker(params):
     """Return the goal checker of a :meth:`ControllerServer._goal_params` dict."""
     if 'rot_stopped' in params:  # declared for StoppedGoalChecker only
-        return rpp.StoppedGoalChecker(params['xy'], params['yaw'], params['stateful'],
-                                      params['rot_stopped'], params['trans_stopped'])
-    return rpp.SimpleGoalChecker(params['xy'], params['yaw'], params['stateful'])
+        return checkers.StoppedGoalChecker(params['xy'], params['yaw'], params['stateful'],
+                                           params['rot_stopped'], params['trans_stopped'])
+    return checkers.SimpleGoalChecker(params['xy'], params['yaw'], params['stateful'])
 
 
 def _progress_checker(params):
     """Return the progress checker of a :meth:`ControllerServer._progress_params` dict."""
     if 'angle' in params:  # declared for PoseProgressChecker only
-        return rpp.PoseProgressChecker(params['radius'], params['time'], params['angle'])
-    return rpp.SimpleProgressChecker(params['radius'], params['time'])
+        return checkers.PoseProgressChecker(params['radius'], params['time'], params['angle'])
+    return checkers.SimpleProgressChecker(params['radius'], params['time'])
 
 
 def main(args=None):

@@ -325,11 +325,15 @@ def test_map_particles_and_the_pose_estimate_tool(procs, exe, ros_env, tmp_path)
                 image = _view(page.pixels(str(tmp_path / 'nav_viewer.png')))
                 ellipse = int(np.count_nonzero((image[..., 0] > 235) & (image[..., 2] > 230)
                                                & (image[..., 1] < 232)))
+                shown = _reddish(image)
+                if shown < 300:  # no cloud drawn yet
+                    continue
                 _click(page, 'ParticleCloud')
-                page.page.wait_for_timeout(1000)
-                without = _reddish(_view(page.pixels()))
+                # hidden: the red drops by at least the least count checked (or another round)
+                hidden = _wait_for_pixels(page, lambda im: _reddish(_view(im)),
+                                          lambda n: n <= shown - 300, 15.0)
                 _click(page, 'ParticleCloud')
-                particles = _reddish(image) - without
+                particles = shown - hidden
             assert particles >= 300 and ellipse >= 300, (particles, ellipse)
 
             # the navigation servers beside it: the Navigation 2 panel says both managers are

@@ -5,19 +5,21 @@
 import math
 
 from amr_description.nav import costmap as cm
+from amr_description.nav.checkers import PoseProgressChecker
+from amr_description.nav.checkers import SimpleGoalChecker
+from amr_description.nav.checkers import SimpleProgressChecker
+from amr_description.nav.checkers import StoppedGoalChecker
 from amr_description.nav.cycle_clock import CycleClock
 from amr_description.nav.planner import cell_gradient
 from amr_description.nav.planner import make_plan
 from amr_description.nav.planner import path_length
 from amr_description.nav.planner import PlanError
 from amr_description.nav.pure_pursuit import carrot
+from amr_description.nav.pure_pursuit import checked_params
 from amr_description.nav.pure_pursuit import circle_collides
+from amr_description.nav.pure_pursuit import cusp_distance
 from amr_description.nav.pure_pursuit import NoValidControl
-from amr_description.nav.pure_pursuit import PoseProgressChecker
 from amr_description.nav.pure_pursuit import RegulatedPurePursuit
-from amr_description.nav.pure_pursuit import SimpleGoalChecker
-from amr_description.nav.pure_pursuit import SimpleProgressChecker
-from amr_description.nav.pure_pursuit import StoppedGoalChecker
 import numpy as np
 import pytest
 
@@ -190,6 +192,79 @@ def test_rpp_speeds():
     assert rpp.compute(_line(), cost=200)[0] == pytest.approx(0.5 * d / 0.6)
     # approach: 0.3 m of path left scales by 0.3 / 0.6
     assert rpp.compute(_line(length=0.3))[0] == pytest.approx(0.25)
+
+
+def test_carrot_past_the_goal_carries_the_last_segment_on():
+    # a path ending 0.3 m ahead on the x axis: with interpolation the 0.6 m point is (0.6, 0)
+    assert carrot(_line(length=0.3)[:, :2], 0.6, True) == pytest.approx([0.6, 0.0])
+    # ending at (0.3, 0.3) going +y: the ray x = 0.3 leaves the 0.6 m circle at y sqrt(0.27)
+    path = np.array([[0.3, 0.0], [0.3, 0.1], [0.3, 0.2], [0.3, 0.3]])
+    assert carrot(path, 0.6, True) == pytest.approx([0.3, math.sqrt(0.27)])
+    assert carrot(path[-1:], 0.6, True) == pytest.approx([0.3, 0.3])  # one pose: itself
+
+
+def test_rpp_fixed_curvature_lookahead_regulates_and_steers_by_its_own_point():
+    # y = 0.3 offset: the carrot at 0.6 m gives radius 0.6 (slowed); with the curvature
+    # taken at 1.5 m, the point (sqrt(2.16), 0.3) gives radius 2.25 / 0.6 = 3.75: full speed,
+    # and w = v x 0.6 / 2.25 (upstream steers by the regulation curvature too)
+    plain = RegulatedPurePursuit()
+    assert plain.compute(_line(0.3))[0] < 0.5
+    fixed = RegulatedPurePursuit({'use_fixed_curvature_lookahead': True,
+                                  'curvature_lookahead_dist': 1.5})
+    v, w = fixed.compute(_line(0.3))
+    assert v == pytest.approx(0.5) and w == pytest.approx(0.5 * 0.6 / 2.25)
+    # the rotation to the path looks at that point too: the carrot at 0.6 m is 90 deg off
+    # (a path from (0, 0.6) to the left); the curvature point (1.2, 0.6) is 26.6 deg off
+    path = np.array([[x, 0.6, 0.0] for x in np.arange(0.0, 3.0, 0.05)])
+    assert plain.compute(path)[0] == 0.0  # rotating in place
+    fixed = RegulatedPurePursuit({'use_fixed_curvature_lookahead': True,
+                                  'curvature_lookahead_dist': math.hypot(1.2, 0.6)})
+    v, w = fixed.compute(path)
+    assert v > 0.0 and w == pytest.approx(v * 2 * 0.6 / (1.2 ** 2 + 0.6 ** 2))
+
+
+def test_rpp_parameters_checked_as_upstream_s_handler():
+    p, lines = checked_params({'allow_reversing': True,
+                               'interpolate_curvature_after_goal': True,
+                               'inflation_cost_scaling_factor': 0.0,
+                               'max_robot_pose_search_dist': -1.0})
+    assert not p['allow_reversing'] and not p['interpolate_curvature_after_goal']
+    assert not p['use_cost_regulated_linear_velocity_scaling']
+    assert p['max_robot_pose_search_dist'] == math.inf
+    assert len(lines) == 4 and lines[0].startswith('Disabling reversing.')
+    assert checked_params({})[1] == []
+    # cost regulation off: no division by the factor 0
+    rpp = RegulatedPurePursuit({'inflation_cost_scaling_factor': 0.0}, inscribed_radius=0.2)
+    assert rpp.compute(_line(), cost=200) == pytest.approx((0.5, 0.0))
+
+
+def test_rpp_reverses_towards_a_carrot_behind_and_stops_at_the_cusp():
+    params = {'allow_reversing': True, 'use_rotate_to_heading': False}
+    rpp = RegulatedPurePursuit(params)
+    v, w = rpp.compute(-_line())  # the path runs backwards: full speed in reverse
+    assert v == pytest.approx(-0.5) and w == pytest.approx(0.0)
+    # backwards 0.4 m to a cusp at (-0.4, 0), then forwards again: the lookahead stops at the
+    # cusp, 0.4 m behind, and the robot reverses to it; without that limit the 0.6 m carrot
+    # would lie on the forward leg ahead (x 0.6) and the robot would drive forwards
+    there = np.column_stack((-np.arange(0.0, 0.41, 0.05), np.zeros(9), np.zeros(9)))
+    back = np.column_stack((-0.4 + np.arange(0.05, 2.0, 0.05), np.full(39, 0.05),
+                            np.zeros(39)))
+    path = np.vstack((there, back))
+    assert cusp_distance(path) == pytest.approx(0.4)
+    assert cusp_distance(_line()) == math.inf
+    v, w = rpp.compute(path)
+    assert v == pytest.approx(-0.5) and w == pytest.approx(0.0)
+
+
+def test_rpp_cancel_deceleration_slows_from_the_odometry_s_speed():
+    rpp = RegulatedPurePursuit()
+    assert rpp.cancel()  # off (upstream's default): at once
+    rpp = RegulatedPurePursuit({'use_cancel_deceleration': True, 'cancel_deceleration': 2.0})
+    assert not rpp.cancel()
+    v, w = rpp.compute(_line(), speed=(0.5, 0.0), dt=0.05)  # 0.5 - 2.0 x 0.05
+    assert v == pytest.approx(0.4) and w == 0.0 and not rpp.cancel()
+    assert rpp.compute(_line(), speed=(0.08, 0.0), dt=0.05)[0] == 0.0  # would cross 0
+    assert rpp.cancel()
 
 
 def test_rpp_rotates_in_place_with_its_acceleration_limit():
@@ -400,6 +475,13 @@ def test_controller_server_reads_the_checker_plugins_parameters():
         'plugin': 'nav2_controller::SimpleGoalChecker', 'xy': 0.25, 'yaw': 0.25,
         'stateful': True}
     assert 'gc.rot_stopped_velocity' not in declared
+    # RPP's max_robot_pose_search_dist: half the local costmap's getSizeInMetersX(),
+    # (60 cells - 0.5) x 0.05 m / 2 for a 3 m wide rolling window
+    overrides = {'FollowPath.plugin': 'nav2_regulated_pure_pursuit_controller::'
+                                      'RegulatedPurePursuitController'}
+    node.costmap = SimpleNamespace(p={'width': 3, 'resolution': 0.05})
+    params = ControllerServer._controller_params(node, 'FollowPath')['params']
+    assert params['max_robot_pose_search_dist'] == pytest.approx(1.4875)
 
 
 def test_search_stops_near_the_robot_and_paths_match_the_whole_potential():
