@@ -2,6 +2,7 @@
 # Licensed under the Apache License, Version 2.0
 """The navigation displays' geometry and texts, the world's true map and the navigation stack."""
 
+import math
 import os
 
 from action_msgs.msg import GoalStatus
@@ -144,3 +145,59 @@ def test_panel_cancel_waits_for_a_navigator_not_yet_matched():
     panel._cancel = [Client(False), Client(False)]
     panel._send_cancel()
     assert log.lines[-1][0] == 'warning' and 'cancel not sent' in log.lines[-1][1]
+
+
+def test_pose_tool_publishes_a_drag_whose_end_comes_before_its_start():
+    # viser runs a plain drag callback in a thread pool, where the drag's "end" may run first;
+    # the tool once waited for a "start" that came late and published nothing (CI, 2026-11-29)
+    import asyncio
+    from types import SimpleNamespace
+
+    from amr_description.web.displays import pose_tool
+
+    class Handle:
+
+        def __init__(self, drawn, name):
+            self.drawn, self.name = drawn, name
+            drawn.append(name)
+
+        def on_drag(self, callback):
+            assert asyncio.iscoroutinefunction(callback)  # awaited in order by viser
+            self.drag = callback
+
+        def on_click(self, callback):
+            self.click = callback
+
+        def remove(self):
+            self.drawn.remove(self.name)
+
+    drawn, published = [], []
+    scene = SimpleNamespace(
+        add_mesh_simple=lambda name, *a, **k: Handle(drawn, name),
+        add_arrows=lambda name, *a, **k: Handle(drawn, name))
+    clock = SimpleNamespace(now=lambda: SimpleNamespace(to_msg=lambda: None))
+    node = SimpleNamespace(
+        create_publisher=lambda kind, topic, depth: SimpleNamespace(
+            topic_name=topic, publish=published.append),
+        get_clock=lambda: clock, get_logger=lambda: SimpleNamespace(info=lambda text: None))
+    tool = pose_tool.PoseToolDisplay(node, SimpleNamespace(scene=scene), None, '/initialpose',
+                                     '/goal_pose')
+    tool.draw(SimpleNamespace(fixed='map'))
+    tool._activate('initial')
+    plane = tool._plane
+    camera = SimpleNamespace(position=(1.0, 2.0, 10.0))
+
+    def event(phase, end):  # pressed at (1, 2), the pointer now over the ground at ``end``
+        return SimpleNamespace(phase=phase, start_position=(1.0, 2.0, 0.005),
+                               end_position=end, client=SimpleNamespace(camera=camera))
+
+    asyncio.run(plane.drag(event('end', (1.0, 3.0, 0.0))))  # straight up the map: +y
+    assert len(published) == 1 and drawn == []  # the plane and any arrow removed
+    msg = published[0]
+    assert msg.header.frame_id == 'map'
+    assert (msg.pose.pose.position.x, msg.pose.pose.position.y) == (1.0, 2.0)
+    assert 2 * math.atan2(msg.pose.pose.orientation.z, msg.pose.pose.orientation.w) == \
+        pytest.approx(math.pi / 2)
+    asyncio.run(plane.drag(event('start', (1.0, 2.5, 0.0))))  # late: draws and sends nothing
+    asyncio.run(plane.drag(event('update', (1.0, 2.5, 0.0))))
+    assert len(published) == 1 and drawn == []

@@ -127,7 +127,6 @@ class PoseToolDisplay(Display):
         self._fixed = ''
         self._tool = None
         self._plane = None
-        self._start = None
         self._end = None
         self._arrow = None
 
@@ -145,7 +144,7 @@ class PoseToolDisplay(Display):
     def _activate(self, tool):
         with self._lock:
             self._tool = tool
-            self._start = self._end = None
+            self._end = None
             h = PLANE_HALF
             vertices = np.array([[-h, -h, PLANE_HEIGHT], [h, -h, PLANE_HEIGHT],
                                  [h, h, PLANE_HEIGHT], [-h, h, PLANE_HEIGHT]], np.float32)
@@ -161,17 +160,25 @@ class PoseToolDisplay(Display):
         if point is not None:
             self._finish(point, point)
 
-    def _on_drag(self, event):
-        if event.phase == 'start':
-            self._start = np.array([event.start_position[0], event.start_position[1], 0.0])
+    async def _on_drag(self, event):
+        # async: viser awaits async callbacks in order on its event loop; a plain function
+        # runs in its thread pool, where a drag's "end" may run before its "start". Each
+        # event carries the press point too, so the pose does not hang on the order either.
+        start = np.array([event.start_position[0], event.start_position[1], 0.0])
         end = ground_point(event.client.camera.position, event.end_position)
-        if end is not None and self._start is not None:
-            self._end = end
-            self._arrow = self.server.scene.add_arrows(
-                '/pose_tool/arrow', np.array([[self._start, end]], np.float32), ARROW_RGB,
-                shaft_radius=0.03, head_radius=0.08, head_length=0.2)
-        if event.phase == 'end' and self._start is not None:
-            self._finish(self._start, self._end if self._end is not None else self._start)
+        with self._lock:
+            if self._tool is None:  # already published (or no tool): nothing to draw
+                return
+            if end is not None:
+                self._end = end
+            if event.phase != 'end':
+                self._arrow = self.server.scene.add_arrows(
+                    '/pose_tool/arrow', np.array([[start, self._end if self._end is not None
+                                                   else start]], np.float32), ARROW_RGB,
+                    shaft_radius=0.03, head_radius=0.08, head_length=0.2)
+                return
+            end = self._end if self._end is not None else start
+        self._finish(start, end)
 
     def _finish(self, start, end):
         with self._lock:
