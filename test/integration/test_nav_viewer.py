@@ -284,7 +284,8 @@ def test_map_particles_and_the_pose_estimate_tool(procs, exe, ros_env, tmp_path)
             # the tool: press on the robot's pixels, drag up the screen, release
             drawn = peer.amcl_poses[-1].pose.pose.position  # where the robot is drawn
             untinted = _tinted(page.pixels())
-            _click(page, '2D Pose Estimate')
+            # pressed with the pointer, as a user does (the drag that follows is the pointer's)
+            page.page.get_by_text('2D Pose Estimate', exact=True).click(timeout=120000)
             # the tool is on once the page draws its ground plane (faint green over the floor)
             tinted = _wait_for_pixels(page, _tinted, lambda n: n > untinted + 10000, 60.0)
             page.pixels(str(tmp_path / 'pose_tool.png'))

@@ -149,11 +149,14 @@ class PoseToolDisplay(Display):
             vertices = np.array([[-h, -h, PLANE_HEIGHT], [h, -h, PLANE_HEIGHT],
                                  [h, h, PLANE_HEIGHT], [-h, h, PLANE_HEIGHT]], np.float32)
             faces = np.array([[0, 1, 2], [0, 2, 3]], np.uint32)
+            # shown only once its drag and click bindings are sent (the page takes messages
+            # in order): a press on a plane drawn before its bindings orbited the camera
             self._plane = self.server.scene.add_mesh_simple(
                 '/pose_tool/ground', vertices, faces, color=ARROW_RGB, opacity=0.06,
-                side='double', cast_shadow=False, receive_shadow=False)
+                side='double', cast_shadow=False, receive_shadow=False, visible=False)
             self._plane.on_drag(self._on_drag)
             self._plane.on_click(self._on_click)
+            self._plane.visible = True
 
     def _on_click(self, event):
         point = ground_point(event.ray_origin, np.add(event.ray_origin, event.ray_direction))
