@@ -188,8 +188,8 @@ class RegulatedPurePursuit:
 
     def __init__(self, params=None, goal_xy_tolerance=0.25, inscribed_radius=0.0,
                  circumscribed_radius=0.0, resolution=0.05):
-        """Merge the parameters over the defaults (:func:`checked_params`; its lines kept)."""
-        self.p, self.warnings = checked_params(params)
+        """Merge the parameters over the defaults (:func:`checked_params`)."""
+        self.p, _ = checked_params(params)
         self.goal_xy_tolerance = float(goal_xy_tolerance)
         self.inscribed_radius = float(inscribed_radius)
         self.circumscribed_radius = float(circumscribed_radius) or self.inscribed_radius or 0.1
@@ -390,10 +390,13 @@ def closest_pose(path, pose, search_dist):
 
     The search runs from the first pose along the path until the integrated distance exceeds
     ``search_dist`` (upstream's ``max_robot_pose_search_dist``; the local costmap's half
-    width by default). Source: RPP's ``PathHandler::transformGlobalPlan``.
+    width by default; negative: the whole path). Source: RPP's
+    ``PathHandler::transformGlobalPlan``.
     """
     p = np.asarray(path, float).reshape(-1, 3)
     along = np.concatenate(([0.0], np.cumsum(np.hypot(*np.diff(p[:, :2], axis=0).T))))
+    if search_dist < 0.0:  # upstream's "search every point on path"
+        search_dist = math.inf
     n = max(int(np.searchsorted(along, search_dist, side='right')), 1)
     d = np.hypot(p[:n, 0] - pose[0], p[:n, 1] - pose[1])
     return int(np.argmin(d))

@@ -282,8 +282,6 @@ class ControllerServer(ManagedNode):
             self.failure_tolerance = float(value)
         owner, _, name = full_name.partition('.')
         if owner in self.controllers and name in rpp.RPP_DEFAULTS:
-            if name == 'max_robot_pose_search_dist' and value < 0.0:
-                value = math.inf  # as at start-up: search the whole path
             self.controllers[owner]['params'][name] = value
             if run is not None and run['cid'] == owner:
                 run['rpp'].p[name] = value

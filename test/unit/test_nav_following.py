@@ -93,3 +93,4 @@ def test_path_in_the_robot_frame_and_the_closest_pose():
     line = np.column_stack((np.arange(0.0, 10.0, 0.5), np.zeros(20), np.zeros(20)))
     assert rpp.closest_pose(line, (3.1, 0.4), 10.0) == 6
     assert rpp.closest_pose(line, (3.1, 0.4), 1.0) == 2  # the search stops after 1 m
+    assert rpp.closest_pose(line, (9.1, 0.4), -1.0) == 18  # negative: the whole path

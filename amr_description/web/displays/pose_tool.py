@@ -174,13 +174,12 @@ class PoseToolDisplay(Display):
                 return
             if end is not None:
                 self._end = end
+            end = self._end if self._end is not None else start
             if event.phase != 'end':
                 self._arrow = self.server.scene.add_arrows(
-                    '/pose_tool/arrow', np.array([[start, self._end if self._end is not None
-                                                   else start]], np.float32), ARROW_RGB,
+                    '/pose_tool/arrow', np.array([[start, end]], np.float32), ARROW_RGB,
                     shaft_radius=0.03, head_radius=0.08, head_length=0.2)
                 return
-            end = self._end if self._end is not None else start
         self._finish(start, end)
 
     def _finish(self, start, end):
