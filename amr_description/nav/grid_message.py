@@ -8,9 +8,12 @@ yaw is the rotation about z, as nav2_map_server writes it from the YAML's ``orig
 ``(x, y)`` is ``data[y * width + x]`` (nav_msgs/msg/OccupancyGrid.msg).
 """
 
+import array
 import math
 
+from amr_description.nav.costmap import to_occupancy
 from amr_description.nav.map_io import GridMap
+from nav2_msgs.msg import Costmap as CostmapMsg
 from nav_msgs.msg import OccupancyGrid
 import numpy as np
 
@@ -78,3 +81,34 @@ def costmap_from_message(msg):
     costs = np.frombuffer(bytes(msg.data), np.uint8).reshape(h, w).copy()
     return Costmap(costs, meta.resolution, (meta.origin.position.x, meta.origin.position.y),
                    msg.header.frame_id)
+
+
+def costmap_messages(costmap, stamp):
+    """
+    Return ``(OccupancyGrid, nav2_msgs/Costmap)`` of a costmap's master grid.
+
+    The OccupancyGrid holds ``costmap_2d_publisher.cpp``'s translation of the costs
+    (:func:`amr_description.nav.costmap.to_occupancy`), the Costmap message the costs as they
+    are, layer ``master``; both in the costmap's frame, origin unrotated.
+
+    :param costmap: :class:`amr_description.nav.costmap.Costmap`.
+    :param stamp: ``builtin_interfaces/Time`` for the headers and the load and update times.
+    """
+    grid = OccupancyGrid()
+    grid.header.frame_id = costmap.frame
+    grid.header.stamp = stamp
+    grid.info.map_load_time = stamp
+    grid.info.resolution = costmap.resolution
+    grid.info.height, grid.info.width = costmap.shape
+    grid.info.origin.position.x, grid.info.origin.position.y = costmap.origin
+    grid.info.origin.orientation.w = 1.0
+    grid.data = array.array('b', to_occupancy(costmap.costs).ravel().tobytes())
+    raw = CostmapMsg()
+    raw.header = grid.header
+    raw.metadata.map_load_time = raw.metadata.update_time = stamp
+    raw.metadata.layer = 'master'
+    raw.metadata.resolution = costmap.resolution
+    raw.metadata.size_y, raw.metadata.size_x = costmap.shape
+    raw.metadata.origin = grid.info.origin
+    raw.data = array.array('B', costmap.costs.ravel().tobytes())
+    return grid, raw

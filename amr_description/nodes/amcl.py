@@ -103,7 +103,6 @@ class Amcl(ManagedNode):
         self._active = []
         self._configured = []  # what configure creates: /initialpose is heard while inactive
         self._inputs = {}  # scan_topic and map_topic while active
-        self._parameters_handler = None
         self._listener = None
         self.p = {}
         self._known = None  # (pose, 3x3 covariance) last set or published: kept over cleanup
@@ -241,14 +240,12 @@ class Amcl(ManagedNode):
         elif self._inactive_pose is not None:
             self._use_initial_pose(self._inactive_pose)
         self._inactive_pose = None
-        self._parameters_handler = self.add_on_set_parameters_callback(self._on_set_parameters)
+        self.watch_parameters(self._on_set_parameters)
 
     def deactivate(self):
         """Destroy what :meth:`activate` created."""
         self.get_logger().info('Deactivating')
-        if self._parameters_handler is not None:
-            self.remove_on_set_parameters_callback(self._parameters_handler)
-            self._parameters_handler = None
+        self.unwatch_parameters()
         self.destroy_entities(self._active + list(self._inputs.values()))
         self._active = []
         self._inputs = {}

@@ -126,7 +126,6 @@ class ControllerServer(ManagedNode):
                                   d('progress_checker_plugins', ['progress_checker']).value}
         self.companion_nodes = [self.costmap]
         self._listener = self._server = self._cmd_pub = self._timer = None
-        self._parameters_handler = None
         self._entities = []
         self.speed = (0.0, 0.0)
         self._odom = None
@@ -207,14 +206,12 @@ class ControllerServer(ManagedNode):
             self._timer]
         self._cycles.reset()
         self._server = SingleGoalServer(self, FollowPath, 'follow_path', self._on_goal)
-        self._parameters_handler = self.add_on_set_parameters_callback(self._on_set_parameters)
+        self.watch_parameters(self._on_set_parameters)
 
     def deactivate(self):
         """Stop the robot, the action server and the costmap."""
         self.get_logger().info('Deactivating')
-        if self._parameters_handler is not None:
-            self.remove_on_set_parameters_callback(self._parameters_handler)
-            self._parameters_handler = None
+        self.unwatch_parameters()
         if self._server is not None:
             self._stop_robot()
             self._server.destroy()

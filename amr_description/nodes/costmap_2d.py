@@ -29,7 +29,10 @@ node's clock, stamped with that clock (sim time in a simulation):
   TF can place is ray-traced and marked; the footprint is cleared
   (``footprint_clearing_enabled``);
 - ``nav2_costmap_2d::InflationLayer``: ``inflation_radius`` (0.55), ``cost_scaling_factor``
-  (10.0), ``inflate_unknown``, ``inflate_around_unknown``.
+  (10.0), ``inflate_unknown``, ``inflate_around_unknown``;
+
+and each layer's ``enabled`` (true; false: the layer leaves the grid as it is). While active,
+``ros2 param set`` reaches the costmap as upstream's (:meth:`CostmapNode._on_set_parameters`).
 
 Relative input topics (``map_topic``, a source's ``topic``) are resolved in the server's
 namespace, not the costmap's (``map`` is ``/map``, or ``/r1/map`` for a server in ``r1``).
@@ -49,27 +52,24 @@ with ``use_sim_time``: a time of 0 starts no timeout) it fails the server's acti
 timeout"), so a lifecycle manager becomes active only once SLAM or AMCL publishes ``map``.
 """
 
-import array
-import collections
 import math
+import threading
 import time
 
 from amr_description.core.tf_buffer import TransformException
 from amr_description.nav import costmap as cm
+from amr_description.nav.grid_message import costmap_messages
 from amr_description.nav.grid_message import grid_from_message
 from amr_description.ros.node import Node
 from amr_description.ros.transforms import planar_pose
 from geometry_msgs.msg import Point32
 from geometry_msgs.msg import PolygonStamped
-# imported with the module, not in the update: two costmaps updating on their own threads in
-# one container imported it at once and one saw matplotlib half initialised ('no attribute
-# rcParams'), which stopped the container
-from matplotlib.path import Path
 from nav2_msgs.msg import Costmap as CostmapMsg
 from nav2_msgs.srv import ClearEntireCostmap
 from nav2_msgs.srv import GetCostmap
 from nav_msgs.msg import OccupancyGrid
 import numpy as np
+from rcl_interfaces.msg import SetParametersResult
 from rclpy.clock import Clock
 from rclpy.clock import ClockType
 from rclpy.parameter import Parameter
@@ -98,6 +98,8 @@ SOURCE_DEFAULTS = {
 }
 SCAN_QUEUE = 10
 """Scans kept per observation source while they wait for TF (a MessageFilter's queue)."""
+DYNAMIC = ('robot_radius footprint_padding transform_tolerance publish_frequency resolution '
+           'origin_x origin_y width height footprint robot_base_frame').split()
 INFLATION_DEFAULTS = {'inflation_radius': 0.55, 'cost_scaling_factor': 10.0,
                       'inflate_unknown': False, 'inflate_around_unknown': False}
 
@@ -153,6 +155,11 @@ class CostmapNode(Node):
             else:
                 self.get_logger().warning(f"{layer}: plugin '{kind or '(none)'}' is not "
                                           'available here; layer skipped')
+                continue
+            self.layers[-1][2]['enabled'] = self.declare_parameter(f'{layer}.enabled',
+                                                                   True).value
+        self._lock = threading.RLock()  # the update timer, the map and ros2 param set
+        self._parameters_handler = None
         self._footprint()
         res = self.p['resolution']
         self.grid = cm.Costmap.empty(self.p['width'], self.p['height'], res,
@@ -183,14 +190,21 @@ class CostmapNode(Node):
 
     def _footprint(self):
         points = None
+        self.use_radius = True  # as Costmap2DROS's use_radius_, fixed at start-up
         if self.p['footprint'] not in ('', '[]'):
             try:
                 points = cm.parse_footprint(self.p['footprint'])
+                self.use_radius = False
             except ValueError as exc:
                 self.get_logger().error(f'{exc}; using robot_radius')
         if points is None:
             points = cm.footprint_from_radius(self.p['robot_radius'])
-        self.footprint = cm.pad_footprint(points, self.p['footprint_padding'])
+        self._set_footprint(points)
+
+    def _set_footprint(self, points):
+        """Take an unpadded ``(n, 2)`` footprint, m, and pad it (``setRobotFootprint``)."""
+        self.unpadded = np.asarray(points, float)
+        self.footprint = cm.pad_footprint(self.unpadded, self.p['footprint_padding'])
         self.inscribed, self.circumscribed = cm.footprint_radii(self.footprint)
 
     def _unknown(self):
@@ -253,8 +267,12 @@ class CostmapNode(Node):
                                 self._on_clear),
             self.create_service(GetCostmap, 'get_costmap', self._on_get),
             self.create_timer(1.0 / max(self.p['update_frequency'], 1e-3), self.update,
-                              clock=Clock(clock_type=ClockType.STEADY_TIME)),
-            self.create_timer(1.0 / max(self.p['publish_frequency'], 1e-3), self.publish)]
+                              clock=Clock(clock_type=ClockType.STEADY_TIME))]
+        self._publish_timer = self.create_timer(1.0 / max(self.p['publish_frequency'], 1e-3),
+                                                self.publish)
+        self._entities.append(self._publish_timer)
+        self.add_on_set_parameters_callback(self._on_set_parameters)
+        self._parameters_handler = self._on_set_parameters  # rclpy's add returns None
 
     def _parent_topic(self, topic):
         """Resolve a relative input topic in the server's namespace (Nav2's parent namespace)."""
@@ -262,6 +280,9 @@ class CostmapNode(Node):
 
     def stop(self):
         """Remove what :meth:`start` made (the server's deactivate)."""
+        if self._parameters_handler is not None:
+            self.remove_on_set_parameters_callback(self._parameters_handler)
+            self._parameters_handler = None
         for entity in self._entities:
             for destroy in (self.destroy_subscription, self.destroy_publisher,
                             self.destroy_service, self.destroy_timer):
@@ -281,12 +302,13 @@ class CostmapNode(Node):
                                 p['lethal_cost_threshold'], p['trinary_costmap'],
                                 p['unknown_cost_value'])
         placed = cm.Costmap(costs, grid.resolution, grid.origin[:2], msg.header.frame_id)
-        self.static = placed
-        if not p['rolling_window']:
-            self.grid = cm.Costmap(costs.copy(), grid.resolution, grid.origin[:2],
-                                   p['global_frame'])
-            self.obstacles = self._blank()
-        self.update()
+        with self._lock:
+            self.static = placed
+            if not p['rolling_window']:
+                self.grid = cm.Costmap(costs.copy(), grid.resolution, grid.origin[:2],
+                                       p['global_frame'])
+                self.obstacles = self._blank()
+            self.update()
 
     def _robot_pose(self):
         try:
@@ -297,66 +319,18 @@ class CostmapNode(Node):
             return None
         return planar_pose(T)
 
-    def _roll(self, pose):
-        g = self.grid
-        res = g.resolution
-        h, w = g.shape
-        ox = math.floor((pose[0] - w * res / 2.0) / res) * res
-        oy = math.floor((pose[1] - h * res / 2.0) / res) * res
-        dx = int(round((ox - g.origin[0]) / res))
-        dy = int(round((oy - g.origin[1]) / res))
-        if dx or dy:
-            moved = np.full_like(self.obstacles, self._unknown())
-            src = self.obstacles[max(dy, 0):h + min(dy, 0), max(dx, 0):w + min(dx, 0)]
-            moved[max(-dy, 0):max(-dy, 0) + src.shape[0],
-                  max(-dx, 0):max(-dx, 0) + src.shape[1]] = src
-            self.obstacles = moved
-        self.grid = cm.Costmap(g.costs, res, (ox, oy), g.frame)
-
     def _queue(self, src):
-        """Return ``src``'s scans waiting for their transform (oldest first, at most 10)."""
-        return self.scans.setdefault(src, collections.deque(maxlen=SCAN_QUEUE))
-
-    def _transformable(self, src, sp):
-        """
-        Return ``(scan, T)``: ``src``'s newest scan whose stamp TF can transform, or None.
-
-        As the tf2 MessageFilter in front of Nav2's observation buffers: a scan waits for the
-        transform at its own stamp, and the buffer keeps the newest one transformed. Older
-        scans go; newer ones, still waiting, stay. Taking the latest transform instead (up to
-        ``transform_tolerance``, 0.3 s, old) could turn the rays of a robot turning at
-        1.8 rad/s 0.54 rad and mark obstacles where there are none.
-        """
-        queue = self._queue(src)
-        for k in range(len(queue) - 1, -1, -1):
-            scan = queue[k]
-            frame = sp['sensor_frame'] or scan.header.frame_id
-            stamp = scan.header.stamp.sec + scan.header.stamp.nanosec * 1e-9
-            try:
-                T, _ = self.tf.lookup(self.p['global_frame'], frame, stamp)
-            except TransformException as exc:
-                if k == 0 and not self._transform_pending(frame, stamp):
-                    self.get_logger().warning(f"{sp['topic']}: {str(exc).strip()}",
-                                              throttle_duration_sec=5.0)
-                    queue.popleft()  # it never will be
-                continue
-            for _ in range(k + 1):
-                queue.popleft()
-            return scan, T
-        return None
-
-    def _transform_pending(self, frame, stamp):
-        """Return True when TF's latest ``global_frame <- frame`` is older than ``stamp``."""
-        try:
-            _, latest = self.tf.lookup(self.p['global_frame'], frame)
-        except TransformException:
-            return True  # not connected yet: wait for it too
-        return latest < stamp
+        """Return ``src``'s :class:`~amr_description.nav.costmap.ScanQueue`."""
+        return self.scans.setdefault(src, cm.ScanQueue(SCAN_QUEUE))
 
     def _observe(self, params):
         layer = cm.Costmap(self.obstacles, self.grid.resolution, self.grid.origin)
         for src, sp in params['sources'].items():
-            found = self._transformable(src, sp)
+            queue = self._queue(src)
+            found = queue.take(self.tf, self.p['global_frame'], sp['sensor_frame'])
+            if queue.dropped:
+                self.get_logger().warning(f"{sp['topic']}: {queue.dropped}",
+                                          throttle_duration_sec=5.0)
             if found is None:
                 continue
             scan, T = found
@@ -372,34 +346,28 @@ class CostmapNode(Node):
                 layer.mark(world[hit], origin, sp['obstacle_max_range'],
                            sp['obstacle_min_range'])
         if params['footprint_clearing_enabled'] and self.robot is not None:
-            self._clear_footprint(layer)
-
-    def _clear_footprint(self, layer):
-        x, y, yaw = self.robot
-        c, s = math.cos(yaw), math.sin(yaw)
-        poly = self.footprint @ np.array([[c, s], [-s, c]]) + (x, y)
-        h, w = layer.shape
-        mx, my, _ = layer.cells_of(poly)
-        i0, i1 = np.clip([mx.min(), mx.max() + 1], 0, w)
-        j0, j1 = np.clip([my.min(), my.max() + 1], 0, h)
-        if i0 >= i1 or j0 >= j1:
-            return
-        ii, jj = np.meshgrid(np.arange(i0, i1), np.arange(j0, j1))
-        cx, cy = layer.map_to_world(ii, jj)
-        inside = Path(poly).contains_points(np.column_stack((cx.ravel(), cy.ravel())))
-        layer.costs[jj.ravel()[inside], ii.ravel()[inside]] = cm.FREE_SPACE
+            x, y, yaw = self.robot
+            c, s = math.cos(yaw), math.sin(yaw)
+            layer.clear_polygon(self.footprint @ np.array([[c, s], [-s, c]]) + (x, y))
 
     def update(self):
-        """Run the layers in order into the master grid (the update timer)."""
+        """Run the enabled layers in order into the master grid (the update timer)."""
+        with self._lock:
+            self._update()
+
+    def _update(self):
         self.robot = self._robot_pose()
         if self.p['rolling_window']:
             if self.robot is None:
                 return
-            self._roll(self.robot)
+            self.grid, self.obstacles = self.grid.rolled(self.obstacles, self.robot,
+                                                         self._unknown())
         master = np.full(self.grid.shape, self._unknown(), np.uint8)
         for kind, layer, params in self.layers:
+            if not params['enabled']:
+                continue
             if kind == 'static' and self.static is not None:
-                self._paint_static(master)
+                self.grid.paint(master, self.static)
             elif kind == 'obstacle':
                 self._observe(params)
                 known = self.obstacles != cm.NO_INFORMATION
@@ -412,45 +380,15 @@ class CostmapNode(Node):
         self.grid = cm.Costmap(master, self.grid.resolution, self.grid.origin,
                                self.p['global_frame'])
 
-    def _paint_static(self, master):
-        g, static = self.grid, self.static
-        if static.costs.shape == g.shape and static.origin == g.origin and \
-                static.resolution == g.resolution:
-            master[:] = static.costs  # the global costmap: the map's own geometry
-            return
-        h, w = g.shape
-        ii, jj = np.meshgrid(np.arange(w), np.arange(h))
-        cx, cy = g.map_to_world(ii, jj)
-        mx, my, inside = static.cells_of(np.column_stack((cx.ravel(), cy.ravel())))
-        flat = master.reshape(-1)
-        flat[inside] = static.costs[my[inside], mx[inside]]
-
     # outputs
     def messages(self):
         """Return ``(OccupancyGrid, nav2_msgs/Costmap)`` of the master grid, stamped now."""
-        g = self.grid
-        now = self.get_clock().now().to_msg()
-        grid = OccupancyGrid()
-        grid.header.frame_id = g.frame
-        grid.header.stamp = now
-        grid.info.map_load_time = now
-        grid.info.resolution = g.resolution
-        grid.info.height, grid.info.width = g.shape
-        grid.info.origin.position.x, grid.info.origin.position.y = g.origin
-        grid.info.origin.orientation.w = 1.0
-        grid.data = array.array('b', cm.to_occupancy(g.costs).ravel().tobytes())
-        raw = CostmapMsg()
-        raw.header = grid.header
-        raw.metadata.map_load_time = raw.metadata.update_time = now
-        raw.metadata.layer = 'master'
-        raw.metadata.resolution = g.resolution
-        raw.metadata.size_y, raw.metadata.size_x = g.shape
-        raw.metadata.origin = grid.info.origin
-        raw.data = array.array('B', g.costs.ravel().tobytes())
-        return grid, raw
+        return costmap_messages(self.grid, self.get_clock().now().to_msg())
 
     def publish(self):
         """Publish the costmap, the raw costmap and the footprint (the publish timer)."""
+        if self.p['publish_frequency'] <= 0.0:
+            return  # upstream's publish cycle of -1 s: not published
         grid, raw = self.messages()
         self.costmap_pub.publish(grid)
         self.raw_pub.publish(raw)
@@ -466,10 +404,97 @@ class CostmapNode(Node):
 
     def _on_clear(self, request, response):
         self.get_logger().info(f'Received request to clear entirely the {self.name}')
-        self.obstacles = self._blank()
-        self.update()
+        with self._lock:
+            self.obstacles = self._blank()
+            self.update()
         return response
 
     def _on_get(self, request, response):
         response.map = self.messages()[1]
         return response
+
+    # ros2 param set
+    def _on_set_parameters(self, parameters):
+        """
+        Take ``ros2 param set`` values while active, as upstream's dynamic parameter callbacks.
+
+        Costmap2DROS's ``robot_radius`` (the footprint, if made from the radius at start-up),
+        ``footprint`` (kept when it does not parse, with one error line), ``footprint_padding``,
+        ``transform_tolerance``, ``publish_frequency`` (0 or less: not published),
+        ``resolution``, ``origin_x``, ``origin_y``, ``width`` and ``height`` (a new empty grid,
+        unless the static layer's map fixed the size) and ``robot_base_frame`` (refused when TF
+        cannot join it to ``global_frame`` within 1 s); each layer's ``enabled``; the inflation
+        layer's ``inflation_radius``, ``cost_scaling_factor``, ``inflate_unknown`` and
+        ``inflate_around_unknown``; the obstacle layer's ``footprint_clearing_enabled``. A
+        ``width`` or ``height`` of 0 or less is refused with upstream's line. Sources:
+        ``dynamicParametersCallback`` of ``nav2_costmap_2d/src/costmap_2d_ros.cpp`` and
+        ``nav2_costmap_2d/plugins/``.
+        """
+        for parameter in parameters:
+            name, value = parameter.name, parameter.value
+            if name in ('width', 'height') and value <= 0:
+                line = (f"You try to set {name} of map to be negative or zero, this isn't "
+                        'allowed, please give a positive value.')
+                self.get_logger().error(line)
+                return SetParametersResult(successful=False, reason=line)
+            if name == 'robot_base_frame' and not self._joins(value):
+                return SetParametersResult(successful=False, reason=f'no transform to {value}')
+        with self._lock:
+            resize = False
+            for parameter in parameters:
+                resize |= self._apply_parameter(parameter.name, parameter.value)
+            locked = self.static is not None and not self.p['rolling_window']
+            if resize and not locked:
+                p = self.p
+                self.grid = cm.Costmap.empty(p['width'], p['height'], p['resolution'],
+                                             (p['origin_x'], p['origin_y']),
+                                             p['global_frame'], self._unknown())
+                self.obstacles = self._blank()
+                self._update()
+        return SetParametersResult(successful=True)
+
+    def _joins(self, base, wait=1.0):
+        """Return True when TF joins ``base`` to ``global_frame`` within ``wait`` s (wall)."""
+        self.get_logger().info('Checking transform')
+        deadline = time.monotonic() + wait
+        while True:
+            try:
+                self.tf.lookup(self.p['global_frame'], base)
+                return True
+            except TransformException as exc:
+                if time.monotonic() >= deadline:
+                    self.get_logger().warning(
+                        f'Timed out waiting for transform from {base} to {self.p["global_frame"]}'
+                        f' to become available, tf error: {str(exc).strip()}')
+                    self.get_logger().warning(
+                        f'Rejecting robot_base_frame change to {base} , leaving it to its '
+                        f"original value of {self.p['robot_base_frame']}")
+                    return False
+            time.sleep(0.05)
+
+    def _apply_parameter(self, name, value):
+        """Apply one checked value; return True when the grid's geometry changed."""
+        layer, _, key = name.partition('.')
+        for _kind, layer_name, params in self.layers:
+            if layer_name == layer and key in params and key not in (
+                    'map_topic', 'map_subscribe_transient_local', 'sources'):
+                params[key] = value
+                return False
+        if name not in DYNAMIC:
+            return False
+        if name == 'footprint':
+            self.p['footprint'] = value
+            try:
+                self._set_footprint(cm.parse_footprint(value))
+            except ValueError as exc:
+                self.get_logger().error(f'{exc}; the footprint is unchanged')
+            return False
+        self.p[name] = value
+        if name == 'robot_radius' and self.use_radius:
+            self._set_footprint(cm.footprint_from_radius(value))
+        elif name == 'footprint_padding':
+            self._set_footprint(self.unpadded)
+        elif name == 'publish_frequency' and value > 0.0 and self._entities:
+            self._publish_timer.timer_period_ns = int(1e9 / value)
+            self._publish_timer.reset()
+        return name in ('resolution', 'origin_x', 'origin_y', 'width', 'height')

@@ -12,6 +12,10 @@ said once), ``<id>.allow_unknown`` (true), ``<id>.use_final_approach_orientation
 another plugin, e.g. ``nav2_smac_planner::SmacPlanner2D``, is said in one line and runs as
 NavFn with its ``tolerance`` and ``allow_unknown`` (:mod:`amr_description.nav.planner`).
 ``expected_planner_frequency`` (1.0 Hz) is read; a plan slower than its period is warned.
+While active, ``ros2 param set`` changes ``expected_planner_frequency`` and each NavFn's
+``tolerance``, ``use_astar``, ``allow_unknown`` and ``use_final_approach_orientation`` for the
+next plan (upstream's ``dynamicParametersCallback`` of ``planner_server.cpp`` and
+``navfn_planner.cpp``).
 
 Action ``compute_path_to_pose`` (nav2_msgs/action/ComputePathToPose): the start is the
 robot's pose in the costmap's global frame from TF unless ``use_start``; the goal is
@@ -42,10 +46,12 @@ from nav2_msgs.action import ComputePathThroughPoses
 from nav2_msgs.action import ComputePathToPose
 from nav_msgs.msg import Path
 import numpy as np
+from rcl_interfaces.msg import SetParametersResult
 from rclpy.action import ActionServer
 from rclpy.duration import Duration
 
 NAVFN = 'NavfnPlanner'
+NAVFN_PARAMETERS = ('tolerance', 'use_astar', 'allow_unknown', 'use_final_approach_orientation')
 
 
 class PlannerServer(ManagedNode):
@@ -91,6 +97,13 @@ class PlannerServer(ManagedNode):
             else:
                 self.get_logger().info(f'Created global planner plugin {pid} of type {kind}')
         self._listener = TransformListener(self, self.tf_buffer, spin_thread=True)
+        self._check_frequency(self.frequency)
+
+    def _check_frequency(self, frequency):
+        if frequency <= 0.0:
+            self.get_logger().warning(
+                f'The expected planner frequency parameter is {frequency:.4f} Hz. The value '
+                'should to be greater than 0.0 to turn on duration overrrun warning messages')
 
     def activate(self):
         """Start the costmap, the action server and the plan publisher."""
@@ -101,10 +114,12 @@ class PlannerServer(ManagedNode):
                                     self._execute)
         self._through = ActionServer(self, ComputePathThroughPoses,
                                      'compute_path_through_poses', self._execute_through)
+        self.watch_parameters(self._on_set_parameters)
 
     def deactivate(self):
         """Stop the action server and the costmap."""
         self.get_logger().info('Deactivating')
+        self.unwatch_parameters()
         if self._action is not None:
             self._action.destroy()
             self._through.destroy()
@@ -120,6 +135,17 @@ class PlannerServer(ManagedNode):
         if self._listener is not None:
             self._listener.destroy()
             self._listener = None
+
+    def _on_set_parameters(self, parameters):
+        """Take ``ros2 param set`` values for the next plan; see the module docstring."""
+        for parameter in parameters:
+            pid, _, key = parameter.name.partition('.')
+            if parameter.name == 'expected_planner_frequency':
+                self.frequency = float(parameter.value)
+                self._check_frequency(self.frequency)
+            elif pid in self.planners and key in NAVFN_PARAMETERS:
+                self.planners[pid][key] = parameter.value
+        return SetParametersResult(successful=True)
 
     def _in_frame(self, pose_stamped, frame):
         """Return ``(x, y, yaw)`` of a PoseStamped in ``frame`` (latest TF)."""

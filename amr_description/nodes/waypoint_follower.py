@@ -21,7 +21,10 @@ namespace, ``plugin`` (``nav2_waypoint_follower::WaitAtWaypoint``), ``enabled`` 
 ``waypoint_pause_duration`` (0 ms, wall time, as WaitAtWaypoint sleeps). Another task plugin
 (PhotoAtWaypoint, InputAtWaypoint) is said in one line and WaitAtWaypoint runs instead.
 ``follow_gps_waypoints`` is not offered (it needs robot_localization's ``fromLL``). The other
-parameters of the params file are listed once at configure. Source:
+parameters of the params file are listed once at configure. While active, ``ros2 param set``
+changes ``loop_rate`` (at once; upstream's at the next goal) and ``stop_on_failure`` (also
+for the goal running), as upstream's ``dynamicParametersCallback``; a ``loop_rate`` of 0 or
+less is refused. Source:
 ``nav2_waypoint_follower/src/waypoint_follower.cpp`` and ``plugins/wait_at_waypoint.cpp``.
 """
 
@@ -38,6 +41,7 @@ from amr_description.ros.parameters import unused_parameters
 from nav2_msgs.action import FollowWaypoints
 from nav2_msgs.action import NavigateToPose
 from nav2_msgs.msg import MissedWaypoint
+from rcl_interfaces.msg import SetParametersResult
 
 NODE_PARAMETERS = {'stop_on_failure': True, 'loop_rate': 20, 'global_frame_id': 'map',
                    'action_server_result_timeout': 900.0,
@@ -95,10 +99,12 @@ class WaypointFollower(ManagedNode):
         self._timer = self.create_timer(1.0 / self.p['loop_rate'], self._tick)
         self._timer.cancel()
         self._entities = [self._timer]
+        self.watch_parameters(self._on_set_parameters)
 
     def deactivate(self):
         """Abort a running goal; stop offering the action."""
         self.get_logger().info('Deactivating')
+        self.unwatch_parameters()
         self.destroy_entities(self._entities)
         self._entities = []
         for part in (self.server, self.client):
@@ -106,6 +112,22 @@ class WaypointFollower(ManagedNode):
                 part.destroy()
         self.server = self.client = None
         self.run = None
+
+    def _on_set_parameters(self, parameters):
+        """Take ``loop_rate`` and ``stop_on_failure``; see the module docstring."""
+        for parameter in parameters:
+            if parameter.name == 'loop_rate' and parameter.value <= 0:
+                line = f"parameter 'loop_rate': expected a positive rate, got {parameter.value}"
+                return SetParametersResult(successful=False, reason=line)
+        for parameter in parameters:
+            if parameter.name == 'loop_rate':
+                self.p['loop_rate'] = parameter.value
+                self._timer.timer_period_ns = int(1e9 / parameter.value)
+            elif parameter.name == 'stop_on_failure':
+                self.p['stop_on_failure'] = parameter.value
+                if self.run is not None:
+                    self.run.stop_on_failure = parameter.value
+        return SetParametersResult(successful=True)
 
     def _on_goal(self, handle):
         goal = handle.request

@@ -45,7 +45,10 @@ class ManagedNode(LifecycleNode):
     def __init__(self, node_name, **kwargs):
         """Declare ``bond_heartbeat_period``; the node starts unconfigured."""
         super().__init__(node_name, **kwargs)
-        period = self.declare_parameter('bond_heartbeat_period', 0.1).value
+        if self.has_parameter('bond_heartbeat_period'):  # declared from a params file's
+            period = self.get_parameter('bond_heartbeat_period').value
+        else:
+            period = self.declare_parameter('bond_heartbeat_period', 0.1).value
         self.bond = None
         if period > 0.0 and type(self).wants_bond is ManagedNode.wants_bond:
             prepare_bonds(self, BOND_TOPIC)  # matched with the manager's while it configures
@@ -62,6 +65,26 @@ class ManagedNode(LifecycleNode):
 
     def cleanup(self):
         """Release what :meth:`configure` created (subclasses)."""
+
+    def watch_parameters(self, callback):
+        """
+        Take ``ros2 param set`` through ``callback`` until :meth:`unwatch_parameters`.
+
+        Nav2's servers add their ``dynamicParametersCallback`` on activate and remove it on
+        deactivate; so do this package's (from their :meth:`activate` and :meth:`deactivate`).
+
+        :param callback: ``callback(parameters) -> rcl_interfaces/SetParametersResult``.
+        """
+        self.unwatch_parameters()
+        self.add_on_set_parameters_callback(callback)  # rclpy returns None: keep the callback
+        self._parameters_handler = callback
+
+    def unwatch_parameters(self):
+        """Remove the callback :meth:`watch_parameters` added, if any."""
+        handler = getattr(self, '_parameters_handler', None)
+        if handler is not None:
+            self.remove_on_set_parameters_callback(handler)
+        self._parameters_handler = None
 
     def _run(self, step, what):
         try:

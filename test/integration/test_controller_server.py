@@ -67,7 +67,8 @@ class ControllerPeer(Peer):
         return self.spin_until(settled, timeout)
 
 
-def _param(exe, ros_env, *args):
+def ros2_param(exe, ros_env, *args):
+    """Run ``ros2 param ARGS``; return the CompletedProcess (text output)."""
     import subprocess
     return subprocess.run([exe('ros2'), 'param', *args], env=ros_env, capture_output=True,
                           text=True, timeout=120)
@@ -92,25 +93,27 @@ def test_follow_path_speed_parameters_and_cancel_deceleration(procs, exe, ros_en
         assert peer.speeds_settle_at(0.5), (peer.commands[-10:], server.output[-2000:])
 
         # the goal being followed takes the new speed
-        out = _param(exe, ros_env, 'set', '/controller_server', 'FollowPath.desired_linear_vel',
-                     '0.25')
+        out = ros2_param(exe, ros_env, 'set', '/controller_server',
+                         'FollowPath.desired_linear_vel', '0.25')
         assert out.stdout.strip() == 'Set parameter successful', out
         assert peer.speeds_settle_at(0.25), (peer.commands[-10:], server.output[-2000:])
 
         # refused with upstream's line, nothing changes
         refusal = ('Both use_rotate_to_heading and allow_reversing parameter cannot be set to '
                    'true. Rejecting parameter update.')
-        out = _param(exe, ros_env, 'set', '/controller_server', 'FollowPath.allow_reversing',
-                     'true')
+        out = ros2_param(exe, ros_env, 'set', '/controller_server',
+                         'FollowPath.allow_reversing', 'true')
         assert out.stderr.strip() == f'Setting parameter failed: {refusal}', out
         assert server.wait_for_output(refusal, 30.0)
-        out = _param(exe, ros_env, 'get', '/controller_server', 'FollowPath.allow_reversing')
+        out = ros2_param(exe, ros_env, 'get', '/controller_server',
+                         'FollowPath.allow_reversing')
         assert out.stdout.strip() == 'Boolean value is: False', out
 
         # a cancel with use_cancel_deceleration: the commands fall by 1.0 m/s^2 to 0 first
         for name, value in (('use_cancel_deceleration', 'true'),
                             ('cancel_deceleration', '1.0')):
-            out = _param(exe, ros_env, 'set', '/controller_server', f'FollowPath.{name}', value)
+            out = ros2_param(exe, ros_env, 'set', '/controller_server', f'FollowPath.{name}',
+                             value)
             assert out.stdout.strip() == 'Set parameter successful', out
         assert peer.speeds_settle_at(0.25)
         before = len(peer.commands)

@@ -10,13 +10,16 @@ static ``map -> base_footprint``, lifecycle_manager with bonds): ``/global_costm
 pose on a cell below the inscribed cost, the last with the goal's orientation, and ``/plan``
 carries the same path; an unknown planner id, a goal outside the map, a NaN goal and a goal
 in a wall with tolerance 0 fail with ComputePathToPose's codes, and the server keeps planning.
+``ros2 param set`` then reaches the planner (a tolerance of 0.5 m: the goal in the pillar is
+planned to) and its costmap (inflated cells within the new inflation radius, not the old).
 """
 
 import math
 
 import numpy as np
 import pytest
-from test_sim import Peer  # noqa: I100 - the simulator tests' DDS peer
+from test_controller_server import ros2_param  # noqa: I100 - the servers' ros2 param
+from test_sim import Peer  # the simulator tests' DDS peer
 
 pytest.importorskip('nav2_msgs.action')
 
@@ -68,6 +71,15 @@ def _cells(raw, x, y):
     mx = int(math.floor((x - m.origin.position.x) / m.resolution))
     my = int(math.floor((y - m.origin.position.y) / m.resolution))
     return np.asarray(raw.data, np.uint8).reshape(m.size_y, m.size_x)[my, mx]
+
+
+def _inflation_reach(raw):
+    """Return the farthest an inflated cell (cost 1..252) lies from a lethal one, m."""
+    from scipy import ndimage
+    m = raw.metadata
+    costs = np.asarray(raw.data, np.uint8).reshape(m.size_y, m.size_x)
+    distance = ndimage.distance_transform_edt(costs != 254) * m.resolution
+    return float(distance[(costs >= 1) & (costs <= 252)].max())
 
 
 def test_global_costmap_and_compute_path_to_pose(procs, exe, ros_env, tmp_path):
@@ -136,6 +148,25 @@ def test_global_costmap_and_compute_path_to_pose(procs, exe, ros_env, tmp_path):
             assert result.error_msg
         status, result = peer.plan(1.0, -0.5)
         assert status == GoalStatus.STATUS_SUCCEEDED, planner.output[-2000:]
+
+        # ros2 param set, as upstream's dynamic parameters: the planner's next plan ...
+        out = ros2_param(exe, ros_env, 'set', '/planner_server', 'GridBased.tolerance', '0.5')
+        assert out.stdout.strip() == 'Set parameter successful', out
+        status, result = peer.plan(1.12, 0.0)
+        assert status == GoalStatus.STATUS_SUCCEEDED, (result.error_code, result.error_msg)
+        end = result.path.poses[-1].pose.position
+        assert math.hypot(end.x - 1.12, end.y) <= 0.55, (end.x, end.y)
+        # ... and the costmap's next update: inflated cells (1..252) reach 0.45 m from the
+        # nearest lethal cell, not 0.7 m (config/nav2_params.yaml's inflation_radius)
+        assert _inflation_reach(raw) == pytest.approx(0.70, abs=0.026)
+        out = ros2_param(exe, ros_env, 'set', '/global_costmap/global_costmap',
+                         'inflation_layer.inflation_radius', '0.45')
+        assert out.stdout.strip() == 'Set parameter successful', out
+        assert peer.spin_until(lambda: _inflation_reach(peer.raws[-1]) <= 0.45 + 1e-6, 60.0), \
+            (_inflation_reach(peer.raws[-1]), planner.output[-2000:])
+        out = ros2_param(exe, ros_env, 'set', '/global_costmap/global_costmap', 'width', '0')
+        assert 'Setting parameter failed' in out.stderr, out
+        assert planner.wait_for_output('You try to set width of map to be negative or zero', 30)
         assert server.popen.poll() is None and planner.popen.poll() is None
     finally:
         peer.close()

@@ -167,3 +167,103 @@ def test_a_servers_costmap_takes_its_use_sim_time_and_updates_on_wall_time(
     assert timers == {'update': ClockType.STEADY_TIME, 'publish': ClockType.ROS_TIME}
     costmap.destroy_node()
     node.destroy_node()
+
+
+def _wall_map(width=60, height=60, column=10, resolution=0.05):
+    from nav_msgs.msg import OccupancyGrid
+    msg = OccupancyGrid()
+    msg.header.frame_id = 'map'
+    msg.info.resolution = resolution
+    msg.info.width, msg.info.height = width, height
+    msg.info.origin.orientation.w = 1.0
+    data = np.zeros((height, width), np.int8)
+    data[:, column] = 100
+    msg.data = data.ravel().tolist()
+    return msg
+
+
+def _active_costmap(ros, name, frame, overrides):
+    """Return a started CostmapNode, the robot at ``frame``'s origin, an inflation layer."""
+    from amr_description.core.tf_buffer import TransformBuffer
+    from amr_description.nodes.costmap_2d import CostmapNode
+    from rclpy.parameter import Parameter
+    make, _ = ros
+    tf = TransformBuffer()
+    tf.set_transform(frame, 'base_link', 0.0, (0.0, 0.0, 0.0), (0.0, 0.0, 0.0, 1.0),
+                     static=True)
+    overrides = {'inflation_layer.plugin': 'nav2_costmap_2d::InflationLayer', **overrides}
+    costmap = CostmapNode(name, tf, context=make(f'unused_{name}').context,
+                          parameter_overrides=[Parameter(k, value=v)
+                                               for k, v in overrides.items()])
+    costmap.start()
+    return costmap
+
+
+def test_ros2_param_set_reaches_the_costmaps_footprint_layers_and_geometry(ros):
+    # Costmap2DROS's and the layers' dynamicParametersCallback: a wall along column 10 of a
+    # 5 cm map, a 0.4 m square footprint (inscribed radius 0.2 m, no padding); a cell k cells
+    # from the wall is d = 0.05 k m from it and costs floor(252 exp(-f (d - r))) up to the
+    # inflation radius (InflationLayer::computeCost)
+    from rclpy.parameter import Parameter
+    costmap = _active_costmap(ros, 'global_costmap', 'map', {
+        'plugins': ['static_layer', 'inflation_layer'],
+        'static_layer.plugin': 'nav2_costmap_2d::StaticLayer',
+        'footprint': '[[0.2, 0.2], [0.2, -0.2], [-0.2, -0.2], [-0.2, 0.2]]',
+        'footprint_padding': 0.0})
+    costmap._on_map(_wall_map())
+
+    def cost(k):
+        costmap.update()
+        return int(costmap.grid.costs[30, 10 + k])
+
+    def set_(name, value):
+        return costmap.set_parameters([Parameter(name, value=value)])[0]
+
+    assert (cost(6), cost(7), cost(11), cost(12)) == (92, 56, 7, 0)  # e^-1, e^-1.5, e^-3.5
+    assert set_('footprint_padding', 0.1).successful  # inscribed 0.3 m
+    assert cost(7) == 152  # floor(252 e^-0.5)
+    assert set_('robot_radius', 0.5).successful  # the footprint came from `footprint`: kept
+    assert cost(7) == 152
+    assert set_('footprint', '[[1.0, 2.0]]').successful  # does not parse: kept, one line
+    assert cost(7) == 152
+    assert set_('footprint', '[[0.1, 0.1], [0.1, -0.1], [-0.1, -0.1], [-0.1, 0.1]]').successful
+    assert cost(7) == 56  # padded 0.1: inscribed 0.2 m again
+    assert set_('inflation_layer.cost_scaling_factor', 2.0).successful
+    assert cost(7) == 186  # floor(252 e^-0.3)
+    assert set_('inflation_layer.inflation_radius', 0.3).successful
+    assert (cost(6), cost(7)) == (206, 0)  # floor(252 e^-0.2); 7 cells are past 0.3 m
+    assert set_('inflation_layer.enabled', False).successful
+    assert cost(1) == 0 and cost(0) == 254
+    assert set_('static_layer.enabled', False).successful
+    assert cost(0) == 0
+
+    refused = set_('width', 0)
+    assert not refused.successful and 'negative or zero' in refused.reason
+    assert costmap.p['width'] == 5
+    started = time.monotonic()
+    assert not set_('robot_base_frame', 'nowhere').successful  # TF cannot join it in 1 s
+    assert 1.0 <= time.monotonic() - started < 10.0
+    assert costmap.get_parameter('robot_base_frame').value == 'base_link'
+    assert set_('publish_frequency', 4.0).successful
+    assert costmap._publish_timer.timer_period_ns == 250_000_000
+    assert set_('width', 2).successful  # the static layer's map fixed the size
+    assert costmap.grid.shape == (60, 60)
+    costmap.stop()
+    assert set_('inflation_layer.enabled', True).successful  # inactive: stored, not applied
+    assert costmap.layers[1][2]['enabled'] is False
+    costmap.destroy_node()
+
+
+def test_a_costmap_without_a_static_map_takes_a_new_size(ros):
+    from rclpy.parameter import Parameter
+    costmap = _active_costmap(ros, 'local_costmap', 'odom', {
+        'global_frame': 'odom', 'rolling_window': True, 'plugins': ['inflation_layer']})
+    costmap.update()
+    assert costmap.grid.shape == (50, 50)  # Nav2's 5 m at 0.1 m
+    results = costmap.set_parameters([Parameter('width', value=3),
+                                      Parameter('resolution', value=0.05)])
+    assert all(r.successful for r in results)
+    assert costmap.grid.shape == (100, 60)
+    assert costmap.grid.origin == pytest.approx((-1.5, -2.5))  # centred on the robot
+    costmap.stop()
+    costmap.destroy_node()
