@@ -294,6 +294,28 @@ class Costmap:
         mx, my, inside = self.cells_of(p)
         self.costs[my[inside], mx[inside]] = LETHAL_OBSTACLE
 
+    def clear_square(self, x, y, side, value, invert=False):
+        """
+        Write ``value`` into the cells of a square of ``side`` m centred on ``(x, y)`` (m).
+
+        As ``ClearCostmapService::clearLayerRegion`` and ``Costmap2D::clearArea``: the
+        square's corners go to cells clamped to the map (``worldToMapEnforceBounds``) and the
+        cells strictly between them are cleared, or, with ``invert``, all the others.
+
+        :param value: the layer's default (NO_INFORMATION when it tracks unknown space, else
+            FREE_SPACE).
+        """
+        h, w = self.costs.shape
+
+        def cell(v, origin, size):
+            return int(min(max(math.floor((v - origin) / self.resolution), 0), size - 1))
+
+        x0, x1 = (cell(v, self.origin[0], w) for v in (x - side / 2, x - side / 2 + side))
+        y0, y1 = (cell(v, self.origin[1], h) for v in (y - side / 2, y - side / 2 + side))
+        cols, rows = np.arange(w), np.arange(h)
+        inside = ((rows > y0) & (rows < y1))[:, None] & ((cols > x0) & (cols < x1))[None, :]
+        self.costs[inside != invert] = value
+
     def clear_polygon(self, polygon):
         """
         Set FREE the cells whose centres lie inside ``polygon``.

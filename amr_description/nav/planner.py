@@ -26,6 +26,7 @@ orientation (the approach direction with ``use_final_approach_orientation``).
 
 import math
 
+from amr_description.nav.costmap import footprint_cost
 from amr_description.nav.costmap import INSCRIBED_INFLATED_OBSTACLE
 from amr_description.nav.costmap import LETHAL_OBSTACLE
 from amr_description.nav.costmap import NO_INFORMATION
@@ -251,3 +252,37 @@ def path_length(path):
     """Return the length (m) of an ``(n, >=2)`` path."""
     p = np.asarray(path, float)[:, :2]
     return float(np.hypot(*np.diff(p, axis=0).T).sum()) if len(p) > 1 else 0.0
+
+
+def invalid_poses(costmap, poses, robot, footprint=None):
+    """
+    Return the indices of a path's poses in collision, from the pose nearest the robot on.
+
+    As planner_server's ``isPathValid`` (``nav2_planner/src/planner_server.cpp``): the check
+    starts at the pose nearest ``robot`` (the poses behind it may have been passed and become
+    occupied since); a pose is invalid when its cost is LETHAL_OBSTACLE or
+    INSCRIBED_INFLATED_OBSTACLE: the cell's cost (a pose off the map: lethal) for a costmap
+    whose footprint came from ``robot_radius``, else the highest cost under the footprint's
+    outline at the pose's yaw (:func:`amr_description.nav.costmap.footprint_cost`).
+
+    :param costmap: :class:`amr_description.nav.costmap.Costmap`.
+    :param poses: ``(n, 3)`` ``(x, y, yaw)`` in the costmap's frame (m, rad).
+    :param robot: ``(x, y)`` of the robot in that frame, or None (TF could not place it:
+        nothing is checked, as upstream's).
+    :param footprint: ``(m, 2)`` padded footprint, or None to check cells (``use_radius``).
+    :returns: list of int indices, in order.
+    """
+    p = np.asarray(poses, float).reshape(-1, 3)
+    if robot is None or not len(p):
+        return []
+    first = int(np.argmin(np.hypot(p[:, 0] - robot[0], p[:, 1] - robot[1])))
+    bad = []
+    for i in range(first, len(p)):
+        if footprint is None:
+            cost = costmap.cost_at(p[i, 0], p[i, 1])
+            cost = LETHAL_OBSTACLE if cost is None else cost
+        else:
+            cost = footprint_cost(costmap, footprint, p[i])
+        if cost in (LETHAL_OBSTACLE, INSCRIBED_INFLATED_OBSTACLE):
+            bad.append(i)
+    return bad

@@ -24,7 +24,10 @@ uses the only planner; an untransformable pose fails with TF_ERROR, a NaN goal w
 GOAL_OUTSIDE_MAP; the result's path (frame = the costmap's) is also published on ``plan``
 (nav_msgs/Path, depth 1). Action ``compute_path_through_poses``
 (ComputePathThroughPoses) plans each leg from the previous goal and joins them; no goals is
-NO_VIAPOINTS_GIVEN. Source: ``nav2_planner/src/planner_server.cpp``.
+NO_VIAPOINTS_GIVEN. Service ``is_path_valid`` (nav2_msgs/IsPathValid): the indices of the
+path's poses, from the one nearest the robot on, whose cost in the global costmap is lethal or
+inscribed (:func:`amr_description.nav.planner.invalid_poses`); an empty path is not valid.
+Source: ``nav2_planner/src/planner_server.cpp``.
 """
 
 import math
@@ -32,6 +35,7 @@ import time
 
 from amr_description.core.tf_buffer import TransformBuffer
 from amr_description.core.tf_buffer import TransformException
+from amr_description.nav.planner import invalid_poses
 from amr_description.nav.planner import make_plan
 from amr_description.nav.planner import PlanError
 from amr_description.nodes.costmap_2d import CostmapNode
@@ -44,6 +48,7 @@ from amr_description.ros.transforms import TransformListener
 from geometry_msgs.msg import PoseStamped
 from nav2_msgs.action import ComputePathThroughPoses
 from nav2_msgs.action import ComputePathToPose
+from nav2_msgs.srv import IsPathValid
 from nav_msgs.msg import Path
 import numpy as np
 from rcl_interfaces.msg import SetParametersResult
@@ -114,6 +119,7 @@ class PlannerServer(ManagedNode):
                                     self._execute)
         self._through = ActionServer(self, ComputePathThroughPoses,
                                      'compute_path_through_poses', self._execute_through)
+        self._valid = self.create_service(IsPathValid, 'is_path_valid', self._on_is_path_valid)
         self.watch_parameters(self._on_set_parameters)
 
     def deactivate(self):
@@ -123,7 +129,8 @@ class PlannerServer(ManagedNode):
         if self._action is not None:
             self._action.destroy()
             self._through.destroy()
-            self._action = self._through = None
+            self.destroy_service(self._valid)
+            self._action = self._through = self._valid = None
         if self._plan_pub is not None:
             self.destroy_publisher(self._plan_pub)
             self._plan_pub = None
@@ -146,6 +153,30 @@ class PlannerServer(ManagedNode):
             elif pid in self.planners and key in NAVFN_PARAMETERS:
                 self.planners[pid][key] = parameter.value
         return SetParametersResult(successful=True)
+
+    def _on_is_path_valid(self, request, response):
+        poses = request.path.poses
+        if not poses:
+            response.is_valid = False
+            return response
+        costmap = self.costmap
+        frame = costmap.p['global_frame']
+        try:
+            T, _ = self.tf_buffer.lookup(frame, costmap.p['robot_base_frame'])
+            robot = planar_pose(T)[:2]
+        except TransformException:
+            robot = None  # upstream checks nothing when getRobotPose fails
+        try:
+            path = [self._in_frame(p, frame) for p in poses]
+        except (TransformException, ValueError) as exc:
+            self.get_logger().warning(f'is_path_valid: {str(exc).strip()}; not valid')
+            response.is_valid = False
+            return response
+        bad = invalid_poses(costmap.grid, path, robot,
+                            None if costmap.use_radius else costmap.footprint)
+        response.is_valid = not bad
+        response.invalid_pose_indices = bad
+        return response
 
     def _in_frame(self, pose_stamped, frame):
         """Return ``(x, y, yaw)`` of a PoseStamped in ``frame`` (latest TF)."""

@@ -47,8 +47,13 @@ class PlannerPeer(Peer):
         self.node.create_subscription(Costmap, '/global_costmap/costmap_raw', self.raws.append,
                                       latched)
         self.node.create_subscription(Path, '/plan', self.plans.append, 10)
+        from nav2_msgs.srv import GetCost
+        from nav2_msgs.srv import IsPathValid
         self.Action = ComputePathToPose
         self.action = ActionClient(self.node, ComputePathToPose, '/compute_path_to_pose')
+        self.clients['is_path_valid'] = self.node.create_client(IsPathValid, '/is_path_valid')
+        self.clients['get_cost'] = self.node.create_client(
+            GetCost, '/global_costmap/get_cost_global_costmap')
 
     def plan(self, x, y, yaw=0.0, planner_id='', frame='map'):
         """Send a goal; return ``(status, result)``."""
@@ -133,6 +138,29 @@ def test_global_costmap_and_compute_path_to_pose(procs, exe, ros_env, tmp_path):
         q = result.path.poses[-1].pose.orientation
         assert 2 * math.atan2(q.z, q.w) == pytest.approx(1.0, abs=1e-6)
         assert peer.spin_until(lambda: peer.plans and len(peer.plans[-1].poses) == len(poses))
+
+        # is_path_valid: the plan is; a straight line through the centre pillar is not, at the
+        # poses within it (cost 253 or 254 in the costmap), all after the robot's nearest
+        from nav2_msgs.srv import GetCost
+        from nav2_msgs.srv import IsPathValid
+        answer = peer.call('is_path_valid', IsPathValid.Request(path=result.path))
+        assert answer.is_valid and list(answer.invalid_pose_indices) == []
+        line = IsPathValid.Request()
+        line.path.header.frame_id = 'map'
+        for i in range(41):
+            pose = type(result.path.poses[0])()
+            pose.header.frame_id = 'map'
+            pose.pose.position.x, pose.pose.orientation.w = 0.05 * i, 1.0
+            line.path.poses.append(pose)
+        answer = peer.call('is_path_valid', line)
+        blocked = [i for i in range(41) if _cells(raw, 0.05 * i, 0.0) >= 253]
+        assert blocked and not answer.is_valid, blocked
+        assert list(answer.invalid_pose_indices) == blocked
+        assert not peer.call('is_path_valid', IsPathValid.Request()).is_valid  # empty path
+        # get_cost_global_costmap: the east wall's cell, a free cell, and -1 off the map
+        for (x, y), cost in [((3.28, 0.0), 254.0), ((0.0, 0.0), float(_cells(raw, 0.0, 0.0))),
+                             ((50.0, 0.0), -1.0)]:
+            assert peer.call('get_cost', GetCost.Request(x=x, y=y)).cost == cost, (x, y)
 
         # bad goals: one line each, the codes of ComputePathToPose, the server keeps going
         codes = peer.Action.Result

@@ -267,3 +267,71 @@ def test_a_costmap_without_a_static_map_takes_a_new_size(ros):
     assert costmap.grid.origin == pytest.approx((-1.5, -2.5))  # centred on the robot
     costmap.stop()
     costmap.destroy_node()
+
+
+def test_the_clear_and_cost_services_and_the_footprint_topic(ros):
+    # ClearCostmapService: the obstacle layer's cells strictly between the corner cells of a
+    # square of side d around the robot (at the odom origin of a 5 m x 5 m, 0.1 m window:
+    # cells 20..30 on each axis for d = 1.0, so 9 x 9 cleared) reset to its default (unknown
+    # with track_unknown_space); clear_except the other 2500 - 81; GetCost the cell's cost
+    from amr_description.nav import costmap as cm
+    from geometry_msgs.msg import Point32
+    from geometry_msgs.msg import Polygon
+    from nav2_msgs.srv import ClearCostmapAroundPose
+    from nav2_msgs.srv import ClearCostmapAroundRobot
+    from nav2_msgs.srv import ClearCostmapExceptRegion
+    from nav2_msgs.srv import GetCost
+    costmap = _active_costmap(ros, 'local_costmap', 'odom', {
+        'global_frame': 'odom', 'rolling_window': True, 'track_unknown_space': True,
+        'plugins': ['obstacle_layer'],
+        'obstacle_layer.plugin': 'nav2_costmap_2d::ObstacleLayer',
+        'obstacle_layer.footprint_clearing_enabled': False})
+    costmap.update()
+    assert costmap.grid.origin == pytest.approx((-2.5, -2.5))
+
+    def fill():
+        costmap.obstacles[:] = cm.LETHAL_OBSTACLE
+
+    def unknown():
+        return int(np.count_nonzero(costmap.grid.costs == cm.NO_INFORMATION))
+
+    fill()
+    request = ClearCostmapAroundRobot.Request(reset_distance=1.0)
+    costmap._on_clear_around(request, ClearCostmapAroundRobot.Response())
+    assert unknown() == 81
+    fill()
+    request = ClearCostmapExceptRegion.Request(reset_distance=1.0)
+    costmap._on_clear_except(request, ClearCostmapExceptRegion.Response())
+    assert unknown() == 2500 - 81
+    fill()
+    request = ClearCostmapAroundPose.Request(reset_distance=0.6)
+    request.pose.header.frame_id = 'odom'
+    request.pose.pose.position.x, request.pose.pose.position.y = 1.05, -1.05
+    request.pose.pose.orientation.w = 1.0
+    costmap._on_clear_around_pose(request, ClearCostmapAroundPose.Response())
+    assert unknown() == 25  # corners in cells 32 and 38 (x), 11 and 17 (y): 5 x 5
+    assert costmap.grid.cost_at(1.05, -1.05) == cm.NO_INFORMATION
+    assert costmap.grid.cost_at(0.0, 0.0) == cm.LETHAL_OBSTACLE
+
+    def cost(x, y, theta=0.0, use_footprint=False):
+        request = GetCost.Request(x=x, y=y, theta=theta, use_footprint=use_footprint)
+        return costmap._on_get_cost(request, GetCost.Response()).cost
+
+    assert cost(1.05, -1.05) == 255.0 and cost(0.0, 0.0) == 254.0
+    assert cost(10.0, 0.0) == -1.0  # outside the window: -1 and one warning
+    costmap.obstacles[:] = cm.FREE_SPACE
+    costmap.obstacles[25, 32] = cm.LETHAL_OBSTACLE  # the cell of (0.75, 0.05)
+    costmap.update()
+    assert cost(0.75, 0.05) == 254.0
+    # the footprint topic: a 0.5 m square (padding 0.01), its outline on that cell when
+    # centred 0.26 m short of it, not when centred on it
+    square = Polygon(points=[Point32(x=x, y=y) for x, y in
+                             ((0.25, 0.25), (0.25, -0.25), (-0.25, -0.25), (-0.25, 0.25))])
+    costmap._on_footprint(square)
+    assert costmap.footprint[:, 0].max() == pytest.approx(0.26)
+    assert cost(0.49, 0.05, use_footprint=True) == 254.0
+    assert cost(0.75, 0.05, use_footprint=True) == 0.0
+    costmap._on_footprint(Polygon(points=[Point32(x=1.0)]))  # garbage: one line, kept
+    assert costmap.footprint[:, 0].max() == pytest.approx(0.26)
+    costmap.stop()
+    costmap.destroy_node()

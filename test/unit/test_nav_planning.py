@@ -11,6 +11,7 @@ from amr_description.nav.checkers import SimpleProgressChecker
 from amr_description.nav.checkers import StoppedGoalChecker
 from amr_description.nav.cycle_clock import CycleClock
 from amr_description.nav.planner import cell_gradient
+from amr_description.nav.planner import invalid_poses
 from amr_description.nav.planner import make_plan
 from amr_description.nav.planner import path_length
 from amr_description.nav.planner import PlanError
@@ -507,3 +508,44 @@ def test_search_stops_near_the_robot_and_paths_match_the_whole_potential():
     assert np.isfinite(cut[s_rc]) and cut[s_rc] == whole[s_rc]
     assert np.isinf(cut[:, :10]).all()  # the map's west end, beyond the robot: unsearched
     assert np.isfinite(whole[:, :10]).all()
+
+
+def test_clear_square_writes_the_cells_strictly_inside_its_corner_cells():
+    # Costmap2D::clearArea between the cells of (x - d/2, y - d/2) and (x + d/2, y + d/2):
+    # on a 0.1 m grid, d = 1.0 around (2.05, 2.05) puts the corners in cells 15 and 25, so
+    # cells 16..24 on each axis, 9 x 9 of them, are cleared; invert clears the other 400 - 81
+    c = cm.Costmap(np.full((20, 40), cm.LETHAL_OBSTACLE), 0.1)
+    c.clear_square(2.05, 1.05, 1.0, cm.NO_INFORMATION)
+    cleared = np.argwhere(c.costs == cm.NO_INFORMATION)
+    assert len(cleared) == 81
+    assert cleared[:, 0].min() == 6 and cleared[:, 0].max() == 14  # rows: cells 5 and 15
+    assert cleared[:, 1].min() == 16 and cleared[:, 1].max() == 24
+    d = cm.Costmap(np.full((20, 40), cm.LETHAL_OBSTACLE), 0.1)
+    d.clear_square(2.05, 1.05, 1.0, cm.FREE_SPACE, invert=True)
+    assert np.count_nonzero(d.costs == cm.FREE_SPACE) == 800 - 81
+    # a square past the map's edge is clamped to its last cell: nothing beyond is written
+    e = cm.Costmap(np.full((20, 40), cm.LETHAL_OBSTACLE), 0.1)
+    e.clear_square(0.0, 0.0, 100.0, cm.FREE_SPACE)
+    assert np.count_nonzero(e.costs == cm.FREE_SPACE) == 38 * 18  # cells 1..38 x 1..18
+
+
+def test_invalid_poses_start_at_the_pose_nearest_the_robot():
+    # isPathValid: a lethal cell at x = 1.05 and one at x = 3.05 on a straight path along
+    # y = 0.05; the robot stands at x = 2.0, so the pose on the first (passed) is not checked
+    costs = np.zeros((10, 50), np.uint8)
+    costs[0, 10] = cm.LETHAL_OBSTACLE
+    costs[0, 30] = cm.INSCRIBED_INFLATED_OBSTACLE
+    c = cm.Costmap(costs, 0.1)
+    path = [(0.05 + 0.1 * i, 0.05, 0.0) for i in range(45)]
+    assert invalid_poses(c, path, (2.0, 0.0)) == [30]
+    assert invalid_poses(c, path, (0.0, 0.0)) == [10, 30]
+    assert invalid_poses(c, path + [(9.0, 0.05, 0.0)], (0.0, 0.0)) == [10, 30, 45]  # off map
+    assert invalid_poses(c, path, None) == []  # no robot pose: nothing checked, as upstream
+    # with a 0.3 m square footprint only its outline counts (footprintCostAtPose): the
+    # sides x +- 0.15 cross the lethal cell (1.0 <= x < 1.1) at poses 8 (x = 0.85) and 11
+    # (x = 1.15); at 9 and 10 the cell lies inside the outline; pose 0's outline leaves the
+    # map (x < 0), which counts as lethal
+    square = np.array([[0.15, 0.15], [0.15, -0.15], [-0.15, -0.15], [-0.15, 0.15]])
+    c2 = cm.Costmap(np.pad(costs, ((5, 0), (0, 0))), 0.1, (0.0, -0.5))
+    bad = invalid_poses(c2, path[:20], (0.0, 0.0), square)
+    assert bad == [0, 8, 11]

@@ -32,15 +32,16 @@ node's clock, stamped with that clock (sim time in a simulation):
   (10.0), ``inflate_unknown``, ``inflate_around_unknown``;
 
 and each layer's ``enabled`` (true; false: the layer leaves the grid as it is). While active,
-``ros2 param set`` reaches the costmap as upstream's (:meth:`CostmapNode._on_set_parameters`).
+``ros2 param set`` reaches the costmap as upstream's
+(:mod:`amr_description.nodes.costmap_2d.parameters`).
 
 Relative input topics (``map_topic``, a source's ``topic``) are resolved in the server's
 namespace, not the costmap's (``map`` is ``/map``, or ``/r1/map`` for a server in ``r1``).
 Another plugin type is said in one line and skipped. Topics (relative to the node's
 namespace): ``costmap`` (OccupancyGrid, Nav2's translation) and ``costmap_raw``
 (nav2_msgs/Costmap), reliable + transient local, depth 1; ``published_footprint``
-(PolygonStamped). Services: ``clear_entirely_<name>`` (nav2_msgs/ClearEntireCostmap),
-``get_costmap`` (nav2_msgs/GetCostmap). The layers' arithmetic is
+(PolygonStamped). The clear and cost services and the ``footprint`` topic:
+:mod:`amr_description.nodes.costmap_2d.services`. The layers' arithmetic is
 :mod:`amr_description.nav.costmap`.
 
 Activation waits, as ``Costmap2DROS::on_activate`` (``nav2_costmap_2d/src/costmap_2d_ros.cpp``)
@@ -60,16 +61,15 @@ from amr_description.core.tf_buffer import TransformException
 from amr_description.nav import costmap as cm
 from amr_description.nav.grid_message import costmap_messages
 from amr_description.nav.grid_message import grid_from_message
+from amr_description.nodes.costmap_2d.parameters import CostmapParameters
+from amr_description.nodes.costmap_2d.services import CostmapServices
 from amr_description.ros.node import Node
 from amr_description.ros.transforms import planar_pose
 from geometry_msgs.msg import Point32
 from geometry_msgs.msg import PolygonStamped
 from nav2_msgs.msg import Costmap as CostmapMsg
-from nav2_msgs.srv import ClearEntireCostmap
-from nav2_msgs.srv import GetCostmap
 from nav_msgs.msg import OccupancyGrid
 import numpy as np
-from rcl_interfaces.msg import SetParametersResult
 from rclpy.clock import Clock
 from rclpy.clock import ClockType
 from rclpy.parameter import Parameter
@@ -98,13 +98,11 @@ SOURCE_DEFAULTS = {
 }
 SCAN_QUEUE = 10
 """Scans kept per observation source while they wait for TF (a MessageFilter's queue)."""
-DYNAMIC = ('robot_radius footprint_padding transform_tolerance publish_frequency resolution '
-           'origin_x origin_y width height footprint robot_base_frame').split()
 INFLATION_DEFAULTS = {'inflation_radius': 0.55, 'cost_scaling_factor': 10.0,
                       'inflate_unknown': False, 'inflate_around_unknown': False}
 
 
-class CostmapNode(Node):
+class CostmapNode(CostmapServices, CostmapParameters, Node):
     """
     The costmap node; see the module docstring.
 
@@ -263,9 +261,7 @@ class CostmapNode(Node):
         self.footprint_pub = self.create_publisher(PolygonStamped, 'published_footprint', 1)
         self._entities += [
             self.costmap_pub, self.raw_pub, self.footprint_pub,
-            self.create_service(ClearEntireCostmap, f'clear_entirely_{self.name}',
-                                self._on_clear),
-            self.create_service(GetCostmap, 'get_costmap', self._on_get),
+            *self.make_services(),
             self.create_timer(1.0 / max(self.p['update_frequency'], 1e-3), self.update,
                               clock=Clock(clock_type=ClockType.STEADY_TIME))]
         self._publish_timer = self.create_timer(1.0 / max(self.p['publish_frequency'], 1e-3),
@@ -401,100 +397,3 @@ class CostmapNode(Node):
                                           y=float(y + s * px + c * py))
                                   for px, py in self.footprint]
             self.footprint_pub.publish(msg)
-
-    def _on_clear(self, request, response):
-        self.get_logger().info(f'Received request to clear entirely the {self.name}')
-        with self._lock:
-            self.obstacles = self._blank()
-            self.update()
-        return response
-
-    def _on_get(self, request, response):
-        response.map = self.messages()[1]
-        return response
-
-    # ros2 param set
-    def _on_set_parameters(self, parameters):
-        """
-        Take ``ros2 param set`` values while active, as upstream's dynamic parameter callbacks.
-
-        Costmap2DROS's ``robot_radius`` (the footprint, if made from the radius at start-up),
-        ``footprint`` (kept when it does not parse, with one error line), ``footprint_padding``,
-        ``transform_tolerance``, ``publish_frequency`` (0 or less: not published),
-        ``resolution``, ``origin_x``, ``origin_y``, ``width`` and ``height`` (a new empty grid,
-        unless the static layer's map fixed the size) and ``robot_base_frame`` (refused when TF
-        cannot join it to ``global_frame`` within 1 s); each layer's ``enabled``; the inflation
-        layer's ``inflation_radius``, ``cost_scaling_factor``, ``inflate_unknown`` and
-        ``inflate_around_unknown``; the obstacle layer's ``footprint_clearing_enabled``. A
-        ``width`` or ``height`` of 0 or less is refused with upstream's line. Sources:
-        ``dynamicParametersCallback`` of ``nav2_costmap_2d/src/costmap_2d_ros.cpp`` and
-        ``nav2_costmap_2d/plugins/``.
-        """
-        for parameter in parameters:
-            name, value = parameter.name, parameter.value
-            if name in ('width', 'height') and value <= 0:
-                line = (f"You try to set {name} of map to be negative or zero, this isn't "
-                        'allowed, please give a positive value.')
-                self.get_logger().error(line)
-                return SetParametersResult(successful=False, reason=line)
-            if name == 'robot_base_frame' and not self._joins(value):
-                return SetParametersResult(successful=False, reason=f'no transform to {value}')
-        with self._lock:
-            resize = False
-            for parameter in parameters:
-                resize |= self._apply_parameter(parameter.name, parameter.value)
-            locked = self.static is not None and not self.p['rolling_window']
-            if resize and not locked:
-                p = self.p
-                self.grid = cm.Costmap.empty(p['width'], p['height'], p['resolution'],
-                                             (p['origin_x'], p['origin_y']),
-                                             p['global_frame'], self._unknown())
-                self.obstacles = self._blank()
-                self._update()
-        return SetParametersResult(successful=True)
-
-    def _joins(self, base, wait=1.0):
-        """Return True when TF joins ``base`` to ``global_frame`` within ``wait`` s (wall)."""
-        self.get_logger().info('Checking transform')
-        deadline = time.monotonic() + wait
-        while True:
-            try:
-                self.tf.lookup(self.p['global_frame'], base)
-                return True
-            except TransformException as exc:
-                if time.monotonic() >= deadline:
-                    self.get_logger().warning(
-                        f'Timed out waiting for transform from {base} to {self.p["global_frame"]}'
-                        f' to become available, tf error: {str(exc).strip()}')
-                    self.get_logger().warning(
-                        f'Rejecting robot_base_frame change to {base} , leaving it to its '
-                        f"original value of {self.p['robot_base_frame']}")
-                    return False
-            time.sleep(0.05)
-
-    def _apply_parameter(self, name, value):
-        """Apply one checked value; return True when the grid's geometry changed."""
-        layer, _, key = name.partition('.')
-        for _kind, layer_name, params in self.layers:
-            if layer_name == layer and key in params and key not in (
-                    'map_topic', 'map_subscribe_transient_local', 'sources'):
-                params[key] = value
-                return False
-        if name not in DYNAMIC:
-            return False
-        if name == 'footprint':
-            self.p['footprint'] = value
-            try:
-                self._set_footprint(cm.parse_footprint(value))
-            except ValueError as exc:
-                self.get_logger().error(f'{exc}; the footprint is unchanged')
-            return False
-        self.p[name] = value
-        if name == 'robot_radius' and self.use_radius:
-            self._set_footprint(cm.footprint_from_radius(value))
-        elif name == 'footprint_padding':
-            self._set_footprint(self.unpadded)
-        elif name == 'publish_frequency' and value > 0.0 and self._entities:
-            self._publish_timer.timer_period_ns = int(1e9 / value)
-            self._publish_timer.reset()
-        return name in ('resolution', 'origin_x', 'origin_y', 'width', 'height')
