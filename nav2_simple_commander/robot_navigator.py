@@ -10,7 +10,11 @@ signature and behaviour: a task method sends a goal and returns whether it was a
 maps the final status to :class:`TaskResult`. Waiting spins the node with
 ``spin_once`` (upstream's ``spin_until_future_complete`` with a time-out busy-waits in
 Jazzy's rclpy). Docking and GPS waypoints are refused with one error line (their servers
-are not built here). Source: ``nav2_simple_commander/robot_navigator.py`` (Jazzy).
+are not built here). The later Jazzy's ``clearCostmapExceptRegion``, ``clearCostmapAroundRobot``
+and ``clearCostmapAroundPose`` call the local costmap's ``clear_except_local_costmap``,
+``clear_around_local_costmap`` and ``clear_around_pose_local_costmap``: upstream's call
+``local_costmap/clear_costmap_except_region`` and the like, names no costmap offers, and wait
+for ever. Source: ``nav2_simple_commander/robot_navigator.py`` (Jazzy).
 """
 
 from enum import Enum
@@ -32,6 +36,9 @@ from nav2_msgs.action import NavigateThroughPoses
 from nav2_msgs.action import NavigateToPose
 from nav2_msgs.action import SmoothPath
 from nav2_msgs.action import Spin
+from nav2_msgs.srv import ClearCostmapAroundPose
+from nav2_msgs.srv import ClearCostmapAroundRobot
+from nav2_msgs.srv import ClearCostmapExceptRegion
 from nav2_msgs.srv import ClearEntireCostmap
 from nav2_msgs.srv import GetCostmap
 from nav2_msgs.srv import LoadMap
@@ -101,6 +108,12 @@ class BasicNavigator(Node):
         self.get_costmap_global_srv = self.create_client(GetCostmap,
                                                          'global_costmap/get_costmap')
         self.get_costmap_local_srv = self.create_client(GetCostmap, 'local_costmap/get_costmap')
+        self.clear_costmap_except_region_srv = self.create_client(
+            ClearCostmapExceptRegion, 'local_costmap/clear_except_local_costmap')
+        self.clear_costmap_around_robot_srv = self.create_client(
+            ClearCostmapAroundRobot, 'local_costmap/clear_around_local_costmap')
+        self.clear_costmap_around_pose_srv = self.create_client(
+            ClearCostmapAroundPose, 'local_costmap/clear_around_pose_local_costmap')
 
     # helpers
     def _spin_until(self, future, timeout_sec=None):
@@ -377,6 +390,22 @@ class BasicNavigator(Node):
         """Clear the global costmap (ClearEntireCostmap)."""
         self._call(self.clear_costmap_global_srv, ClearEntireCostmap.Request(),
                    'Clear global costmaps')
+
+    def clearCostmapExceptRegion(self, reset_distance):
+        """Clear the local costmap outside a square of ``reset_distance`` m on the robot."""
+        request = ClearCostmapExceptRegion.Request(reset_distance=float(reset_distance))
+        self._call(self.clear_costmap_except_region_srv, request,
+                   'ClearCostmapExceptRegion')
+
+    def clearCostmapAroundRobot(self, reset_distance):
+        """Clear the local costmap inside a square of ``reset_distance`` m on the robot."""
+        request = ClearCostmapAroundRobot.Request(reset_distance=float(reset_distance))
+        self._call(self.clear_costmap_around_robot_srv, request, 'ClearCostmapAroundRobot')
+
+    def clearCostmapAroundPose(self, pose, reset_distance):
+        """Clear the local costmap inside a square of ``reset_distance`` m on ``pose``."""
+        request = ClearCostmapAroundPose.Request(pose=pose, reset_distance=float(reset_distance))
+        self._call(self.clear_costmap_around_pose_srv, request, 'ClearCostmapAroundPose')
 
     def getGlobalCostmap(self):
         """Return the global costmap (nav2_msgs/Costmap)."""

@@ -127,6 +127,15 @@ initial_pose.pose.orientation.z, initial_pose.pose.orientation.w = (math.sin(yaw
                                                                     math.cos(yaw / 2))
 navigator.setInitialPose(initial_pose)
 navigator.waitUntilNav2Active()
+# You may use the navigator to clear or obtain costmaps
+navigator.clearAllCostmaps()  # also have clearLocalCostmap() and clearGlobalCostmap()
+navigator.clearCostmapAroundRobot(1.0)
+navigator.clearCostmapExceptRegion(2.0)
+global_costmap = navigator.getGlobalCostmap()
+local_costmap = navigator.getLocalCostmap()
+print('costmaps: {} x {}, {} x {}'.format(
+    global_costmap.metadata.size_x, global_costmap.metadata.size_y,
+    local_costmap.metadata.size_x, local_costmap.metadata.size_y), flush=True)
 goal_pose = PoseStamped()
 goal_pose.header.frame_id = 'map'
 goal_pose.header.stamp = navigator.get_clock().now().to_msg()
@@ -150,7 +159,8 @@ navigator.destroy_node()
 rclpy.shutdown()
 sys.exit(0 if result == TaskResult.SUCCEEDED else 1)
 """
-"""A script as nav2_simple_commander's examples write them (example_nav_to_pose.py)."""
+"""A script as nav2_simple_commander's examples write them (example_nav_to_pose.py, its
+costmap lines uncommented and the local costmap's clear-region calls added)."""
 
 
 GOAL_YAW = 0.5
@@ -283,6 +293,8 @@ def test_navigate_to_pose_on_the_simulated_robot(procs, exe, ros_env, tmp_path):
         assert out.returncode == 0, out.stdout + out.stderr + nav.output[-3000:]
         assert 'Nav2 is ready for use!' in out.stderr and 'Goal succeeded!' in out.stdout
         assert 'distance remaining:' in out.stdout
+        # the arena's map (100 x 110 cells at 5 cm) and the 3 m local window at 5 cm
+        assert 'costmaps: 100 x 110, 60 x 60' in out.stdout, out.stdout
 
         def fresh():  # the peer did not spin while the script ran: read up to now
             last = peer.odom[-1].header.stamp
