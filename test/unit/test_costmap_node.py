@@ -239,6 +239,7 @@ def test_ros2_param_set_reaches_the_costmaps_footprint_layers_and_geometry(ros):
 
     refused = set_('width', 0)
     assert not refused.successful and 'negative or zero' in refused.reason
+    assert not set_('resolution', 0.0).successful and costmap.p['resolution'] == 0.1
     assert costmap.p['width'] == 5
     started = time.monotonic()
     assert not set_('robot_base_frame', 'nowhere').successful  # TF cannot join it in 1 s

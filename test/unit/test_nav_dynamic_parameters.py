@@ -117,5 +117,6 @@ def test_planner_server_takes_navfns_parameters_and_its_frequency(ros):
         'The expected planner frequency parameter is 0.0000 Hz. The value should to be greater '
         'than 0.0 to turn on duration overrrun warning messages']
     node.trigger_deactivate()
+    node.trigger_cleanup()  # stops the TF listener's thread
     node.costmap.destroy_node()
     node.destroy_node()

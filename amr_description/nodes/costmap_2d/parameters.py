@@ -34,7 +34,8 @@ class CostmapParameters:
         cannot join it to ``global_frame`` within 1 s); each layer's ``enabled``; the inflation
         layer's ``inflation_radius``, ``cost_scaling_factor``, ``inflate_unknown`` and
         ``inflate_around_unknown``; the obstacle layer's ``footprint_clearing_enabled``. A
-        ``width`` or ``height`` of 0 or less is refused with upstream's line. Sources:
+        ``width`` or ``height`` of 0 or less is refused with upstream's line, a ``resolution`` of 0
+        or less with ours. Sources:
         ``dynamicParametersCallback`` of ``nav2_costmap_2d/src/costmap_2d_ros.cpp`` and
         ``nav2_costmap_2d/plugins/``.
         """
@@ -43,6 +44,10 @@ class CostmapParameters:
             if name in ('width', 'height') and value <= 0:
                 line = (f"You try to set {name} of map to be negative or zero, this isn't "
                         'allowed, please give a positive value.')
+                self.get_logger().error(line)
+                return SetParametersResult(successful=False, reason=line)
+            if name == 'resolution' and not value > 0.0:  # upstream divides by it
+                line = f'resolution must be above 0 m, got {value}; not changed'
                 self.get_logger().error(line)
                 return SetParametersResult(successful=False, reason=line)
             if name == 'robot_base_frame' and not self._joins(value):
