@@ -123,6 +123,9 @@ def test_bad_map_file_fails_configure_and_the_node_keeps_running(procs, exe, ros
                     'occupied_thresh: 0.2\nfree_thresh: 0.6\n')
     server = procs.start([exe('map_server'), '--ros-args', '-p', f'yaml_filename:={path}'],
                          ros_env)
+    # the node discovered first: a CLI that looks before the server is up (a loaded machine,
+    # a clean-clone run of 460362c) says 'Node not found', as upstream's
+    assert _state(exe, ros_env, '/map_server', 'unconfigured [1]') == 'unconfigured [1]'
     import subprocess
     answer = subprocess.run([exe('ros2'), 'lifecycle', 'set', '/map_server', 'configure'],
                             env=ros_env, capture_output=True, text=True, timeout=120)
