@@ -437,6 +437,19 @@ class ScanQueue(collections.deque):
         return latest < stamp
 
 
+def place_footprint(footprint, pose):
+    """
+    Return a footprint's vertices placed at ``pose`` (``orientAndTransformFootprint``).
+
+    :param footprint: ``(n, 2)`` vertices in the robot frame, m.
+    :param pose: ``(x, y, yaw)`` of the robot (m, rad).
+    :returns: ``(n, 2)`` vertices in the pose's frame, m.
+    """
+    x, y, yaw = pose
+    c, s = math.cos(yaw), math.sin(yaw)
+    return np.asarray(footprint, float) @ np.array([[c, s], [-s, c]]) + (x, y)
+
+
 def footprint_cost(costmap, footprint, pose):
     """
     Return the highest cost under a footprint's outline placed at ``pose``.
@@ -449,9 +462,7 @@ def footprint_cost(costmap, footprint, pose):
     Source: ``FootprintCollisionChecker::footprintCost`` (the cells of the lines between
     consecutive vertices, closing the polygon).
     """
-    x, y, yaw = pose
-    c, s = math.cos(yaw), math.sin(yaw)
-    pts = np.asarray(footprint, float) @ np.array([[c, s], [-s, c]]) + (x, y)
+    pts = place_footprint(footprint, pose)
     mx, my, inside = costmap.cells_of(pts)
     if not inside.all():
         return LETHAL_OBSTACLE

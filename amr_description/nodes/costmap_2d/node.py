@@ -53,7 +53,6 @@ with ``use_sim_time``: a time of 0 starts no timeout) it fails the server's acti
 timeout"), so a lifecycle manager becomes active only once SLAM or AMCL publishes ``map``.
 """
 
-import math
 import threading
 import time
 
@@ -159,11 +158,7 @@ class CostmapNode(CostmapServices, CostmapParameters, Node):
         self._lock = threading.RLock()  # the update timer, the map and ros2 param set
         self._parameters_handler = None
         self._footprint()
-        res = self.p['resolution']
-        self.grid = cm.Costmap.empty(self.p['width'], self.p['height'], res,
-                                     (self.p['origin_x'], self.p['origin_y']),
-                                     self.p['global_frame'],
-                                     self._unknown())
+        self.grid = self._empty_grid()
         self.static = None  # (costs, Costmap of the map)
         self.obstacles = self._blank()
         self.scans = {}
@@ -204,6 +199,13 @@ class CostmapNode(CostmapServices, CostmapParameters, Node):
         self.unpadded = np.asarray(points, float)
         self.footprint = cm.pad_footprint(self.unpadded, self.p['footprint_padding'])
         self.inscribed, self.circumscribed = cm.footprint_radii(self.footprint)
+
+    def _empty_grid(self):
+        """Return a grid of the parameters' size, resolution and origin, unknown or free."""
+        p = self.p
+        return cm.Costmap.empty(p['width'], p['height'], p['resolution'],
+                                (p['origin_x'], p['origin_y']), p['global_frame'],
+                                self._unknown())
 
     def _unknown(self):
         return cm.NO_INFORMATION if self.p['track_unknown_space'] else cm.FREE_SPACE
@@ -342,9 +344,7 @@ class CostmapNode(CostmapServices, CostmapParameters, Node):
                 layer.mark(world[hit], origin, sp['obstacle_max_range'],
                            sp['obstacle_min_range'])
         if params['footprint_clearing_enabled'] and self.robot is not None:
-            x, y, yaw = self.robot
-            c, s = math.cos(yaw), math.sin(yaw)
-            layer.clear_polygon(self.footprint @ np.array([[c, s], [-s, c]]) + (x, y))
+            layer.clear_polygon(cm.place_footprint(self.footprint, self.robot))
 
     def update(self):
         """Run the enabled layers in order into the master grid (the update timer)."""
@@ -389,11 +389,8 @@ class CostmapNode(CostmapServices, CostmapParameters, Node):
         self.costmap_pub.publish(grid)
         self.raw_pub.publish(raw)
         if self.robot is not None:
-            x, y, yaw = self.robot
-            c, s = math.cos(yaw), math.sin(yaw)
             msg = PolygonStamped()
             msg.header = grid.header
-            msg.polygon.points = [Point32(x=float(x + c * px - s * py),
-                                          y=float(y + s * px + c * py))
-                                  for px, py in self.footprint]
+            msg.polygon.points = [Point32(x=float(px), y=float(py)) for px, py in
+                                  cm.place_footprint(self.footprint, self.robot)]
             self.footprint_pub.publish(msg)

@@ -40,28 +40,24 @@ class CostmapParameters:
         ``nav2_costmap_2d/plugins/``.
         """
         for parameter in parameters:
-            name, value = parameter.name, parameter.value
+            name, value, line = parameter.name, parameter.value, None
             if name in ('width', 'height') and value <= 0:
                 line = (f"You try to set {name} of map to be negative or zero, this isn't "
                         'allowed, please give a positive value.')
-                self.get_logger().error(line)
-                return SetParametersResult(successful=False, reason=line)
-            if name == 'resolution' and not value > 0.0:  # upstream divides by it
+            elif name == 'resolution' and not value > 0.0:  # upstream divides by it
                 line = f'resolution must be above 0 m, got {value}; not changed'
+            elif name == 'robot_base_frame' and not self._joins(value):
+                return SetParametersResult(successful=False, reason=f'no transform to {value}')
+            if line is not None:
                 self.get_logger().error(line)
                 return SetParametersResult(successful=False, reason=line)
-            if name == 'robot_base_frame' and not self._joins(value):
-                return SetParametersResult(successful=False, reason=f'no transform to {value}')
         with self._lock:
             resize = False
             for parameter in parameters:
                 resize |= self._apply_parameter(parameter.name, parameter.value)
             locked = self.static is not None and not self.p['rolling_window']
             if resize and not locked:
-                p = self.p
-                self.grid = cm.Costmap.empty(p['width'], p['height'], p['resolution'],
-                                             (p['origin_x'], p['origin_y']),
-                                             p['global_frame'], self._unknown())
+                self.grid = self._empty_grid()
                 self.obstacles = self._blank()
                 self._update()
         return SetParametersResult(successful=True)
