@@ -311,6 +311,9 @@ def test_the_clear_and_cost_services_and_the_footprint_topic(ros):
     request.pose.pose.orientation.w = 1.0
     costmap._on_clear_around_pose(request, ClearCostmapAroundPose.Response())
     assert unknown() == 25  # corners in cells 32 and 38 (x), 11 and 17 (y): 5 x 5
+    request.reset_distance = float('nan')  # garbage: one line, nothing cleared, no exception
+    costmap._on_clear_around_pose(request, ClearCostmapAroundPose.Response())
+    assert unknown() == 25
     assert costmap.grid.cost_at(1.05, -1.05) == cm.NO_INFORMATION
     assert costmap.grid.cost_at(0.0, 0.0) == cm.LETHAL_OBSTACLE
 

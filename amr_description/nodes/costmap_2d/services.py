@@ -24,6 +24,8 @@ Topic ``footprint`` (geometry_msgs/Polygon) replaces the footprint (padded by
 ``nav2_costmap_2d/src/clear_costmap_service.cpp`` and ``costmap_2d_ros.cpp``.
 """
 
+import math
+
 from amr_description.core.tf_buffer import TransformException
 from amr_description.nav import costmap as cm
 from amr_description.ros.transforms import transform_planar
@@ -63,6 +65,10 @@ class CostmapServices:
         return response
 
     def _clear(self, x, y, side, invert):
+        if not all(math.isfinite(v) for v in (x, y, side)):
+            self.get_logger().error(f'clear {self.name}: expected a finite pose and '
+                                    f'reset_distance, got ({x}, {y}) and {side}; not cleared')
+            return
         with self._lock:
             layer = cm.Costmap(self.obstacles, self.grid.resolution, self.grid.origin)
             layer.clear_square(x, y, side, self._unknown(), invert)
