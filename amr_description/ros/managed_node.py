@@ -66,26 +66,6 @@ class ManagedNode(LifecycleNode):
     def cleanup(self):
         """Release what :meth:`configure` created (subclasses)."""
 
-    def watch_parameters(self, callback):
-        """
-        Take ``ros2 param set`` through ``callback`` until :meth:`unwatch_parameters`.
-
-        Nav2's servers add their ``dynamicParametersCallback`` on activate and remove it on
-        deactivate; so do this package's (from their :meth:`activate` and :meth:`deactivate`).
-
-        :param callback: ``callback(parameters) -> rcl_interfaces/SetParametersResult``.
-        """
-        self.unwatch_parameters()
-        self.add_on_set_parameters_callback(callback)  # rclpy returns None: keep the callback
-        self._parameters_handler = callback
-
-    def unwatch_parameters(self):
-        """Remove the callback :meth:`watch_parameters` added, if any."""
-        handler = getattr(self, '_parameters_handler', None)
-        if handler is not None:
-            self.remove_on_set_parameters_callback(handler)
-        self._parameters_handler = None
-
     def _run(self, step, what):
         try:
             step()

@@ -38,6 +38,27 @@ class Node(rclpy.node.Node):
                     full, Parameter.Type.DOUBLE, float(override.value))
         return super().declare_parameters(namespace, parameters, ignore_override)
 
+    def watch_parameters(self, callback):
+        """
+        Take ``ros2 param set`` through ``callback`` until :meth:`unwatch_parameters`.
+
+        Nav2's servers add their ``dynamicParametersCallback`` on activate and remove it on
+        deactivate; so do this package's (managed nodes from ``activate`` and ``deactivate``,
+        the costmaps from ``start`` and ``stop``).
+
+        :param callback: ``callback(parameters) -> rcl_interfaces/SetParametersResult``.
+        """
+        self.unwatch_parameters()
+        self.add_on_set_parameters_callback(callback)  # rclpy returns None: keep the callback
+        self._parameters_handler = callback
+
+    def unwatch_parameters(self):
+        """Remove the callback :meth:`watch_parameters` added, if any."""
+        handler = getattr(self, '_parameters_handler', None)
+        if handler is not None:
+            self.remove_on_set_parameters_callback(handler)
+        self._parameters_handler = None
+
     def destroy_node(self):
         """Stop the node's take loops, then destroy it as rclpy does."""
         stop_loops_of(self)

@@ -156,7 +156,6 @@ class CostmapNode(CostmapServices, CostmapParameters, Node):
             self.layers[-1][2]['enabled'] = self.declare_parameter(f'{layer}.enabled',
                                                                    True).value
         self._lock = threading.RLock()  # the update timer, the map and ros2 param set
-        self._parameters_handler = None
         self._footprint()
         self.grid = self._empty_grid()
         self.static = None  # (costs, Costmap of the map)
@@ -269,8 +268,7 @@ class CostmapNode(CostmapServices, CostmapParameters, Node):
         self._publish_timer = self.create_timer(1.0 / max(self.p['publish_frequency'], 1e-3),
                                                 self.publish)
         self._entities.append(self._publish_timer)
-        self.add_on_set_parameters_callback(self._on_set_parameters)
-        self._parameters_handler = self._on_set_parameters  # rclpy's add returns None
+        self.watch_parameters(self._on_set_parameters)
 
     def _parent_topic(self, topic):
         """Resolve a relative input topic in the server's namespace (Nav2's parent namespace)."""
@@ -278,9 +276,7 @@ class CostmapNode(CostmapServices, CostmapParameters, Node):
 
     def stop(self):
         """Remove what :meth:`start` made (the server's deactivate)."""
-        if self._parameters_handler is not None:
-            self.remove_on_set_parameters_callback(self._parameters_handler)
-            self._parameters_handler = None
+        self.unwatch_parameters()
         for entity in self._entities:
             for destroy in (self.destroy_subscription, self.destroy_publisher,
                             self.destroy_service, self.destroy_timer):
